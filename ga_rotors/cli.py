@@ -1,0 +1,58 @@
+"""The ``ga-rotors`` command.
+
+Each sub-command lives in its own module, named in :data:`COMMANDS`, which exposes
+``add_arguments(parser)`` and ``run(args) -> int``. Command modules import only the
+standard library at top level, so ``ga-rotors --help`` and light commands start fast;
+heavy imports happen inside ``run``.
+
+Errors a user can cause (:class:`ga_rotors.errors.GaRotorsError`) are printed as one line
+on stderr with exit code 2, never as a traceback.
+"""
+
+from __future__ import annotations
+
+import argparse
+import importlib
+import sys
+
+from .errors import GaRotorsError
+
+#: sub-command name -> module implementing it.
+COMMANDS: dict[str, str] = {}
+
+
+def build_parser() -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(
+        prog="ga-rotors",
+        description="Rotations in geometric algebra: rotors, quaternions, rigid bodies.",
+    )
+    sub = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
+    for name, modname in COMMANDS.items():
+        module = importlib.import_module(modname)
+        doc = (module.__doc__ or "").strip().splitlines()
+        p = sub.add_parser(
+            name,
+            help=doc[0] if doc else None,
+            description=(module.__doc__ or "").strip() or None,
+            formatter_class=argparse.RawDescriptionHelpFormatter,
+        )
+        module.add_arguments(p)
+        p.set_defaults(_run=module.run)
+    return parser
+
+
+def main(argv: list[str] | None = None) -> int:
+    """Entry point of the ``ga-rotors`` console script."""
+    args = build_parser().parse_args(argv)
+    try:
+        return int(args._run(args) or 0)
+    except GaRotorsError as exc:
+        print(f"ga-rotors: error: {exc}", file=sys.stderr)
+        return 2
+    except KeyboardInterrupt:
+        print("ga-rotors: interrupted", file=sys.stderr)
+        return 130
+
+
+if __name__ == "__main__":  # pragma: no cover
+    sys.exit(main())

@@ -1,0 +1,24 @@
+"""Exceptions and warnings that ga_rotors raises on purpose.
+
+Every error a user can cause derives from :class:`GaRotorsError`; the command line
+prints those as one line and exits non-zero, without a traceback. Errors about bad
+arguments are also :class:`ValueError`, so ``except ValueError`` keeps working.
+"""
+
+from __future__ import annotations
+
+
+class GaRotorsError(Exception):
+    """Base class of the errors ga_rotors reports to users."""
+
+
+class InputError(GaRotorsError, ValueError):
+    """An argument has the wrong shape, type or value; the message names it."""
+
+
+class GimbalLockWarning(UserWarning):
+    """Euler angles were extracted at (or within round-off of) a gimbal lock.
+
+    The free angle is set by a documented rule (see ``docs/conventions.md``);
+    the rotation the angles describe is still exact.
+    """

@@ -1,0 +1,73 @@
+"""RigidBody validation and Euler's equations."""
+
+import math
+
+import numpy as np
+import pytest
+from hypothesis import given
+from hypothesis import strategies as st
+
+from ga_rotors import shapes
+from ga_rotors.body import RigidBody, euler_rates
+from ga_rotors.errors import InputError
+
+moment = st.floats(0.1, 10.0)
+rate = st.floats(-50.0, 50.0)
+
+
+@given(moment, moment, moment, rate, rate, rate)
+def test_torque_free_euler_rates_conserve_energy_and_momentum(i1, i2, i3, w1, w2, w3):
+    inertia, w = (i1, i2, i3), (w1, w2, w3)
+    dw = np.array(euler_rates(inertia, w, (0.0, 0.0, 0.0)))
+    I, w = np.array(inertia), np.array(w)
+    scale = (I * w * w).sum() * (1 + np.abs(w).max()) + 1e-300
+    assert abs(np.dot(I * w, dw)) <= 1e-12 * scale  # dE/dt = I w . w'
+    assert abs(np.dot(I * w, I * dw)) <= 1e-12 * scale * I.max()  # d|L|^2/dt
+
+
+def test_euler_rates_match_vector_form():
+    I = np.array([1.0, 2.0, 3.5])
+    w = np.array([0.3, -1.2, 2.0])
+    tau = np.array([0.1, 0.2, -0.3])
+    expected = (np.cross(I * w, w) + tau) / I
+    assert np.allclose(euler_rates(tuple(I), tuple(w), tuple(tau)), expected, rtol=1e-15)
+
+
+def test_symmetric_axis_rate_is_exactly_constant():
+    # the paper's body: I2 = I3 makes the x3 rate's derivative exactly zero
+    assert euler_rates((0.0056, 0.0028, 0.0028), (0.7, -3.1, 15.7), (0.0, 0.0, 0.0))[0] == 0.0
+
+
+@pytest.mark.parametrize(
+    "moments, fragment",
+    [
+        ((1.0, 1.0, 2.5), "triangle inequality"),
+        ((0.0, 1.0, 1.0), "must be positive"),
+        ((-1.0, 1.0, 1.0), "must be positive"),
+        ((1.0, float("nan"), 1.0), "nan"),
+        ((1.0, 2.0), "shape"),
+    ],
+)
+def test_impossible_inertia_is_rejected(moments, fragment):
+    with pytest.raises(InputError, match=fragment):
+        RigidBody(moments)
+
+
+def test_flat_body_is_accepted_within_round_off():
+    # a thin box: I3 = I1 + I2 exactly in exact arithmetic, a few ulps off in floats
+    flat = shapes.box(3.0, 0.7, 1.3, 1e-300)
+    RigidBody(flat)
+    assert math.isclose(flat[2], flat[0] + flat[1], rel_tol=1e-15)
+
+
+@pytest.mark.parametrize("name", sorted(shapes.SHAPES))
+def test_every_shape_is_a_valid_body(name):
+    fn, dims = shapes.SHAPES[name]
+    RigidBody(fn(2.0, *[0.3 + 0.1 * k for k in range(len(dims))]))
+
+
+def test_shapes_reject_bad_dimensions():
+    with pytest.raises(InputError, match="radius"):
+        shapes.disk(1.0, -1.0)
+    with pytest.raises(InputError, match="mass"):
+        shapes.sphere(float("inf"), 1.0)
