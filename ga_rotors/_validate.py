@@ -80,7 +80,7 @@ def require_unit(q: np.ndarray, name: str, tol: float = UNIT_TOLERANCE) -> np.nd
     >>> require_unit(np.array([2.0, 0.0, 0.0, 0.0]), "q")
     Traceback (most recent call last):
     ...
-    ga_rotors.errors.InputError: q: expected unit quaternions (| |q| - 1 | <= 1e-06), got norm 2 at index (); normalise it first (ga_rotors.quaternion.normalize)
+    ga_rotors.errors.InputError: q: expected unit quaternions (| |q| - 1 | <= 1e-06), got norm 2 ...
     """
     norms = np.sqrt(np.einsum("...i,...i->...", q, q))
     dev = np.abs(norms - 1.0)
