@@ -9,7 +9,8 @@ Euler's equations in the body (principal) frame, torque τ in that frame::
 
     I ω̇ = (I ω) × ω + τ
 
-written per component as ω̇₁ = ((I₂ − I₃) ω₂ ω₃ + τ₁) / I₁ (and cyclic). The difference
+written per component as ω̇₁ = (I₂ − I₃) ω₂ ω₃ / I₁ + τ₁ / I₁ (and cyclic); the torque-free
+part is :func:`free_euler_rates`, which torque-free integrators call alone. The difference
 (I₂ − I₃) is exactly zero for a symmetric body, so ω₁ stays bit-for-bit constant in the
 torque-free symmetric top, as the exact solution says.
 """
@@ -24,7 +25,7 @@ from ._jit import jit
 from ._validate import as_float_array
 from .errors import InputError
 
-__all__ = ["TRIANGLE_TOLERANCE", "RigidBody", "euler_rates"]
+__all__ = ["TRIANGLE_TOLERANCE", "RigidBody", "euler_rates", "free_euler_rates"]
 
 #: Relative slack allowed in the triangle inequality I₁ + I₂ ≥ I₃: a flat lamina sits
 #: exactly on the boundary (I₃ = I₁ + I₂), and computing it from dimensions may land a few
@@ -33,14 +34,25 @@ TRIANGLE_TOLERANCE = 1e-12
 
 
 @jit
-def euler_rates(inertia, w, tau):
-    """ω̇ from Euler's equations: I ω̇ = (I ω) × ω + τ, principal frame, tuples in and out."""
+def free_euler_rates(inertia, w):
+    """ω̇ of the torque-free body: I ω̇ = (I ω) × ω, principal frame, tuples in and out."""
     i1, i2, i3 = inertia
     w1, w2, w3 = w
     return (
-        ((i2 - i3) * w2 * w3 + tau[0]) / i1,
-        ((i3 - i1) * w3 * w1 + tau[1]) / i2,
-        ((i1 - i2) * w1 * w2 + tau[2]) / i3,
+        (i2 - i3) * w2 * w3 / i1,
+        (i3 - i1) * w3 * w1 / i2,
+        (i1 - i2) * w1 * w2 / i3,
+    )
+
+
+@jit
+def euler_rates(inertia, w, tau):
+    """ω̇ from Euler's equations: I ω̇ = (I ω) × ω + τ, principal frame, tuples in and out."""
+    g = free_euler_rates(inertia, w)
+    return (
+        g[0] + tau[0] / inertia[0],
+        g[1] + tau[1] / inertia[1],
+        g[2] + tau[2] / inertia[2],
     )
 
 

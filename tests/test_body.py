@@ -8,7 +8,7 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 from ga_rotors import shapes
-from ga_rotors.body import RigidBody, euler_rates
+from ga_rotors.body import RigidBody, euler_rates, free_euler_rates
 from ga_rotors.errors import InputError
 
 moment = st.floats(0.1, 10.0)
@@ -71,3 +71,13 @@ def test_shapes_reject_bad_dimensions():
         shapes.disk(1.0, -1.0)
     with pytest.raises(InputError, match="mass"):
         shapes.sphere(float("inf"), 1.0)
+
+
+@given(moment, moment, moment, rate, rate, rate)
+def test_free_euler_rates_is_euler_rates_without_torque(i1, i2, i3, w1, w2, w3):
+    inertia, w = (i1, i2, i3), (w1, w2, w3)
+    assert euler_rates(inertia, w, (0.0, 0.0, 0.0)) == free_euler_rates(inertia, w)
+    tau = (0.3, -0.2, 0.1)
+    with_tau = np.array(euler_rates(inertia, w, tau))
+    assert np.allclose(with_tau - np.array(free_euler_rates(inertia, w)), np.array(tau) / inertia,
+                       rtol=1e-12, atol=1e-12 * np.abs(with_tau).max())  # fmt: skip

@@ -1,0 +1,39 @@
+"""Integrators: a registry of compiled, specialised fixed-step methods.
+
+The interface (how to add an integrator, the template slots, torques, the code
+generation that makes numba's cache work) is documented in
+:mod:`ga_rotors.integrators.base`. Use :func:`get` to look one up, :func:`catalogue` to list
+them, and :func:`ga_rotors.simulate.simulate` to run one.
+"""
+
+from .base import (
+    FREE,
+    KINEMATIC,
+    TORQUED,
+    Integrator,
+    LoopResult,
+    PrescribedOmega,
+    Problem,
+    TemplateIntegrator,
+    TorqueTerm,
+    catalogue,
+    get,
+    names,
+    register,
+)
+
+__all__ = [
+    "FREE",
+    "KINEMATIC",
+    "TORQUED",
+    "Integrator",
+    "LoopResult",
+    "PrescribedOmega",
+    "Problem",
+    "TemplateIntegrator",
+    "TorqueTerm",
+    "catalogue",
+    "get",
+    "names",
+    "register",
+]

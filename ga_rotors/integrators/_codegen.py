@@ -1,0 +1,502 @@
+"""Specialise loop templates: generate, cache on disk, import, compile (numba cache=True).
+
+For one (integrator, problem kind, path, declared torque or ω(t) kernels) this module
+writes a Python module such as::
+
+    from ga_rotors._jit import jit as _jit
+    from ga_rotors.body import euler_rates
+    from ga_rotors.paths.quaternion import rate as o_rate
+    ...
+    from ga_rotors.effects import gravity as _term_0
+
+    @_jit
+    def torque(t, q, w, params):
+        return _term_0(t, q, w, params[0:6])
+
+    @_jit
+    def accel(t, x, w, inertia, params):
+        return euler_rates(inertia, w, torque(t, o_quat(x), w, params))
+
+    @_jit
+    def rk4_step(t, x, w, h, inertia, params):
+        ...                                   # the template's source, verbatim
+
+    step = rk4_step
+
+    @_jit
+    def fixed_step_loop(...):
+        ...
+
+Every global a template uses is resolved in the template's own module: compiled kernels
+become imports, numeric constants are copied, slots are bound here. The file name holds a
+SHA-256 of the text and of every source file the module can reach (the whole ga_rotors
+package, plus the modules of kernels from elsewhere), so an edit anywhere gives a new
+file and numba's cache, keyed on that file, can never serve stale machine code.
+
+Cache directory: ``$GA_ROTORS_CACHE_DIR`` if set, else ``$XDG_CACHE_HOME/ga_rotors`` or
+``~/.cache/ga_rotors``; if that is not writable, a per-user directory under the system
+temp dir; if nothing is writable, the module is compiled in memory without caching (a
+one-off cost of about a second per loop, reported by :func:`cache_location`).
+"""
+
+from __future__ import annotations
+
+import functools
+import hashlib
+import importlib
+import importlib.util
+import inspect
+import os
+import sys
+import tempfile
+import textwrap
+import types
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from ..errors import InputError
+from ..paths import get as get_path
+from . import loops, slots
+from .base import FREE, KINEMATIC, TORQUED, LoopResult, Problem, TemplateIntegrator
+
+__all__ = ["Specialisation", "cache_location", "clear_cache", "run_loop", "source", "specialise"]
+
+PACKAGE_ROOT = Path(__file__).resolve().parent.parent
+_MEMO: dict[tuple, Specialisation] = {}
+
+
+@dataclass(frozen=True)
+class Specialisation:
+    """A generated, imported module and its compiled loop."""
+
+    module: types.ModuleType
+    path: Path | None
+    source: str
+
+    @property
+    def loop(self):
+        return self.module.loop
+
+
+# ---------------------------------------------------------------------------- source text
+
+
+def _code_names(code: types.CodeType) -> set[str]:
+    names = set(code.co_names)
+    for const in code.co_consts:
+        if isinstance(const, types.CodeType):
+            names |= _code_names(const)
+    return names
+
+
+def _template_source(func) -> str:
+    src = textwrap.dedent(inspect.getsource(func))
+    if not src.startswith("def "):
+        raise InputError(
+            f"template {func.__qualname__}: expected a plain module-level function without "
+            "decorators"
+        )
+    return src
+
+
+def _is_template(obj) -> bool:
+    return isinstance(obj, types.FunctionType) and not hasattr(obj, "py_func")
+
+
+def _reachable(start: list, pool: dict[str, types.FunctionType]) -> list:
+    """Templates reachable from ``start`` through global names, in dependency order."""
+    seen: dict[str, types.FunctionType] = {}
+
+    def visit(func):
+        if func.__name__ in seen:
+            return
+        for name in sorted(_code_names(func.__code__)):
+            dep = pool.get(name)
+            if dep is not None and dep is not func:
+                visit(dep)
+        seen[func.__name__] = func
+
+    for func in start:
+        visit(func)
+    return list(seen.values())
+
+
+class _Imports:
+    """Global name -> how the generated module gets it; refuses conflicting bindings."""
+
+    def __init__(self):
+        self.lines: dict[str, str] = {}
+        self.objects: dict[str, object] = {}
+        self.modules: set[str] = set()
+
+    def bind(self, name: str, obj, line: str, module: str | None) -> None:
+        if name in self.objects and self.objects[name] is not obj:
+            raise InputError(f"template global {name!r} is bound to two different objects")
+        self.objects[name] = obj
+        self.lines[name] = line
+        if module:
+            self.modules.add(module)
+
+    def kernel(self, name: str, obj) -> None:
+        func = getattr(obj, "py_func", obj)
+        module, qual = func.__module__, func.__qualname__
+        if getattr(importlib.import_module(module), qual, None) is not obj:
+            raise InputError(f"{module}.{qual} is not importable under its own name")
+        alias = "" if qual == name else f" as {name}"
+        self.bind(name, obj, f"from {module} import {qual}{alias}", module)
+
+
+def _resolve_globals(templates: list, generated: set[str], imports: _Imports) -> None:
+    template_names = {f.__name__ for f in templates}
+    for func in templates:
+        for name in sorted(_code_names(func.__code__)):
+            if name in template_names or name in generated or name not in func.__globals__:
+                continue
+            obj = func.__globals__[name]
+            if name in slots.ALL_SLOTS:
+                continue  # bound by the caller (path kernels) or generated
+            if isinstance(obj, types.ModuleType):
+                imports.bind(name, obj, f"import {obj.__name__} as {name}", obj.__name__)
+            elif isinstance(obj, bool | int | float) or (
+                isinstance(obj, tuple) and all(isinstance(v, int | float) for v in obj)
+            ):
+                imports.bind(name, obj, f"{name} = {obj!r}", None)
+            elif callable(obj):
+                imports.kernel(name, obj)
+            else:
+                raise InputError(
+                    f"template {func.__name__}: global {name!r} is a {type(obj).__name__}; "
+                    "templates may use compiled kernels, modules and numeric constants"
+                )
+
+
+def _torque_source(problem: Problem, imports: _Imports) -> str:
+    calls, offset = [], 0
+    for n, term in enumerate(problem.torques):
+        alias = f"_term_{n}"
+        imports.kernel(alias, term.kernel)
+        size = len(term.params)
+        calls.append(f"{alias}(t, q, w, params[{offset}:{offset + size}])")
+        offset += size
+    if len(calls) == 1:
+        body = f"    return {calls[0]}\n"
+    else:
+        body = "".join(f"    a{n} = {c}\n" for n, c in enumerate(calls))
+        sums = [" + ".join(f"a{n}[{k}]" for n in range(len(calls))) for k in range(3)]
+        body += f"    return ({sums[0]}, {sums[1]}, {sums[2]})\n"
+    return "def torque(t, q, w, params):\n" + body
+
+
+def _omega_source(problem: Problem, imports: _Imports) -> str:
+    imports.kernel("_omega_0", problem.omega.kernel)
+    size = len(problem.omega.params)
+    return f"def omega(t, params):\n    return _omega_0(t, params[0:{size}])\n"
+
+
+def _accel_source(kind: str, imports: _Imports) -> str:
+    from .. import body
+
+    if kind == FREE:
+        imports.kernel("free_euler_rates", body.free_euler_rates)
+        return (
+            "def accel(t, x, w, inertia, params):\n    return free_euler_rates(inertia, w)\n"
+        )
+    imports.kernel("euler_rates", body.euler_rates)
+    return (
+        "def accel(t, x, w, inertia, params):\n"
+        "    return euler_rates(inertia, w, torque(t, o_quat(x), w, params))\n"
+    )
+
+
+def source(integrator: TemplateIntegrator, problem: Problem, path: str) -> str:
+    """The text of the module that specialises ``integrator`` for ``problem`` on ``path``."""
+    return _generate(integrator, problem, path, cache=True)[0]
+
+
+def _generate(
+    integrator: TemplateIntegrator, problem: Problem, path: str, cache: bool
+) -> tuple[str, list[str]]:
+    kind = problem.kind
+    step = integrator.steps[kind]
+    loop = loops.kinematic_loop if kind == KINEMATIC else loops.fixed_step_loop
+    pool = {f.__name__: f for f in (*integrator.steps.values(), *integrator.helpers)}
+    for f in pool.values():
+        if not _is_template(f):
+            raise InputError(f"template {f!r}: expected a plain (uncompiled) Python function")
+    templates = _reachable([step], pool)
+    used = set().union(*(_code_names(f.__code__) for f in (*templates, loop)))
+
+    imports = _Imports()
+    generated: list[str] = []
+    needs_torque = "torque" in used or ("accel" in used and kind == TORQUED)
+    if needs_torque and kind != TORQUED:
+        raise InputError(f"{integrator.name}: its {kind} step calls torque(), which needs torques")
+    if kind == TORQUED and not needs_torque:
+        raise InputError(f"{integrator.name}: its torqued step never evaluates the torque")
+    if needs_torque:
+        generated.append(_torque_source(problem, imports))
+    if "accel" in used:
+        if kind == KINEMATIC:
+            raise InputError(f"{integrator.name}: a kinematic step cannot call accel()")
+        generated.append(_accel_source(kind, imports))
+        used |= {"o_quat"} if kind == TORQUED else set()
+    if "omega" in used:
+        if kind != KINEMATIC:
+            raise InputError(f"{integrator.name}: only kinematic steps may call omega()")
+        generated.append(_omega_source(problem, imports))
+    if kind == KINEMATIC and "omega" not in used:
+        raise InputError(f"{integrator.name}: its kinematic step never evaluates omega()")
+
+    spec = get_path(path)
+    module = spec.load()
+    for slot, attr in slots.PATH_SLOTS.items():
+        if slot in used:
+            if not hasattr(module, attr):
+                raise InputError(
+                    f"{integrator.name}: uses {slot}, which the {path!r} path does not have"
+                )
+            imports.kernel(slot, getattr(module, attr))
+
+    names = {"torque", "accel", "omega", "step", "loop"}
+    _resolve_globals([*templates, loop], names, imports)
+
+    if cache:
+        header = "from ga_rotors._jit import jit as _jit\n"
+    else:
+        header = "from functools import partial\n\nfrom ga_rotors._jit import jit\n\n"
+        header += "_jit = partial(jit, cache=False)\n"
+    body = [header, *(line + "\n" for line in sorted(imports.lines.values()))]
+    for text in generated:
+        body.append("\n\n@_jit\n" + text)
+    for func in templates:
+        body.append("\n\n@_jit\n" + _template_source(func))
+    body.append(f"\n\nstep = {step.__name__}\n")
+    body.append("\n\n@_jit\n" + _template_source(loop))
+    body.append(f"\n\nloop = {loop.__name__}\n")
+    terms = [t.name for t in problem.torques] or ([problem.omega.name] if problem.omega else [])
+    doc = (
+        f'"""Generated by ga_rotors.integrators._codegen; do not edit.\n\n'
+        f"integrator={integrator.name} problem={kind} path={path} terms={terms}\n"
+        '"""\n\n'
+    )
+    text = doc + "".join(body)
+    return text, sorted(imports.modules)
+
+
+# ---------------------------------------------------------------------------- the cache
+
+
+def _candidates() -> list[Path]:
+    out = []
+    env = os.environ.get("GA_ROTORS_CACHE_DIR")
+    if env:
+        out.append(Path(env))
+    else:
+        base = os.environ.get("XDG_CACHE_HOME") or os.path.join(os.path.expanduser("~"), ".cache")
+        out.append(Path(base) / "ga_rotors")
+    uid = os.getuid() if hasattr(os, "getuid") else os.environ.get("USERNAME", "user")
+    out.append(Path(tempfile.gettempdir()) / f"ga_rotors-{uid}")
+    return [p / "generated" for p in out]
+
+
+def _writable(directory: Path) -> bool:
+    try:
+        directory.mkdir(parents=True, exist_ok=True)
+        probe = tempfile.NamedTemporaryFile(dir=directory, prefix=".probe-", delete=True)
+        probe.close()
+        return True
+    except OSError:
+        return False
+
+
+@functools.lru_cache(maxsize=1)
+def cache_location() -> Path | None:
+    """The directory generated modules go to, or None when compiling in memory."""
+    for directory in _candidates():
+        if _writable(directory):
+            return directory
+    return None
+
+
+def clear_cache() -> int:
+    """Delete every generated module and its numba cache; return how many files went."""
+    directory = cache_location()
+    removed = 0
+    if directory is None:
+        return 0
+    for pattern in ("gen_*.py", "__pycache__/gen_*"):
+        for f in directory.glob(pattern):
+            try:
+                f.unlink()
+                removed += 1
+            except OSError:
+                pass
+    _MEMO.clear()
+    return removed
+
+
+@functools.cache
+def _file_digest(path: str) -> str:
+    return hashlib.sha256(Path(path).read_bytes()).hexdigest()
+
+
+@functools.lru_cache(maxsize=1)
+def _package_digest() -> str:
+    h = hashlib.sha256()
+    for f in sorted(PACKAGE_ROOT.rglob("*.py")):
+        h.update(str(f.relative_to(PACKAGE_ROOT)).encode())
+        h.update(_file_digest(str(f)).encode())
+    return h.hexdigest()
+
+
+def _digest(text: str, modules: list[str]) -> str:
+    import numba
+
+    h = hashlib.sha256(text.encode())
+    h.update(_package_digest().encode())
+    h.update(numba.__version__.encode())
+    for name in modules:
+        if name == "ga_rotors" or name.startswith("ga_rotors."):
+            continue
+        file = getattr(sys.modules.get(name) or importlib.import_module(name), "__file__", None)
+        if file:
+            h.update(_file_digest(file).encode())
+    return h.hexdigest()[:20]
+
+
+def _write_once(path: Path, text: str) -> None:
+    """Create ``path`` with ``text`` atomically; an existing identical file is left alone
+    (rewriting it would change its mtime and invalidate numba's cache for it)."""
+    if path.exists():
+        try:
+            if path.read_text(encoding="utf-8") == text:
+                return
+        except OSError:
+            pass
+    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=".tmp-", suffix=".py")
+    try:
+        with os.fdopen(fd, "w", encoding="utf-8") as fh:
+            fh.write(text)
+        os.replace(tmp, path)
+    except BaseException:
+        if os.path.exists(tmp):
+            os.unlink(tmp)
+        raise
+
+
+def _import_file(name: str, path: Path) -> types.ModuleType:
+    spec = importlib.util.spec_from_file_location(name, path)
+    module = importlib.util.module_from_spec(spec)
+    sys.modules[name] = module
+    try:
+        spec.loader.exec_module(module)
+    except BaseException:
+        sys.modules.pop(name, None)
+        raise
+    return module
+
+
+def _import_text(name: str, text: str) -> types.ModuleType:
+    module = types.ModuleType(name)
+    module.__file__ = f"<{name}>"
+    sys.modules[name] = module
+    exec(compile(text, module.__file__, "exec"), module.__dict__)
+    return module
+
+
+def _memo_key(integrator, problem: Problem, path: str) -> tuple:
+    terms = (problem.omega,) if problem.omega is not None else problem.torques
+    return (
+        integrator.name,
+        id(integrator),
+        problem.kind,
+        path,
+        tuple((term.location, len(term.params)) for term in terms),
+    )
+
+
+def specialise(integrator: TemplateIntegrator, problem: Problem, path: str) -> Specialisation:
+    """Generate (or reuse) and import the module for this combination."""
+    key = _memo_key(integrator, problem, path)
+    found = _MEMO.get(key)
+    if found is not None:
+        return found
+    directory = cache_location()
+    text, modules = _generate(integrator, problem, path, cache=directory is not None)
+    digest = _digest(text, modules)
+    stem = f"gen_{integrator.name}_{problem.kind}_{path}_{digest}"
+    modname = f"_ga_rotors_{stem}"
+    file = directory / f"{stem}.py" if directory is not None else None
+    loaded = sys.modules.get(modname)
+    if loaded is not None and getattr(loaded, "__file__", None) == str(file or f"<{modname}>"):
+        module = loaded
+    elif file is not None:
+        try:
+            _write_once(file, text)
+            module = _import_file(modname, file)
+        except OSError:
+            text, _ = _generate(integrator, problem, path, cache=False)
+            file, module = None, _import_text(modname, text)
+    else:
+        module = _import_text(modname, text)
+    result = Specialisation(module, file, text)
+    _MEMO[key] = result
+    return result
+
+
+# ---------------------------------------------------------------------------- running
+
+
+def run_loop(
+    integrator: TemplateIntegrator,
+    problem: Problem,
+    path: str,
+    x0,
+    w0,
+    t0: float,
+    h: float,
+    nsteps: int,
+    every: int,
+) -> LoopResult:
+    """Run the specialised loop and return the finite samples."""
+    spec = get_path(path)
+    kernels = spec.load()
+    if not (isinstance(nsteps, int | np.integer) and nsteps >= 1):
+        raise InputError(f"nsteps: expected a positive integer, got {nsteps!r}")
+    if not (isinstance(every, int | np.integer) and every >= 1):
+        raise InputError(f"every: expected a positive integer, got {every!r}")
+    compiled = specialise(integrator, problem, path)
+    rows = int(nsteps) // int(every) + 1 + (1 if nsteps % every else 0)
+    out_t = np.empty(rows)
+    out_x = np.empty((rows, spec.dim))
+    out_w = np.empty((rows, 3))
+    stats = (
+        kernels.initial_stats() if hasattr(kernels, "initial_stats") else np.zeros(kernels.NSTATS)
+    )
+    x0 = np.ascontiguousarray(x0, dtype=np.float64)
+    w0 = np.ascontiguousarray(w0 if w0 is not None else (0.0, 0.0, 0.0), dtype=np.float64)
+    inertia = problem.inertia if problem.inertia is not None else (1.0, 1.0, 1.0)
+    written = compiled.loop(
+        x0,
+        w0,
+        float(t0),
+        float(h),
+        int(nsteps),
+        int(every),
+        inertia,
+        problem.params(),
+        out_t,
+        out_x,
+        out_w,
+        stats,
+    )
+    return LoopResult(
+        t=out_t[:written],
+        x=out_x[:written],
+        w=out_w[:written],
+        complete=written == rows,
+        stats=stats,
+        source=compiled.path,
+    )

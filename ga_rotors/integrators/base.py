@@ -1,0 +1,432 @@
+"""The integrator interface, the problem description, and the registry.
+
+How an integrator plugs in
+--------------------------
+An integrator is a :class:`TemplateIntegrator` registered under a name. It declares
+
+* ``name``, ``order``, ``description``;
+* ``conserves``: a subset of :data:`PROPERTIES` (``unit_norm``, ``energy``,
+  ``momentum_norm`` = |L|, ``space_momentum`` = space-frame L, ``symplectic``,
+  ``time_reversible``), what it preserves *by construction* (tests hold it to that);
+* ``paths``: the orientation paths it can step (``rotor``, ``quaternion``, ``euler``;
+  see :mod:`ga_rotors.paths`); a method that needs unit-sphere operations
+  (``o_normalize``, ``o_from_quat``) supports only ``rotor`` and ``quaternion``;
+* ``steps``: problem kind -> step template, for the kinds it supports among
+  :data:`FREE` (torque-free), :data:`TORQUED`, :data:`KINEMATIC` (prescribed ω(t));
+* ``helpers``: other templates its steps call (pasted only when reachable).
+
+A *template* is a plain, undecorated, module-level Python function. It calls other
+templates, compiled kernels (``ga_rotors._kernels``, ``ga_rotors.body``,
+``ga_rotors._rotor_kernels``, ``ga_rotors.integrators._arith``, ...) and the *slots* of
+:mod:`ga_rotors.integrators.slots`, which it imports from there, so it reads and lints as
+ordinary code. Step templates have fixed signatures::
+
+    free / torqued:  x, w = step(t, x, w, h, inertia, params)
+    kinematic:       x    = step(t, x, h, params)
+
+``x`` is the path's state tuple (rotor coefficients, quaternion, or ZYZ angles), ``w`` the
+body angular velocity 3-tuple, ``inertia`` the principal moments 3-tuple, ``params`` the
+float64 array of the declared effects' parameters (pass it through untouched). Inside a
+step, use
+
+* ``accel(t, x, w, inertia, params)`` for ω̇ from Euler's equations, torque included when
+  the problem is torqued (a torque-free module's ``accel`` has no torque term at all);
+* ``torque(t, q, w, params)`` directly (e.g. a kick of kick–drift–kick), with
+  ``q = o_quat(x)``; only torqued problems define it: a template that calls it cannot be
+  instantiated for a free problem, so keep such a step out of ``steps[FREE]``;
+* ``omega(t, params)`` for the prescribed body ω(t) (kinematic problems only);
+* ``o_rate``, ``o_axpy``, ``o_rk4``, ``o_normalize``, ``o_quat``, ``o_from_quat`` for the
+  path (a Lie-group method on the quaternion/rotor paths, for example, does
+  ``o_from_quat(qmul(o_quat(x), quat_from_rotvec(...)))``: both maps are signed
+  permutations, free after compilation).
+
+Module-level constants a template reads (numbers or tuples of numbers, e.g. composition
+coefficients) are copied into the generated module. Example, a Lie–Euler step::
+
+    from .._kernels import qmul, quat_from_rotvec
+    from ._arith import axpy3
+    from .slots import accel, o_from_quat, o_quat
+
+    def lie_euler_step(t, x, w, h, inertia, params):
+        dw = accel(t, x, w, inertia, params)
+        q = qmul(o_quat(x), quat_from_rotvec((h * w[0], h * w[1], h * w[2])))
+        return o_from_quat(q), axpy3(w, h, dw)
+
+    LIE_EULER = register(TemplateIntegrator(
+        name="lie_euler", order=1, description="...", conserves=frozenset({"unit_norm"}),
+        paths=frozenset({"rotor", "quaternion"}), steps={FREE: lie_euler_step,
+        TORQUED: lie_euler_step}))
+
+and add the module's name to :data:`BUILTIN_MODULES` so the registry loads it.
+
+Specialisation (why code generation)
+------------------------------------
+numba does not cache a function that receives compiled functions as arguments, nor a
+closure, so "one loop, any torque" would recompile in every process (~1 s). Instead,
+:mod:`ga_rotors.integrators._codegen` writes, for one (integrator, problem kind, path,
+declared torque kernels), a small source module: imports of the kernels the templates
+use, ``torque`` as the sum of exactly the declared torque kernels, ``accel``, the
+templates and the loop of :mod:`ga_rotors.integrators.loops`, each under ``@jit``
+(cache=True). The file is written atomically into a per-user cache directory, named by a
+hash of its text and of the sources it depends on, then imported, so numba's on-disk
+cache applies. Undeclared torques are not in the source at all; free problems have no
+``torque``.
+
+Effects (issue 5's torques)
+---------------------------
+A torque is a :class:`TorqueTerm`: a compiled kernel ``kernel(t, q, w, p) -> (τ1, τ2, τ3)``
+(body frame; ``q`` the body->space unit quaternion, ``w`` body ω, ``p`` a float64 array
+view of this term's parameters) defined at module level in an importable module, and
+its parameters. A prescribed angular velocity is a :class:`PrescribedOmega`:
+``kernel(t, p) -> (ω1, ω2, ω3)``, same rules.
+
+Running
+-------
+:meth:`Integrator.run` takes a :class:`Problem` and a path name and returns a
+:class:`LoopResult`; :func:`ga_rotors.simulate.simulate` is the user-facing entry point.
+A non-template integrator (e.g. scipy's DOP853) subclasses :class:`Integrator` and
+implements :meth:`~Integrator.run` itself; :func:`ga_rotors.integrators._codegen.vector_field`
+gives it the same compiled, specialised right-hand side.
+"""
+
+from __future__ import annotations
+
+import importlib
+from abc import ABC, abstractmethod
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass, field
+from pathlib import Path as FilePath
+
+import numpy as np
+
+from ..errors import InputError
+
+__all__ = [
+    "BUILTIN_MODULES",
+    "FREE",
+    "KINEMATIC",
+    "PROBLEM_KINDS",
+    "PROPERTIES",
+    "TORQUED",
+    "Integrator",
+    "LoopResult",
+    "PrescribedOmega",
+    "Problem",
+    "TemplateIntegrator",
+    "TorqueTerm",
+    "catalogue",
+    "get",
+    "names",
+    "register",
+]
+
+FREE = "free"
+TORQUED = "torqued"
+KINEMATIC = "kinematic"
+PROBLEM_KINDS = (FREE, TORQUED, KINEMATIC)
+
+#: What an integrator may declare it preserves by construction.
+PROPERTIES = frozenset(
+    {"unit_norm", "energy", "momentum_norm", "space_momentum", "symplectic", "time_reversible"}
+)
+
+#: Modules that register integrators on import, loaded on first registry access.
+BUILTIN_MODULES = ("ga_rotors.integrators.rk4",)
+
+
+def _kernel_location(kernel, what: str) -> tuple[str, str]:
+    """(module, name) under which ``kernel`` can be imported, or InputError."""
+    func = getattr(kernel, "py_func", kernel)
+    module, name = getattr(func, "__module__", None), getattr(func, "__qualname__", "")
+    if not callable(kernel) or not module or not name or "." in name or "<" in name:
+        raise InputError(
+            f"{what}: expected a compiled kernel defined at module level of an importable "
+            f"module, got {kernel!r}"
+        )
+    try:
+        found = getattr(importlib.import_module(module), name)
+    except (ImportError, AttributeError):
+        found = None
+    if found is not kernel:
+        raise InputError(f"{what}: {module}.{name} does not import as the kernel given")
+    return module, name
+
+
+def _params(values, what: str) -> tuple[float, ...]:
+    arr = np.asarray(values, dtype=np.float64).reshape(-1)
+    if not np.isfinite(arr).all():
+        raise InputError(f"{what}: parameters must be finite, got {tuple(arr)}")
+    return tuple(float(v) for v in arr)
+
+
+@dataclass(frozen=True)
+class TorqueTerm:
+    """One declared torque: ``kernel(t, q, w, p) -> body-frame torque`` and its parameters.
+
+    Examples
+    --------
+    >>> from ga_rotors._kernels import cross
+    >>> TorqueTerm(cross, (1.0, 2.0))
+    Traceback (most recent call last):
+    ...
+    ga_rotors.errors.InputError: ...
+    """
+
+    kernel: Callable
+    params: tuple[float, ...] = ()
+    name: str = ""
+
+    def __post_init__(self):
+        object.__setattr__(self, "params", _params(self.params, "torque params"))
+        _kernel_location(self.kernel, "torque kernel")
+        if not self.name:
+            object.__setattr__(self, "name", _kernel_location(self.kernel, "torque kernel")[1])
+        if _arity(self.kernel) not in (None, 4):
+            raise InputError(
+                f"torque kernel {self.name}: expected signature kernel(t, q, w, p), "
+                f"got {_arity(self.kernel)} parameters"
+            )
+
+    @property
+    def location(self) -> tuple[str, str]:
+        return _kernel_location(self.kernel, "torque kernel")
+
+
+@dataclass(frozen=True)
+class PrescribedOmega:
+    """A prescribed body angular velocity ``kernel(t, p) -> (ω1, ω2, ω3)`` and parameters."""
+
+    kernel: Callable
+    params: tuple[float, ...] = ()
+    name: str = ""
+
+    def __post_init__(self):
+        object.__setattr__(self, "params", _params(self.params, "omega params"))
+        _kernel_location(self.kernel, "omega kernel")
+        if not self.name:
+            object.__setattr__(self, "name", _kernel_location(self.kernel, "omega kernel")[1])
+        if _arity(self.kernel) not in (None, 2):
+            raise InputError(
+                f"omega kernel {self.name}: expected signature kernel(t, p), "
+                f"got {_arity(self.kernel)} parameters"
+            )
+
+    @property
+    def location(self) -> tuple[str, str]:
+        return _kernel_location(self.kernel, "omega kernel")
+
+
+def _arity(kernel) -> int | None:
+    code = getattr(getattr(kernel, "py_func", kernel), "__code__", None)
+    return None if code is None else code.co_argcount
+
+
+@dataclass(frozen=True)
+class Problem:
+    """What is integrated: a body with declared torques, or a prescribed ω(t).
+
+    Examples
+    --------
+    >>> Problem((1.0, 2.0, 3.0)).kind
+    'free'
+    """
+
+    inertia: tuple[float, float, float] | None = None
+    torques: tuple[TorqueTerm, ...] = ()
+    omega: PrescribedOmega | None = None
+
+    def __post_init__(self):
+        object.__setattr__(self, "torques", tuple(self.torques))
+        for term in self.torques:
+            if not isinstance(term, TorqueTerm):
+                raise InputError(f"torques: expected TorqueTerm items, got {term!r}")
+        if self.omega is not None:
+            if not isinstance(self.omega, PrescribedOmega):
+                raise InputError(f"omega: expected a PrescribedOmega, got {self.omega!r}")
+            if self.torques:
+                raise InputError("omega: a prescribed ω(t) takes no torques (no dynamics)")
+        elif self.inertia is None:
+            raise InputError("inertia: a dynamics problem needs the principal moments")
+        if self.inertia is not None:
+            object.__setattr__(self, "inertia", tuple(float(i) for i in self.inertia))
+
+    @property
+    def kind(self) -> str:
+        if self.omega is not None:
+            return KINEMATIC
+        return TORQUED if self.torques else FREE
+
+    def params(self) -> np.ndarray:
+        """The packed parameter array the generated ``torque``/``omega`` slices."""
+        terms = (self.omega,) if self.omega is not None else self.torques
+        flat = [p for term in terms for p in term.params]
+        return np.array(flat, dtype=np.float64)
+
+
+@dataclass(frozen=True)
+class LoopResult:
+    """The samples of one run of one path.
+
+    ``t`` (n,), ``x`` (n, dim) path states, ``w`` (n, 3) body ω; ``complete`` is False
+    when the state stopped being finite and the run ended early (``t[-1]`` is then the
+    last finite sample). ``stats`` holds the path's watch statistics; ``source`` the
+    generated module's file (None when compiled in memory).
+    """
+
+    t: np.ndarray
+    x: np.ndarray
+    w: np.ndarray
+    complete: bool
+    stats: np.ndarray
+    source: FilePath | None = None
+
+
+class Integrator(ABC):
+    """What every integrator declares; :meth:`run` integrates one path."""
+
+    name: str
+    order: int
+    description: str
+    conserves: frozenset[str]
+    paths: frozenset[str]
+
+    @property
+    @abstractmethod
+    def problems(self) -> frozenset[str]:
+        """Problem kinds supported."""
+
+    @abstractmethod
+    def run(
+        self, problem: Problem, path: str, x0, w0, t0: float, h: float, nsteps: int, every: int
+    ) -> LoopResult:
+        """Integrate ``nsteps`` steps of size ``h`` from (x0, w0) at t0 on ``path``."""
+
+    def check(self, problem: Problem, path: str) -> None:
+        """InputError naming what is unsupported, if anything."""
+        if problem.kind not in self.problems:
+            raise InputError(
+                f"integrator: {self.name} does not support {problem.kind} problems "
+                f"(supports {', '.join(sorted(self.problems))})"
+            )
+        if path not in self.paths:
+            raise InputError(
+                f"paths: {self.name} cannot step the {path!r} path "
+                f"(supports {', '.join(sorted(self.paths))})"
+            )
+
+    def _validate_declaration(self) -> None:
+        if not self.name or not self.name.replace("_", "").isalnum():
+            raise InputError(f"integrator name: expected an identifier, got {self.name!r}")
+        unknown = set(self.conserves) - PROPERTIES
+        if unknown:
+            raise InputError(f"{self.name}: unknown conserved properties {sorted(unknown)}")
+        if not set(self.problems) <= set(PROBLEM_KINDS):
+            raise InputError(f"{self.name}: unknown problem kinds {sorted(self.problems)}")
+
+
+@dataclass(frozen=True, eq=False)
+class TemplateIntegrator(Integrator):
+    """A fixed-step integrator whose steps are templates (see the module docstring)."""
+
+    name: str
+    order: int
+    description: str
+    conserves: frozenset[str]
+    paths: frozenset[str]
+    steps: Mapping[str, Callable]
+    helpers: tuple[Callable, ...] = field(default=())
+
+    def __post_init__(self):
+        object.__setattr__(self, "conserves", frozenset(self.conserves))
+        object.__setattr__(self, "paths", frozenset(self.paths))
+        object.__setattr__(self, "steps", dict(self.steps))
+        self._validate_declaration()
+
+    @property
+    def problems(self) -> frozenset[str]:
+        return frozenset(self.steps)
+
+    def run(self, problem, path, x0, w0, t0, h, nsteps, every):
+        from . import _codegen
+
+        self.check(problem, path)
+        return _codegen.run_loop(self, problem, path, x0, w0, t0, h, nsteps, every)
+
+
+_REGISTRY: dict[str, Integrator] = {}
+_loaded = False
+
+
+def register(integrator: Integrator) -> Integrator:
+    """Add ``integrator`` to the registry (names are unique) and return it."""
+    if not isinstance(integrator, Integrator):
+        raise InputError(f"register: expected an Integrator, got {integrator!r}")
+    existing = _REGISTRY.get(integrator.name)
+    if existing is not None and existing is not integrator:
+        raise InputError(f"register: an integrator named {integrator.name!r} already exists")
+    _REGISTRY[integrator.name] = integrator
+    return integrator
+
+
+def _load_builtins() -> None:
+    global _loaded
+    if not _loaded:
+        for module in BUILTIN_MODULES:
+            importlib.import_module(module)
+        _loaded = True
+
+
+def get(name: str) -> Integrator:
+    """The registered integrator called ``name``.
+
+    Examples
+    --------
+    >>> get("rk4").order
+    4
+    >>> get("euler_forward")
+    Traceback (most recent call last):
+    ...
+    ga_rotors.errors.InputError: integrator: unknown integrator 'euler_forward'; expected one of ...
+    """
+    _load_builtins()
+    try:
+        return _REGISTRY[name]
+    except (KeyError, TypeError):
+        raise InputError(
+            f"integrator: unknown integrator {name!r}; expected one of {', '.join(names())}"
+        ) from None
+
+
+def names() -> list[str]:
+    """Names of all registered integrators, sorted.
+
+    Examples
+    --------
+    >>> "rk4" in names()
+    True
+    """
+    _load_builtins()
+    return sorted(_REGISTRY)
+
+
+def catalogue() -> list[dict]:
+    """One row per integrator: name, order, conserves, problems, paths, description.
+
+    Examples
+    --------
+    >>> row = [r for r in catalogue() if r["name"] == "rk4_renorm"][0]
+    >>> row["conserves"], row["paths"]
+    (['unit_norm'], ['quaternion', 'rotor'])
+    """
+    _load_builtins()
+    return [
+        {
+            "name": i.name,
+            "order": i.order,
+            "conserves": sorted(i.conserves),
+            "problems": sorted(i.problems),
+            "paths": sorted(i.paths),
+            "description": i.description,
+        }
+        for i in (_REGISTRY[n] for n in sorted(_REGISTRY))
+    ]

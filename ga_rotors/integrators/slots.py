@@ -1,0 +1,93 @@
+"""Template slots: the names a loop template calls that code generation binds.
+
+A template (a plain Python function, see :mod:`ga_rotors.integrators.base`) imports the
+slots it uses from this module, so it reads and lints as ordinary Python. The generated
+module that instantiates the template defines or imports a compiled function under the
+same name instead, chosen for one orientation path, one problem kind and one set of
+declared torques. Calling a slot directly (running a template uninstantiated) raises
+:class:`TemplateSlotError`.
+
+Every slot takes and returns tuples of floats (``x`` an orientation state, ``w`` a body
+angular velocity 3-tuple, ``q`` a unit quaternion 4-tuple, ``t``/``h`` floats).
+
+========== ===================================== =========================================
+slot       signature                             bound to
+========== ===================================== =========================================
+torque     torque(t, q, w, params) -> τ          sum of the declared torque kernels, body
+                                                 frame (torqued problems only)
+accel      accel(t, x, w, inertia, params) -> ω̇  Euler's equations; free: no torque term
+                                                 at all; torqued: + torque(t, o_quat(x), ..)
+omega      omega(t, params) -> ω                 the prescribed body angular velocity
+                                                 (kinematic problems only)
+step       one step of the integrator            the integrator's step template for the
+                                                 problem kind (used by the loop templates)
+o_rate     o_rate(x, w) -> ẋ                     the path's kinematics (q̇ = ½ q ⊗ (0, ω),
+                                                 Ṙ = ½ R Ω, or the ZYZ angle rates)
+o_axpy     o_axpy(x, h, k) -> x + h·k            tuple arithmetic of the path's size
+o_rk4      o_rk4(x, h, k1, k2, k3, k4)           x + h/6 (k1 + 2k2 + 2k3 + k4)
+o_normalize o_normalize(x) -> x / |x|            unit-sphere paths only (quaternion, rotor)
+o_quat     o_quat(x) -> q                        the orientation as a unit quaternion
+o_from_quat o_from_quat(q) -> x                  a unit quaternion in the path's coordinates
+                                                 (unit-sphere paths only)
+o_load     o_load(array) -> x                    read a state from a 1-D array
+o_store    o_store(out, row, x)                  write a state into a 2-D array
+o_watch    o_watch(t, x, w, h, stats)            the path's own diagnostics (the Euler-angle
+                                                 path counts steps near sin θ = 0); a path
+                                                 with nothing to watch binds a kernel that
+                                                 compiles to no instruction
+========== ===================================== =========================================
+"""
+
+from __future__ import annotations
+
+from ..errors import GaRotorsError
+
+
+class TemplateSlotError(GaRotorsError, RuntimeError):
+    """A template slot was called outside a generated module."""
+
+
+def _slot(name: str, doc: str):
+    def slot(*args):
+        raise TemplateSlotError(
+            f"template slot {name!r} called directly; templates run only through the "
+            "module ga_rotors.integrators generates for them (Integrator.run)"
+        )
+
+    slot.__name__ = slot.__qualname__ = name
+    slot.__doc__ = doc
+    slot.__module__ = __name__
+    return slot
+
+
+torque = _slot("torque", "τ = torque(t, q, w, params): declared torques, body frame.")
+accel = _slot("accel", "ω̇ = accel(t, x, w, inertia, params): Euler's equations.")
+omega = _slot("omega", "ω = omega(t, params): prescribed body angular velocity.")
+step = _slot("step", "The integrator's step for the problem kind.")
+o_rate = _slot("o_rate", "ẋ = o_rate(x, w): the orientation path's kinematics.")
+o_axpy = _slot("o_axpy", "x + h·k on the path's state.")
+o_rk4 = _slot("o_rk4", "x + h/6 (k1 + 2 k2 + 2 k3 + k4) on the path's state.")
+o_normalize = _slot("o_normalize", "x / |x| (unit-sphere paths).")
+o_quat = _slot("o_quat", "q = o_quat(x): the orientation as a unit quaternion.")
+o_from_quat = _slot("o_from_quat", "x = o_from_quat(q): a unit quaternion in path coordinates.")
+o_load = _slot("o_load", "x = o_load(array): read a state.")
+o_store = _slot("o_store", "o_store(out, row, x): write a state.")
+o_watch = _slot("o_watch", "o_watch(t, x, w, h, stats): path diagnostics.")
+
+#: Slot name -> the attribute of an orientation-path module that binds it.
+PATH_SLOTS = {
+    "o_rate": "rate",
+    "o_axpy": "axpy",
+    "o_rk4": "rk4_sum",
+    "o_normalize": "normalize",
+    "o_quat": "to_quat",
+    "o_from_quat": "from_quat",
+    "o_load": "load",
+    "o_store": "store",
+    "o_watch": "watch",
+}
+
+#: Slots whose definition the code generator writes.
+GENERATED_SLOTS = ("torque", "accel", "omega", "step")
+
+ALL_SLOTS = frozenset(PATH_SLOTS) | frozenset(GENERATED_SLOTS)

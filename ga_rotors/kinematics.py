@@ -1,0 +1,257 @@
+"""Orientation rates <-> body angular velocity: Euler angles (ZYZ), quaternions, rotors.
+
+The paper's angles are intrinsic z–y′–z″ (ψ precession, θ nutation, φ spin) with
+q = q_z(ψ) ⊗ q_y(θ) ⊗ q_z(φ). Differentiating, the body angular velocity is the sum of the
+three angle rates, each about its axis carried into the body frame::
+
+    ω = φ̇ e_z + θ̇ R_z(−φ) e_y + ψ̇ R_z(−φ) R_y(−θ) e_z
+
+    ω₁ = −ψ̇ sin θ cos φ + θ̇ sin φ
+    ω₂ =  ψ̇ sin θ sin φ + θ̇ cos φ
+    ω₃ =  ψ̇ cos θ + φ̇
+
+(the paper's eq. 15, whose minus signs were lost in print). Its inverse (eq. 19)::
+
+    θ̇ = ω₁ sin φ + ω₂ cos φ
+    ψ̇ = (ω₂ sin φ − ω₁ cos φ) / sin θ
+    φ̇ = ω₃ − ψ̇ cos θ
+
+is singular at sin θ = 0, where only ψ + φ (θ = 0) or ψ − φ (θ = π) is defined: the
+coordinates' nature, not a property of the motion. ``symbolic/`` checks both maps with SymPy;
+the tests check them against finite differences of the quaternion.
+
+Quaternion and rotor rates (docs/conventions.md): q̇ = ½ q ⊗ (0, ω), Ṙ = ½ R Ω with
+Ω = −I ω, and back ω = 2 vec(q* ⊗ q̇) = ⟨2 I R̃ Ṙ⟩₁ (I² = −1 turns Ω into ω).
+"""
+
+from __future__ import annotations
+
+from math import cos, sin
+
+import numpy as np
+
+from ._jit import jit
+from ._validate import as_float_array, require_unit
+from .errors import InputError
+
+__all__ = [
+    "body_omega_from_quaternion_rate",
+    "body_omega_from_rotor_rate",
+    "body_omega_from_zyz_rates",
+    "quaternion_rate",
+    "rotor_rate",
+    "zyz_omega",
+    "zyz_rates",
+    "zyz_rates_from_body_omega",
+]
+
+
+@jit
+def zyz_rates(angles, w):
+    """(ψ̇, θ̇, φ̇) from ZYZ angles (ψ, θ, φ) and body ω; divides by sin θ (caller's care)."""
+    st = sin(angles[1])
+    ct = cos(angles[1])
+    sp = sin(angles[2])
+    cp = cos(angles[2])
+    psi_dot = (w[1] * sp - w[0] * cp) / st
+    return (psi_dot, w[0] * sp + w[1] * cp, w[2] - psi_dot * ct)
+
+
+@jit
+def zyz_omega(angles, rates):
+    """Body ω from ZYZ angles (ψ, θ, φ) and their rates (ψ̇, θ̇, φ̇); regular everywhere."""
+    st = sin(angles[1])
+    ct = cos(angles[1])
+    sp = sin(angles[2])
+    cp = cos(angles[2])
+    dpsi, dtheta, dphi = rates
+    return (
+        -dpsi * st * cp + dtheta * sp,
+        dpsi * st * sp + dtheta * cp,
+        dpsi * ct + dphi,
+    )
+
+
+def _pairs(a, b, name_a, name_b, last_a=3, last_b=3):
+    a = as_float_array(a, name_a, last=last_a)
+    b = as_float_array(b, name_b, last=last_b)
+    try:
+        shape = np.broadcast_shapes(a.shape[:-1], b.shape[:-1])
+    except ValueError:
+        raise InputError(
+            f"{name_a} and {name_b}: shapes {a.shape} and {b.shape} do not broadcast"
+        ) from None
+    return np.broadcast_to(a, (*shape, last_a)), np.broadcast_to(b, (*shape, last_b))
+
+
+def body_omega_from_zyz_rates(angles, rates) -> np.ndarray:
+    """Body angular velocity from ZYZ Euler angles and their time derivatives.
+
+    Parameters
+    ----------
+    angles : array_like, shape (..., 3)
+        Intrinsic ZYZ angles (ψ, θ, φ) in radians.
+    rates : array_like, shape (..., 3)
+        (ψ̇, θ̇, φ̇) in rad/s.
+
+    Returns
+    -------
+    ndarray, shape (..., 3)
+        Body-frame ω (rad/s).
+
+    Examples
+    --------
+    The paper's initial state: a fast spin φ̇ about the body z axis plus slow ψ̇ and θ̇.
+
+    >>> w = body_omega_from_zyz_rates([0.0, np.radians(15), 0.0], [0.02, 0.02, 15.7])
+    >>> w.round(6).tolist()
+    [-0.005176, 0.02, 15.719319]
+    """
+    a, r = _pairs(angles, rates, "angles", "rates")
+    _, theta, phi = np.moveaxis(a, -1, 0)
+    dpsi, dtheta, dphi = np.moveaxis(r, -1, 0)
+    st, ct, sp, cp = np.sin(theta), np.cos(theta), np.sin(phi), np.cos(phi)
+    return np.stack(
+        [-dpsi * st * cp + dtheta * sp, dpsi * st * sp + dtheta * cp, dpsi * ct + dphi], axis=-1
+    )
+
+
+def zyz_rates_from_body_omega(angles, w) -> np.ndarray:
+    """(ψ̇, θ̇, φ̇) from ZYZ angles and body angular velocity (the paper's eq. 19, corrected).
+
+    Parameters
+    ----------
+    angles : array_like, shape (..., 3)
+        Intrinsic ZYZ angles (ψ, θ, φ) in radians, with sin θ ≠ 0.
+    w : array_like, shape (..., 3)
+        Body-frame angular velocity (rad/s).
+
+    Returns
+    -------
+    ndarray, shape (..., 3)
+
+    Raises
+    ------
+    InputError
+        Where sin θ = 0 exactly: ψ̇ and φ̇ are not defined there (only ψ̇ ± φ̇ is).
+
+    Examples
+    --------
+    >>> angles = [0.3, 0.7, -1.1]
+    >>> w = body_omega_from_zyz_rates(angles, [0.02, 0.02, 15.7])
+    >>> np.round(zyz_rates_from_body_omega(angles, w), 12)
+    array([ 0.02,  0.02, 15.7 ])
+    """
+    a, w = _pairs(angles, w, "angles", "w")
+    _, theta, phi = np.moveaxis(a, -1, 0)
+    st = np.sin(theta)
+    if np.any(st == 0.0):
+        where = tuple(int(i) for i in np.argwhere(np.atleast_1d(st) == 0.0)[0])
+        raise InputError(
+            f"angles: sin θ = 0 at index {where}; the ZYZ rates ψ̇ and φ̇ are undefined "
+            "there (only ψ̇ + φ̇ at θ = 0, ψ̇ − φ̇ at θ = π)"
+        )
+    sp, cp = np.sin(phi), np.cos(phi)
+    w1, w2, w3 = np.moveaxis(w, -1, 0)
+    dpsi = (w2 * sp - w1 * cp) / st
+    return np.stack([dpsi, w1 * sp + w2 * cp, w3 - dpsi * np.cos(theta)], axis=-1)
+
+
+def quaternion_rate(q, w) -> np.ndarray:
+    """q̇ = ½ q ⊗ (0, ω) for unit quaternions q (w, x, y, z) and body ω.
+
+    Examples
+    --------
+    >>> quaternion_rate([1.0, 0.0, 0.0, 0.0], [0.0, 0.0, 2.0])
+    array([0., 0., 0., 1.])
+    """
+    q, w = _pairs(q, w, "q", "w", last_a=4)
+    q = require_unit(q, "q")
+    q0, q1, q2, q3 = np.moveaxis(q, -1, 0)
+    w1, w2, w3 = np.moveaxis(w, -1, 0)
+    return 0.5 * np.stack(
+        [
+            -q1 * w1 - q2 * w2 - q3 * w3,
+            q0 * w1 + q2 * w3 - q3 * w2,
+            q0 * w2 - q1 * w3 + q3 * w1,
+            q0 * w3 + q1 * w2 - q2 * w1,
+        ],
+        axis=-1,
+    )
+
+
+def body_omega_from_quaternion_rate(q, qdot) -> np.ndarray:
+    """ω = 2 vec(q* ⊗ q̇) for unit q: the inverse of :func:`quaternion_rate`.
+
+    Examples
+    --------
+    >>> body_omega_from_quaternion_rate([1.0, 0.0, 0.0, 0.0], [0.0, 0.0, 0.0, 1.0])
+    array([0., 0., 2.])
+    """
+    q, d = _pairs(q, qdot, "q", "qdot", last_a=4, last_b=4)
+    q = require_unit(q, "q")
+    q0, q1, q2, q3 = np.moveaxis(q, -1, 0)
+    d0, d1, d2, d3 = np.moveaxis(d, -1, 0)
+    # vec((q0, -q⃗) ⊗ (d0, d⃗)) = q0 d⃗ - d0 q⃗ - q⃗ × d⃗
+    return 2.0 * np.stack(
+        [
+            q0 * d1 - d0 * q1 - (q2 * d3 - q3 * d2),
+            q0 * d2 - d0 * q2 - (q3 * d1 - q1 * d3),
+            q0 * d3 - d0 * q3 - (q1 * d2 - q2 * d1),
+        ],
+        axis=-1,
+    )
+
+
+def _cl3():
+    import clifford
+
+    return clifford.Cl(3)
+
+
+def rotor_rate(R, w):
+    """Ṙ = ½ R Ω, Ω = −I ω, for a clifford rotor R and body angular velocity ω.
+
+    Parameters
+    ----------
+    R : clifford.MultiVector
+        A unit rotor of Cl(3,0).
+    w : array_like, shape (3,)
+        Body angular velocity.
+
+    Examples
+    --------
+    >>> import clifford
+    >>> layout, blades = clifford.Cl(3)
+    >>> R = layout.scalar * 1.0
+    >>> rotor_rate(R, [0.0, 0.0, 2.0])  # rotation about z: Ṙ = -e12
+    -(1.0^e12)
+    """
+    layout, blades = _cl3()
+    w = as_float_array(w, "w", last=3)
+    if w.shape != (3,):
+        raise InputError(f"w: expected one angular velocity of shape (3,), got {w.shape}")
+    if getattr(R, "layout", None) != layout:
+        raise InputError("R: expected a clifford MultiVector of the Cl(3) layout")
+    vec = w[0] * blades["e1"] + w[1] * blades["e2"] + w[2] * blades["e3"]
+    omega = -(blades["e123"] * vec)
+    return 0.5 * R * omega
+
+
+def body_omega_from_rotor_rate(R, Rdot) -> np.ndarray:
+    """ω = ⟨2 I R̃ Ṙ⟩₁: the body angular velocity of a unit rotor moving at Ṙ.
+
+    Examples
+    --------
+    >>> import clifford
+    >>> layout, blades = clifford.Cl(3)
+    >>> R = layout.scalar * 1.0
+    >>> body_omega_from_rotor_rate(R, rotor_rate(R, [0.1, 0.2, 0.3]))
+    array([0.1, 0.2, 0.3])
+    """
+    layout, blades = _cl3()
+    for name, value in (("R", R), ("Rdot", Rdot)):
+        if getattr(value, "layout", None) != layout:
+            raise InputError(f"{name}: expected a clifford MultiVector of the Cl(3) layout")
+    v = (2.0 * blades["e123"] * ~R * Rdot)(1)
+    return np.array([v[blades["e1"]], v[blades["e2"]], v[blades["e3"]]], dtype=np.float64)

@@ -1,0 +1,133 @@
+"""The Euler-angle path: the paper's z–y′–z″ angles (ψ, θ, φ) integrated from body ω.
+
+State: (ψ, θ, φ) in radians, advanced with the rates of
+:func:`ga_rotors.kinematics.zyz_rates`, which divide by sin θ. Near sin θ = 0 the rates
+grow like 1/sin θ and a fixed step stops resolving them; at sin θ = 0 exactly they are
+undefined. The path keeps going (that is the paper's method, and showing what it does is
+the point) but watches every step and reports:
+
+* ``unresolved_steps``: steps that start where h·|ψ̇| > :data:`UNRESOLVED_TURN`, i.e. the
+  step would turn ψ by more than 0.1 rad while ψ̇ ∝ 1/sin θ changes on the time scale
+  1/|ψ̇|, so RK4's error expansion no longer applies;
+* ``first_unresolved``: the time of the first such step;
+* ``min_abs_sin_theta``: the smallest |sin θ| seen at a step start;
+* ``pole_crossings``: how often sin θ changed sign between steps (the discrete path
+  stepped across θ = 0 or π, which the exact motion never does: θ ≥ 0 there);
+* ``max_turn``: the largest h·|ψ̇|.
+
+If the state stops being finite (sin θ = 0 hit exactly), the loop stops and returns the
+finite samples it has; the report says when.
+"""
+
+from __future__ import annotations
+
+from math import cos, inf, sin
+
+import numpy as np
+
+from .._jit import jit
+from .._kernels import qmul, quat_from_rotvec
+from ..integrators._arith import axpy3 as axpy
+from ..integrators._arith import load3 as load
+from ..integrators._arith import rk4_sum3 as rk4_sum
+from ..integrators._arith import store3 as store
+from ..kinematics import zyz_rates
+
+__all__ = [
+    "DIM",
+    "NSTATS",
+    "STATS",
+    "UNRESOLVED_TURN",
+    "axpy",
+    "initial_state",
+    "load",
+    "quaternions",
+    "rate",
+    "rk4_sum",
+    "store",
+    "to_quat",
+    "watch",
+]
+
+DIM = 3
+
+#: A step is "unresolved" when it would turn ψ by more than this many radians.
+#: RK4's local error for a rotation at rate λ is ~(hλ)⁵/5! relative: 1e-7 at hλ = 0.1,
+#: and beyond it the 1/sin θ growth of the rates within the step dominates.
+UNRESOLVED_TURN = 0.1
+
+#: Layout of the watch statistics array.
+STATS = (
+    "unresolved_steps",
+    "first_unresolved",
+    "min_abs_sin_theta",
+    "pole_crossings",
+    "max_turn",
+    "_last_sign",
+)
+NSTATS = len(STATS)
+_INITIAL_STATS = (0.0, np.inf, np.inf, 0.0, 0.0, 0.0)
+
+
+@jit
+def rate(x, w):
+    """(ψ̇, θ̇, φ̇) from the angles and body ω."""
+    return zyz_rates(x, w)
+
+
+@jit
+def to_quat(x):
+    """q = q_z(ψ) ⊗ q_y(θ) ⊗ q_z(φ), the convention that defines the angles."""
+    return qmul(
+        qmul(quat_from_rotvec((0.0, 0.0, x[0])), quat_from_rotvec((0.0, x[1], 0.0))),
+        quat_from_rotvec((0.0, 0.0, x[2])),
+    )
+
+
+@jit
+def watch(t, x, w, h, stats):
+    """Record how close the step starts to sin θ = 0 and whether h resolves the rates."""
+    st = sin(x[1])
+    num = abs(w[1] * sin(x[2]) - w[0] * cos(x[2]))  # |ψ̇ sin θ|
+    den = abs(st)
+    if h * num > UNRESOLVED_TURN * den or den == 0.0:
+        if stats[0] == 0.0:
+            stats[1] = t
+        stats[0] += 1.0
+    if den < stats[2]:
+        stats[2] = den
+    turn = h * num / den if den > 0.0 else inf
+    if turn > stats[4]:
+        stats[4] = turn
+    sign = 1.0 if st > 0.0 else (-1.0 if st < 0.0 else 0.0)
+    if sign != 0.0:
+        if stats[5] != 0.0 and sign != stats[5]:
+            stats[3] += 1.0
+        stats[5] = sign
+
+
+def initial_stats() -> np.ndarray:
+    """A fresh statistics array for :func:`watch`."""
+    return np.array(_INITIAL_STATS, dtype=np.float64)
+
+
+def report(stats: np.ndarray) -> dict:
+    """The watch statistics as a plain dict (``None`` where nothing was seen)."""
+    out = {name: float(v) for name, v in zip(STATS, stats, strict=True) if not name.startswith("_")}
+    out["unresolved_steps"] = int(out["unresolved_steps"])
+    out["pole_crossings"] = int(out["pole_crossings"])
+    if not np.isfinite(out["first_unresolved"]):
+        out["first_unresolved"] = None
+    return out
+
+
+def initial_state(angles: np.ndarray) -> np.ndarray:
+    """The path's state: the ZYZ angles (ψ, θ, φ) themselves."""
+    return np.array(angles, dtype=np.float64)
+
+
+def quaternions(states: np.ndarray) -> np.ndarray:
+    """Unit quaternions (..., 4) of ZYZ angle arrays (..., 3)."""
+    from ..euler import to_quaternion
+
+    return to_quaternion("ZYZ", states)

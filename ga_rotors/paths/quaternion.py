@@ -1,0 +1,75 @@
+"""The quaternion path: q̇ = ½ q ⊗ (0, ω), the paper's inverse kinematics by quaternions.
+
+State: the unit quaternion (w, x, y, z) of body -> space. Binds the template slots
+``o_*`` (see :mod:`ga_rotors.integrators.slots`).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .._jit import jit
+from .._kernels import qmul_pure, qnormalize
+from ..integrators._arith import axpy4 as axpy
+from ..integrators._arith import load4 as load
+from ..integrators._arith import rk4_sum4 as rk4_sum
+from ..integrators._arith import store4 as store
+
+__all__ = [
+    "DIM",
+    "NSTATS",
+    "axpy",
+    "from_quat",
+    "initial_state",
+    "load",
+    "normalize",
+    "quaternions",
+    "rate",
+    "rk4_sum",
+    "store",
+    "to_quat",
+    "watch",
+]
+
+DIM = 4
+NSTATS = 0
+
+
+@jit
+def rate(x, w):
+    """q̇ = ½ q ⊗ (0, ω)."""
+    d = qmul_pure(x, w)
+    return (0.5 * d[0], 0.5 * d[1], 0.5 * d[2], 0.5 * d[3])
+
+
+@jit
+def normalize(x):
+    """Back onto the unit sphere."""
+    return qnormalize(x)
+
+
+@jit
+def to_quat(x):
+    """The state is the quaternion."""
+    return x
+
+
+@jit
+def from_quat(q):
+    """The state is the quaternion."""
+    return q
+
+
+@jit
+def watch(t, x, w, h, stats):
+    """Nothing to watch: a quaternion has no coordinate singularity."""
+
+
+def initial_state(q0: np.ndarray) -> np.ndarray:
+    """The path's state for the unit quaternion ``q0``."""
+    return np.array(q0, dtype=np.float64)
+
+
+def quaternions(states: np.ndarray) -> np.ndarray:
+    """Unit quaternions (..., 4) of path states (..., 4)."""
+    return np.asarray(states, dtype=np.float64)

@@ -1,0 +1,86 @@
+"""The rotor path: Ṙ = ½ R Ω in Cl(3,0), Ω = −I ω, the primary orientation path.
+
+State: the rotor's coefficients on clifford's even blades (1, e12, e13, e23). The
+arithmetic is :mod:`ga_rotors._rotor_kernels`, generated from clifford's multiplication
+table. Binds the template slots ``o_*`` (see :mod:`ga_rotors.integrators.slots`).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .._jit import jit
+from .._kernels import qnormalize
+from .._rotor_kernels import quat_from_rotor, rotor_from_quat, rotor_rate
+from ..integrators._arith import axpy4 as axpy
+from ..integrators._arith import load4 as load
+from ..integrators._arith import rk4_sum4 as rk4_sum
+from ..integrators._arith import store4 as store
+
+__all__ = [
+    "COMPONENTS",
+    "DIM",
+    "NSTATS",
+    "axpy",
+    "from_quat",
+    "initial_state",
+    "load",
+    "normalize",
+    "quaternions",
+    "rate",
+    "rk4_sum",
+    "store",
+    "to_quat",
+    "watch",
+]
+
+DIM = 4
+NSTATS = 0
+#: Names of the state's components, clifford's even blades in layout order.
+COMPONENTS = ("1", "e12", "e13", "e23")
+
+
+@jit
+def rate(x, w):
+    """Ṙ = ½ R Ω."""
+    return rotor_rate(x, w)
+
+
+@jit
+def normalize(x):
+    """R / |R|: R ~R = |R|² on the even subalgebra, the Euclidean norm of the coefficients."""
+    return qnormalize(x)
+
+
+@jit
+def to_quat(x):
+    """The unit quaternion of the rotor."""
+    return quat_from_rotor(x)
+
+
+@jit
+def from_quat(q):
+    """The rotor of a unit quaternion."""
+    return rotor_from_quat(q)
+
+
+@jit
+def watch(t, x, w, h, stats):
+    """Nothing to watch: a rotor has no coordinate singularity."""
+
+
+def _signed_permutation(kernel) -> np.ndarray:
+    # The generated maps are signed permutations; their matrix is the images of the
+    # identity rows (plain-Python call: no compiled code needed for four tuples).
+    py = getattr(kernel, "py_func", kernel)
+    return np.array([py(tuple(row)) for row in np.eye(4)])
+
+
+def initial_state(q0: np.ndarray) -> np.ndarray:
+    """The rotor coefficients of the unit quaternion ``q0``."""
+    return np.asarray(q0, dtype=np.float64) @ _signed_permutation(rotor_from_quat)
+
+
+def quaternions(states: np.ndarray) -> np.ndarray:
+    """Unit quaternions (..., 4) of rotor coefficient arrays (..., 4)."""
+    return np.asarray(states, dtype=np.float64) @ _signed_permutation(quat_from_rotor)

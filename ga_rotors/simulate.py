@@ -1,0 +1,249 @@
+"""Simulate a rigid body (or a prescribed rotation) along the orientation paths asked for.
+
+:func:`simulate` is the Python entry point: a body, its initial orientation and angular
+velocity, a time span and step, the paths wanted. Each path is a separate compiled
+integration of (orientation, ω) with the same integrator, so paths not asked for are
+never integrated and outputs not asked for are never computed.
+
+The primary path (whose ω goes into the trajectory's ``w``) is the first of
+``rotor``, ``quaternion``, ``euler`` among those requested.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+
+import numpy as np
+
+from . import paths as _paths
+from ._validate import as_float_array, require_unit
+from .body import RigidBody
+from .errors import InputError
+from .integrators import base
+from .trajectory import Trajectory
+
+__all__ = ["OUTPUTS", "PATH_ORDER", "simulate"]
+
+#: Paths in order of precedence for the primary path.
+PATH_ORDER = ("rotor", "quaternion", "euler")
+
+#: Derived outputs :func:`simulate` computes on request.
+OUTPUTS = ("energy", "L")
+
+#: |duration / step - round(duration / step)| allowed, relative: the step must divide the
+#: span; a few ulps of the quotient are representation error (0.3 / 0.1 = 2.9999999999999996).
+_DIVIDE_TOLERANCE = 1e-9
+
+
+def _body(body) -> RigidBody:
+    if isinstance(body, RigidBody):
+        return body
+    if body is None:
+        raise InputError("body: a dynamics simulation needs a RigidBody or principal moments")
+    return RigidBody(tuple(as_float_array(body, "body", last=3)))
+
+
+def _steps(duration, step) -> int:
+    for name, value in (("duration", duration), ("step", step)):
+        if isinstance(value, bool) or not isinstance(value, int | float | np.floating):
+            raise InputError(f"{name}: expected a number of seconds, got {value!r}")
+        if not (math.isfinite(value) and value > 0):
+            raise InputError(f"{name}: expected a finite positive number of seconds, got {value!r}")
+    ratio = duration / step
+    n = round(ratio)
+    if n < 1 or abs(ratio - n) > _DIVIDE_TOLERANCE * max(1.0, ratio):
+        raise InputError(
+            f"step: {step!r} s does not divide duration {duration!r} s into whole steps "
+            f"(ratio {ratio!r}); choose a step that does"
+        )
+    return int(n)
+
+
+def _requested(paths) -> list[str]:
+    if isinstance(paths, str):
+        paths = (paths,)
+    out = []
+    for p in paths:
+        _paths.get(p)
+        if p not in out:
+            out.append(p)
+    if not out:
+        raise InputError("paths: expected at least one of rotor, quaternion, euler")
+    return sorted(out, key=PATH_ORDER.index)
+
+
+def simulate(
+    body,
+    orientation,
+    angular_velocity,
+    *,
+    duration: float,
+    step: float,
+    paths: Sequence[str] | str = ("rotor",),
+    integrator: str = "rk4",
+    torques: Sequence[base.TorqueTerm] = (),
+    euler_angles=None,
+    outputs: Sequence[str] = (),
+    sample_every: int = 1,
+    t0: float = 0.0,
+) -> Trajectory:
+    """Integrate the motion and return the requested paths and outputs.
+
+    Parameters
+    ----------
+    body : RigidBody or array_like (3,) or None
+        Principal moments (principal body frame). ``None`` with a prescribed ω(t).
+    orientation : array_like (4,)
+        Initial body->space unit quaternion (w, x, y, z).
+    angular_velocity : array_like (3,) or PrescribedOmega
+        Initial body-frame ω (rad/s), or a prescribed ω(t) (kinematics only).
+    duration, step : float
+        Time span and fixed step (s); ``step`` must divide ``duration``.
+    paths : sequence of {"rotor", "quaternion", "euler"}
+        Orientation paths to integrate (each a separate integration).
+    integrator : str
+        A registered integrator (:func:`ga_rotors.integrators.names`).
+    torques : sequence of TorqueTerm
+        Declared torques; none means torque-free.
+    euler_angles : array_like (3,), optional
+        Initial ZYZ angles (ψ, θ, φ) for the Euler-angle path; they must describe
+        ``orientation``. Default: extracted from ``orientation`` with :mod:`ga_rotors.euler`.
+    outputs : sequence of {"energy", "L"}
+        Derived quantities of the primary path.
+    sample_every : int
+        Keep every k-th step (the last step is always kept).
+    t0 : float
+        Initial time.
+
+    Returns
+    -------
+    Trajectory
+        ``t``, ``w`` and one array per path (``R``, ``q``, ``euler``), plus ``outputs``;
+        ``meta`` records the integrator, step and each path's status.
+
+    Examples
+    --------
+    A disk spinning about its symmetry axis, one second, rotor and quaternion paths:
+
+    >>> from ga_rotors import shapes
+    >>> tr = simulate(shapes.disk(2.0, 0.075), [1.0, 0.0, 0.0, 0.0], [0.0, 0.0, 2.0],
+    ...               duration=1.0, step=1e-3, paths=("rotor", "quaternion"))
+    >>> tr.names
+    ('t', 'w', 'R', 'q')
+    >>> tr.q[-1].round(12).tolist()          # a 2 rad turn about z: (cos 1, 0, 0, sin 1)
+    [0.540302305868, 0.0, 0.0, 0.841470984808]
+    >>> tr.meta["paths"]["rotor"]["complete"]
+    True
+    """
+    method = base.get(integrator)
+    requested = _requested(paths)
+    nsteps = _steps(duration, step)
+    if isinstance(sample_every, bool) or not isinstance(sample_every, int) or sample_every < 1:
+        raise InputError(f"sample_every: expected a positive integer, got {sample_every!r}")
+    if isinstance(t0, bool) or not isinstance(t0, int | float) or not math.isfinite(t0):
+        raise InputError(f"t0: expected a finite number of seconds, got {t0!r}")
+    for name in outputs:
+        if name not in OUTPUTS:
+            raise InputError(f"outputs: unknown output {name!r}; expected one of {OUTPUTS}")
+
+    q0 = as_float_array(orientation, "orientation", last=4)
+    if q0.shape != (4,):
+        raise InputError(f"orientation: expected one quaternion of shape (4,), got {q0.shape}")
+    q0 = require_unit(q0, "orientation")
+
+    if isinstance(angular_velocity, base.PrescribedOmega):
+        if body is not None:
+            raise InputError("body: a prescribed ω(t) is kinematics only; pass body=None")
+        problem = base.Problem(omega=angular_velocity)
+        rigid, w0 = None, None
+        if outputs:
+            raise InputError("outputs: energy and momentum need a body, not a prescribed ω(t)")
+    else:
+        rigid = _body(body)
+        w0 = as_float_array(angular_velocity, "angular_velocity", last=3)
+        if w0.shape != (3,):
+            raise InputError(f"angular_velocity: expected shape (3,), got {w0.shape}")
+        problem = base.Problem(rigid.moments, tuple(torques))
+    for p in requested:
+        method.check(problem, p)
+
+    starts = {}
+    for p in requested:
+        module = _paths.get(p).load()
+        if p == "euler":
+            starts[p] = module.initial_state(_euler_start(q0, euler_angles))
+        else:
+            starts[p] = module.initial_state(q0)
+
+    h = float(step)
+    grid = t0 + h * np.concatenate(
+        [np.arange(0, nsteps + 1, sample_every), [nsteps] if nsteps % sample_every else []]
+    )
+    arrays: dict[str, np.ndarray] = {"t": grid}
+    components: dict[str, tuple[str, ...]] = {"w": ("1", "2", "3")}
+    status: dict[str, dict] = {}
+    primary_w = None
+    for p in requested:
+        spec = _paths.get(p)
+        result = method.run(problem, p, starts[p], w0, float(t0), h, nsteps, sample_every)
+        if primary_w is None:
+            primary_w = result.w
+            arrays["w"] = result.w
+        arrays[spec.array] = result.x
+        components[spec.array] = spec.components
+        info = {
+            "complete": result.complete,
+            "samples": int(result.t.shape[0]),
+            "ended_at": float(result.t[-1]),
+            "generated_module": str(result.source) if result.source else None,
+        }
+        module = spec.load()
+        if hasattr(module, "report"):
+            info["watch"] = module.report(result.stats)
+        status[p] = info
+
+    if "energy" in outputs:
+        arrays["energy"] = np.atleast_1d(rigid.energy(primary_w))
+    if "L" in outputs:
+        arrays["L"] = rigid.momentum(primary_w)
+        components["L"] = ("1", "2", "3")
+
+    meta = {
+        "integrator": method.name,
+        "order": method.order,
+        "step": h,
+        "steps": nsteps,
+        "sample_every": sample_every,
+        "problem": problem.kind,
+        "moments": None if rigid is None else rigid.moments,
+        "torques": [t.name for t in problem.torques],
+        "paths": status,
+        "primary": requested[0],
+    }
+    return Trajectory(arrays, components, meta)
+
+
+#: Largest geodesic angle (rad) allowed between ``euler_angles`` and ``orientation``: both
+#: describe one rotation, so only round-off separates them (a few 1e-16).
+_SAME_ROTATION = 1e-12
+
+
+def _euler_start(q0: np.ndarray, angles) -> np.ndarray:
+    from ._kernels import geodesic_angle
+    from .paths.euler import to_quat
+
+    if angles is None:
+        from . import euler
+
+        return euler.from_quaternion(q0, "ZYZ")
+    a = as_float_array(angles, "euler_angles", last=3)
+    if a.shape != (3,):
+        raise InputError(f"euler_angles: expected (ψ, θ, φ) of shape (3,), got {a.shape}")
+    gap = geodesic_angle(to_quat(tuple(a)), tuple(q0))
+    if gap > _SAME_ROTATION:
+        raise InputError(
+            f"euler_angles: {tuple(float(v) for v in a)} is {gap:.3g} rad away from "
+            "orientation; they must describe the same rotation"
+        )
+    return a

@@ -1,0 +1,201 @@
+"""A simulation's result: named arrays on one time grid, exportable to CSV and NPZ.
+
+Only what was computed is present: a path that was not asked for has no array, an output
+nobody requested is not computed. Names used by :func:`ga_rotors.simulate.simulate`:
+
+======== ========= ===================================================================
+name     shape     meaning
+======== ========= ===================================================================
+t        (n,)      sample times (s)
+w        (n, 3)    body angular velocity of the primary path (rad/s)
+R        (n, 4)    rotor path: coefficients on clifford's blades (1, e12, e13, e23)
+q        (n, 4)    quaternion path: (w, x, y, z)
+euler    (m, 3)    Euler-angle path: integrated ZYZ angles (ψ, θ, φ), rad
+energy   (n,)      kinetic energy ½ ω·Iω (J) of the primary path
+L        (n, 3)    body-frame angular momentum Iω
+======== ========= ===================================================================
+
+An array can be shorter than ``t`` (``m < n``) when its path stopped early because its
+state stopped being finite (the Euler-angle path hitting sin θ = 0 exactly); its first
+``m`` rows are the valid samples, and ``meta["paths"][name]`` says when it ended. CSV
+export leaves such cells empty, never NaN.
+"""
+
+from __future__ import annotations
+
+import csv
+import io
+import os
+import tempfile
+from pathlib import Path
+
+import numpy as np
+
+from .errors import InputError
+
+__all__ = ["Trajectory", "atomic_write"]
+
+
+def atomic_write(path, write) -> Path:
+    """Call ``write(file_object)`` on a temporary file, then move it onto ``path``.
+
+    A failure anywhere leaves ``path`` as it was (absent, or the previous version).
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> d = pathlib.Path(tempfile.mkdtemp())
+    >>> atomic_write(d / "x.txt", lambda f: f.write(b"hello")).read_bytes()
+    b'hello'
+    """
+    path = Path(path)
+    if path.is_dir():
+        raise InputError(f"path: {path} is a directory; expected a file name")
+    parent = path.parent if str(path.parent) else Path(".")
+    if not parent.is_dir():
+        raise InputError(f"path: directory {parent} does not exist")
+    fd, tmp = tempfile.mkstemp(dir=parent, prefix=f".{path.name}.", suffix=".tmp")
+    try:
+        with os.fdopen(fd, "wb") as fh:
+            write(fh)
+        os.replace(tmp, path)
+    except BaseException:
+        if os.path.exists(tmp):
+            os.unlink(tmp)
+        raise
+    return path
+
+
+class Trajectory:
+    """Named arrays sampled on the grid ``t``.
+
+    Parameters
+    ----------
+    arrays : dict of str -> ndarray
+        Must contain ``t`` (1-D); every other array has at most ``len(t)`` rows.
+    components : dict of str -> tuple of str, optional
+        Column names of multi-column arrays (``R`` -> ``("1", "e12", "e13", "e23")``).
+    meta : dict, optional
+        How the data were made (integrator, step, body, per-path status).
+
+    Examples
+    --------
+    >>> tr = Trajectory({"t": np.array([0.0, 0.5]), "w": np.zeros((2, 3))},
+    ...                 {"w": ("1", "2", "3")})
+    >>> tr.names
+    ('t', 'w')
+    >>> tr.w.shape
+    (2, 3)
+    >>> print(tr.to_csv().splitlines()[0])
+    t,w_1,w_2,w_3
+    """
+
+    def __init__(self, arrays: dict, components: dict | None = None, meta: dict | None = None):
+        if "t" not in arrays:
+            raise InputError("arrays: a trajectory needs the sample times 't'")
+        t = np.asarray(arrays["t"], dtype=np.float64)
+        if t.ndim != 1:
+            raise InputError(f"t: expected a 1-D array, got shape {t.shape}")
+        self._arrays = {"t": t}
+        for name, a in arrays.items():
+            if name == "t":
+                continue
+            a = np.asarray(a, dtype=np.float64)
+            if a.ndim == 0 or a.shape[0] > t.shape[0]:
+                raise InputError(
+                    f"{name}: expected at most {t.shape[0]} rows (len(t)), got shape {a.shape}"
+                )
+            self._arrays[name] = a
+        self.components = {k: tuple(v) for k, v in (components or {}).items()}
+        self.meta = dict(meta or {})
+
+    @property
+    def names(self) -> tuple[str, ...]:
+        """Names of the arrays present, in insertion order."""
+        return tuple(self._arrays)
+
+    def __getattr__(self, name: str) -> np.ndarray:
+        arrays = self.__dict__.get("_arrays", {})
+        if name in arrays:
+            return arrays[name]
+        raise AttributeError(
+            f"trajectory has no array {name!r}; it has {', '.join(arrays) or 'none'} "
+            "(only requested paths and outputs are computed)"
+        )
+
+    def __getitem__(self, name: str) -> np.ndarray:
+        try:
+            return self._arrays[name]
+        except KeyError:
+            raise KeyError(
+                f"trajectory has no array {name!r}; it has {', '.join(self._arrays)}"
+            ) from None
+
+    def __contains__(self, name: str) -> bool:
+        return name in self._arrays
+
+    def __len__(self) -> int:
+        return self._arrays["t"].shape[0]
+
+    def __repr__(self) -> str:
+        shapes = ", ".join(f"{k}{tuple(v.shape)}" for k, v in self._arrays.items())
+        return f"Trajectory({shapes})"
+
+    def columns(self) -> list[tuple[str, str, int | None]]:
+        """(column header, array name, component index or None), in CSV order."""
+        out = []
+        for name, a in self._arrays.items():
+            if a.ndim == 1:
+                out.append((name, name, None))
+                continue
+            labels = self.components.get(name) or tuple(str(i) for i in range(a.shape[1]))
+            if len(labels) != a.shape[1]:
+                raise InputError(f"components of {name}: {len(labels)} labels for {a.shape[1]}")
+            out.extend((f"{name}_{lab}", name, i) for i, lab in enumerate(labels))
+        return out
+
+    def to_csv(self, path=None) -> str | Path:
+        """Write every array as CSV columns (``R_e12``, ``q_w``, ...), atomically.
+
+        Full float64 precision (``repr``); cells past the end of a shorter array are
+        empty. Without ``path``, return the text.
+        """
+        cols = self.columns()
+        buf = io.StringIO()
+        writer = csv.writer(buf, lineterminator="\n")
+        writer.writerow([c[0] for c in cols])
+        n = len(self)
+        for row in range(n):
+            cells = []
+            for _, name, comp in cols:
+                a = self._arrays[name]
+                if row >= a.shape[0]:
+                    cells.append("")
+                else:
+                    cells.append(repr(float(a[row] if comp is None else a[row, comp])))
+            writer.writerow(cells)
+        text = buf.getvalue()
+        if path is None:
+            return text
+        return atomic_write(path, lambda fh: fh.write(text.encode("utf-8")))
+
+    def to_npz(self, path) -> Path:
+        """Write every array (and the component labels) to a ``.npz`` file, atomically.
+
+        Examples
+        --------
+        >>> import tempfile, pathlib
+        >>> tr = Trajectory({"t": np.arange(3.0)})
+        >>> p = tr.to_npz(pathlib.Path(tempfile.mkdtemp()) / "run.npz")
+        >>> sorted(np.load(p).files)
+        ['t']
+        """
+        payload = dict(self._arrays)
+        for name, labels in self.components.items():
+            if name in payload:
+                payload[f"{name}__components"] = np.array(labels)
+
+        def write(fh):
+            np.savez(fh, **payload)
+
+        return atomic_write(path, write)
