@@ -12,7 +12,7 @@ this module is the arithmetic they share.
 
 from __future__ import annotations
 
-from math import atan2, cos, hypot, pi, sin, sqrt
+from math import atan2, cos, exp, hypot, inf, log, nan, pi, sin, sqrt
 
 from ._jit import jit
 
@@ -70,8 +70,14 @@ def qnorm(a):
 
 @jit
 def qnormalize(a):
-    """a / |a| (the caller checks |a| > 0)."""
+    """a / |a|; all-NaN for a = 0 (the caller's finiteness check reports it).
+
+    Zero is tested explicitly because uncompiled Python raises on division by zero where
+    compiled code returns nan; kernels must behave the same both ways.
+    """
     n = qnorm(a)
+    if n == 0.0:
+        return (nan, nan, nan, nan)
     return (a[0] / n, a[1] / n, a[2] / n, a[3] / n)
 
 
@@ -154,3 +160,267 @@ def geodesic_angle(a, b):
     """
     d = qmul(qconj(a), b)
     return 2.0 * atan2(hypot3(d[1], d[2], d[3]), abs(d[0]))
+
+
+@jit
+def qinverse(a):
+    """a⁻¹ = a* / |a|², divided twice by |a| so that |a| down to 1e-300 does not underflow.
+
+    a = 0 gives all-NaN, which the loops detect and report.
+    """
+    n = qnorm(a)
+    if n == 0.0:
+        return (nan, nan, nan, nan)
+    return (a[0] / n / n, -a[1] / n / n, -a[2] / n / n, -a[3] / n / n)
+
+
+@jit
+def qunit(a, tol):
+    """a / |a| when | |a| - 1 | <= tol, else all-NaN (so a loop's finiteness check flags it).
+
+    NaN and infinite components also give NaN: their norm fails the comparison.
+    """
+    n = qnorm(a)
+    if not abs(n - 1.0) <= tol:
+        return (nan, nan, nan, nan)
+    return (a[0] / n, a[1] / n, a[2] / n, a[3] / n)
+
+
+@jit
+def qexp(a):
+    """exp(a) = e^w (cos|v|, sin|v| v/|v|) for a general quaternion a = (w, v)."""
+    # e^w overflows above ln(DBL_MAX); inf is written out because Python's math.exp raises
+    # there, and the kernels must behave alike compiled and uncompiled.
+    e = inf if a[0] > 709.782712893384 else exp(a[0])
+    p = qexp_pure((a[1], a[2], a[3]))
+    return (e * p[0], e * p[1], e * p[2], e * p[3])
+
+
+@jit
+def qlog(a):
+    """log(a) = (ln|a|, u·atan2(|v|, w)) for nonzero a; at negative reals u is the z axis."""
+    n = qnorm(a)
+    if n == 0.0:
+        return (-inf, nan, nan, nan)
+    h = qlog_unit((a[0] / n, a[1] / n, a[2] / n, a[3] / n))
+    return (log(n), h[0], h[1], h[2])
+
+
+@jit
+def axis_angle_from_quat(q):
+    """(u_x, u_y, u_z, α) of unit q with α = 2·atan2(|q⃗|, |w|) ∈ [0, π].
+
+    q and -q give the same answer (the axis flips with the sign of w). At α = 0 the axis is
+    free; +z is returned, never NaN. At α = π (w = 0) both ±u are valid; q⃗/|q⃗| is returned.
+    """
+    w, x, y, z = q
+    if w < 0.0:
+        w, x, y, z = -w, -x, -y, -z
+    s = hypot3(x, y, z)
+    if s == 0.0:
+        return (0.0, 0.0, 1.0, 0.0)
+    return (x / s, y / s, z / s, 2.0 * atan2(s, w))
+
+
+@jit
+def quat_from_axis_angle(u, angle):
+    """Unit quaternion of the rotation by ``angle`` about u/|u| (u ≠ 0; any real angle)."""
+    n = hypot3(u[0], u[1], u[2])
+    if n == 0.0:
+        return (nan, nan, nan, nan)
+    return quat_from_rotvec((angle * (u[0] / n), angle * (u[1] / n), angle * (u[2] / n)))
+
+
+@jit
+def qslerp(a, b, t):
+    """a ⊗ exp(t · log(a* ⊗ b)) along the shorter arc of rotations (unit a, b).
+
+    Written with the exp/log kernels, which are exact at tiny angles, instead of the
+    sin((1-t)Ω)/sin Ω weights, which divide 0 by 0 when a ≈ b. If a* b has w < 0 it is
+    negated first (b and -b are the same rotation), so slerp(q, -q, t) = q for every t.
+    """
+    d = qmul(qconj(a), b)
+    if d[0] < 0.0:
+        d = (-d[0], -d[1], -d[2], -d[3])
+    h = qlog_unit(d)
+    return qmul(a, qexp_pure((t * h[0], t * h[1], t * h[2])))
+
+
+#: |û × v̂| at or below this counts as exactly (anti)parallel: normalising exactly parallel
+#: vectors rounds each component by up to ~2 ulp, which leaves a cross product of a few
+#: 1e-16; 1e-15 covers that with margin, and the rotation returned then maps û onto v̂ to
+#: within the same 1e-15.
+PARALLEL_TOLERANCE = 1e-15
+
+
+@jit
+def perpendicular(u):
+    """A unit vector ⊥ unit u: u × e_k with e_k the coordinate axis least aligned with u
+    (the first such axis on ties), normalised. For u = ±x that is ±z; for u = ±z it is ±y."""
+    ax, ay, az = abs(u[0]), abs(u[1]), abs(u[2])
+    if ax <= ay and ax <= az:
+        p = (0.0, u[2], 0.0 - u[1])  # u × x (0.0 - keeps zeros unsigned)
+    elif ay <= az:
+        p = (0.0 - u[2], 0.0, u[0])  # u × y
+    else:
+        p = (u[1], 0.0 - u[0], 0.0)  # u × z
+    n = hypot3(p[0], p[1], p[2])
+    return (p[0] / n, p[1] / n, p[2] / n)
+
+
+@jit
+def quat_from_two_vectors(u, v):
+    """Unit quaternion of the smallest rotation taking the direction of u onto that of v.
+
+    Angle atan2(|û × v̂|, û · v̂) (accurate at 0 and π), axis û × v̂ re-orthogonalised
+    against û: near antiparallel vectors the cross product has a relative error of
+    ~1e-16/sin(angle), and an axis that is not exactly ⊥ û would move û off v̂ by that
+    much; after the projection the error in the image of û stays at round-off.
+    Parallel: the identity. Antiparallel: the half-turn about :func:`perpendicular` (û).
+    Zero vectors give NaN (the caller reports them).
+    """
+    nu = hypot3(u[0], u[1], u[2])
+    nv = hypot3(v[0], v[1], v[2])
+    if nu == 0.0 or nv == 0.0:
+        return (nan, nan, nan, nan)
+    a = (u[0] / nu, u[1] / nu, u[2] / nu)
+    b = (v[0] / nv, v[1] / nv, v[2] / nv)
+    c = cross(a, b)
+    s = hypot3(c[0], c[1], c[2])
+    d = a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+    if s <= PARALLEL_TOLERANCE:
+        if d > 0.0:
+            return (1.0, 0.0, 0.0, 0.0)
+        p = perpendicular(a)
+        return (0.0, p[0], p[1], p[2])
+    k = (c[0] / s, c[1] / s, c[2] / s)
+    along = k[0] * a[0] + k[1] * a[1] + k[2] * a[2]
+    k = (k[0] - along * a[0], k[1] - along * a[1], k[2] - along * a[2])
+    nk = hypot3(k[0], k[1], k[2])
+    half = 0.5 * atan2(s, d)
+    f = sin(half) / nk
+    return (cos(half), f * k[0], f * k[1], f * k[2])
+
+
+@jit
+def matrix_from_quat(q):
+    """Rotation matrix of unit q, row-major 9-tuple: M v = q v q* (active)."""
+    w, x, y, z = q
+    return (
+        1.0 - 2.0 * (y * y + z * z), 2.0 * (x * y - w * z), 2.0 * (x * z + w * y),
+        2.0 * (x * y + w * z), 1.0 - 2.0 * (x * x + z * z), 2.0 * (y * z - w * x),
+        2.0 * (x * z - w * y), 2.0 * (y * z + w * x), 1.0 - 2.0 * (x * x + y * y),
+    )  # fmt: skip
+
+
+@jit
+def quat_from_matrix(m):
+    """Unit quaternion (w ≥ 0) of a rotation matrix given as a row-major 9-tuple.
+
+    From M = [[w²+x²-y²-z², 2(xy-wz), 2(xz+wy)], [2(xy+wz), w²-x²+y²-z², 2(yz-wx)],
+    [2(xz-wy), 2(yz+wx), w²-x²-y²+z²]]: 4w² = 1 + tr M, 4x² = 1 + m00 - m11 - m22 (and
+    cyclic), and the off-diagonal sums and differences give 4wx, 4xy, ... . The component
+    whose square is largest (the largest of tr M, m00, m11, m22) is at least 1/2, so it is
+    taken from its square root and the others are divided by it: no division by a small
+    number anywhere, exact at half-turns where w = 0 (the notes' division by 4w fails).
+    """
+    m00, m01, m02, m10, m11, m12, m20, m21, m22 = m
+    tr = m00 + m11 + m22
+    if tr >= m00 and tr >= m11 and tr >= m22:
+        r = sqrt(1.0 + tr)
+        f = 0.5 / r
+        q = (0.5 * r, (m21 - m12) * f, (m02 - m20) * f, (m10 - m01) * f)
+    elif m00 >= m11 and m00 >= m22:
+        r = sqrt(1.0 + m00 - m11 - m22)
+        f = 0.5 / r
+        q = ((m21 - m12) * f, 0.5 * r, (m01 + m10) * f, (m02 + m20) * f)
+    elif m11 >= m22:
+        r = sqrt(1.0 - m00 + m11 - m22)
+        f = 0.5 / r
+        q = ((m02 - m20) * f, (m01 + m10) * f, 0.5 * r, (m12 + m21) * f)
+    else:
+        r = sqrt(1.0 - m00 - m11 + m22)
+        f = 0.5 / r
+        q = ((m10 - m01) * f, (m02 + m20) * f, (m12 + m21) * f, 0.5 * r)
+    if q[0] < 0.0:
+        q = (-q[0], -q[1], -q[2], -q[3])
+    return qnormalize(q)
+
+
+@jit
+def axis_quat(axis, angle):
+    """Unit quaternion of the rotation by ``angle`` about coordinate axis 0, 1 or 2 (x, y, z)."""
+    h = 0.5 * angle
+    s = sin(h)
+    return (cos(h), s if axis == 0 else 0.0, s if axis == 1 else 0.0, s if axis == 2 else 0.0)
+
+
+@jit
+def quat_from_euler(i, j, k, a, b, c):
+    """q_i(a) ⊗ q_j(b) ⊗ q_k(c): intrinsic rotations about axes i, then j′, then k″."""
+    return qmul(qmul(axis_quat(i, a), axis_quat(j, b)), axis_quat(k, c))
+
+
+@jit
+def wrap_angle(x):
+    """x in (-2π, 2π] mapped to (-π, π] by one exact shift of 2π."""
+    if x > pi:
+        return x - 2.0 * pi
+    if x <= -pi:
+        return x + 2.0 * pi
+    return x
+
+
+@jit
+def euler_from_quat(q, i, j, k, zero_first, tol):
+    """Intrinsic angles (a, b, c, locked) with q = ±q_i(a) ⊗ q_j(b) ⊗ q_k(c), q unit.
+
+    With half angles a′ = a/2 (and so on), e_i e_j = ε e_m (ε = ±1, the parity of the
+    axis order):
+
+    * proper (i = k, m the third axis):  (w, q_i) = cos b′ (cos(a′+c′), sin(a′+c′)) and
+      (q_j, ε q_m) = sin b′ (cos(a′−c′), sin(a′−c′)), so b = 2·atan2(|(q_j, q_m)|, |(w, q_i)|)
+      ∈ [0, π];
+    * Tait–Bryan (i, j, k distinct):  (w + q_j, q_i + ε q_k) = (cos b′ + sin b′)
+      (cos(a′+εc′), sin(a′+εc′)) and (w − q_j, q_i − ε q_k) = (cos b′ − sin b′)
+      (cos(a′−εc′), sin(a′−εc′)); sin b = 2(w q_j + ε q_i q_k), cos b = the product of the
+      two moduli, b ∈ [−π/2, π/2].
+
+    Both sum and difference come from atan2 (quadrant-correct, no division), a and c in
+    (−π, π]. Gimbal lock: when b is within ``tol`` of the value where one of the two pairs
+    vanishes, only one combination of a and c is defined; the third angle of the sequence
+    as written is set to 0 (``zero_first`` says that is a, which is the case for extrinsic
+    sequences computed through their reversed intrinsic twin) and ``locked`` is 1.0.
+    Forcing it moves the rotation by at most 2·tol (a commutator of a rotation by tol).
+    """
+    w = q[0]
+    qi = q[1 + i]
+    qj = q[1 + j]
+    eps = 1.0 if (j - i) % 3 == 1 else -1.0
+    if i == k:
+        qm = eps * q[4 - i - j]  # index 1 + m with m = 3 - i - j
+        b = 2.0 * atan2(hypot(qj, qm), hypot(w, qi))
+        plus = atan2(qi, w)
+        minus = atan2(qm, qj)
+        sc = 1.0
+        minus_free = b <= tol
+        plus_free = b >= pi - tol
+    else:
+        qk = eps * q[1 + k]
+        p = hypot(w + qj, qi + qk)
+        mm = hypot(w - qj, qi - qk)
+        b = atan2(2.0 * (w * qj + qi * qk), p * mm)
+        plus = atan2(qi + qk, w + qj)
+        minus = atan2(qi - qk, w - qj)
+        sc = eps
+        minus_free = b >= 0.5 * pi - tol
+        plus_free = b <= -0.5 * pi + tol
+    if minus_free:
+        if zero_first:
+            return (0.0, b, wrap_angle(sc * 2.0 * plus), 1.0)
+        return (wrap_angle(2.0 * plus), b, 0.0, 1.0)
+    if plus_free:
+        if zero_first:
+            return (0.0, b, wrap_angle(-sc * 2.0 * minus), 1.0)
+        return (wrap_angle(2.0 * minus), b, 0.0, 1.0)
+    return (wrap_angle(plus + minus), b, wrap_angle(sc * (plus - minus)), 0.0)

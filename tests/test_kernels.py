@@ -1,22 +1,20 @@
 """The scalar kernels every compiled loop shares, against independent oracles.
 
 Also run uncompiled: ``test_kernels_agree_uncompiled`` re-runs this file in a
-subprocess with NUMBA_DISABLE_JIT=1, so the plain-Python kernels are tested too.
+subprocess with NUMBA_DISABLE_JIT=1 (tests/uncompiled.py), so the plain-Python kernels
+are tested too.
 """
 
 from __future__ import annotations
 
 import math
-import os
-import subprocess
-import sys
-from pathlib import Path
 
 import numpy as np
 import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 from scipy.spatial.transform import Rotation
+from uncompiled import uncompiled_twin
 
 from ga_rotors import _kernels as K
 
@@ -131,12 +129,158 @@ def test_geodesic_angle_resolves_small_and_large(delta):
     assert math.isclose(K.geodesic_angle(a, minus_b), delta, rel_tol=1e-12, abs_tol=1e-15)
 
 
-@pytest.mark.skipif(os.environ.get("NUMBA_DISABLE_JIT") == "1", reason="already uncompiled")
-def test_kernels_agree_uncompiled():
-    env = {**os.environ, "NUMBA_DISABLE_JIT": "1"}
-    root = Path(__file__).resolve().parent.parent
-    proc = subprocess.run(
-        [sys.executable, "-m", "pytest", "-q", "-p", "no:cacheprovider", __file__],
-        cwd=root, env=env, capture_output=True, text=True,
-    )
-    assert proc.returncode == 0, proc.stdout[-3000:] + proc.stderr[-3000:]
+@given(quat)
+def test_inverse_is_conjugate_over_norm_squared(a):
+    prod = K.qmul(a, K.qinverse(a))
+    # |a|^2 and four products each round once: the identity to ~10 ulp.
+    assert np.allclose(prod, (1.0, 0.0, 0.0, 0.0), rtol=0, atol=1e-14)
+
+
+@pytest.mark.parametrize("scale", [1e-300, 1e-150, 1e150, 1e300])
+def test_inverse_of_tiny_and_huge_has_no_underflow(scale):
+    a = (0.0, 3 * scale, 0.0, 4 * scale)
+    inv = K.qinverse(a)
+    assert math.isclose(inv[1], -3 / (25 * scale), rel_tol=1e-15)
+
+
+def test_qunit_renormalises_within_tolerance_and_nans_beyond():
+    assert K.qunit((1.0 + 1e-7, 0.0, 0.0, 0.0), 1e-6) == (1.0, 0.0, 0.0, 0.0)
+    for bad in [(1.1, 0.0, 0.0, 0.0), (math.nan, 0.0, 0.0, 0.0), (math.inf, 0.0, 0.0, 0.0)]:
+        assert all(math.isnan(c) for c in K.qunit(bad, 1e-6))
+
+
+@given(quat)
+def test_general_exp_inverts_log(a):
+    a = tuple(c / 1e3 for c in a)  # keep e^w representable
+    back = K.qexp(K.qlog(a))
+    assert np.allclose(back, a, rtol=0, atol=1e-14 * K.qnorm(a))
+
+
+@given(quat)
+def test_axis_angle_kernel_matches_scipy_and_ignores_sign(a):
+    q = unit(a)
+    ux, uy, uz, ang = K.axis_angle_from_quat(q)
+    assert 0.0 <= ang <= math.pi
+    oracle = Rotation.from_rotvec(ang * np.array([ux, uy, uz])).as_matrix()
+    assert np.allclose(oracle, as_matrix(q), atol=1e-13)
+    assert K.axis_angle_from_quat(tuple(-c for c in q)) == (ux, uy, uz, ang) or q[0] == 0.0
+
+
+def test_axis_at_angle_zero_is_plus_z():
+    assert K.axis_angle_from_quat((1.0, 0.0, 0.0, 0.0)) == (0.0, 0.0, 1.0, 0.0)
+    assert K.axis_angle_from_quat((-1.0, 0.0, 0.0, 0.0)) == (0.0, 0.0, 1.0, 0.0)
+
+
+@given(vec, st.floats(-10, 10))
+def test_axis_angle_quaternion_is_rotvec_quaternion(u, angle):
+    n = math.sqrt(sum(c * c for c in u))
+    if n < 1e-6:
+        return
+    q = K.quat_from_axis_angle(u, angle)
+    oracle = Rotation.from_rotvec(angle * np.array(u) / n).as_matrix()
+    assert np.allclose(as_matrix(q), oracle, atol=1e-13)
+
+
+@given(quat, quat, st.floats(-2.0, 3.0))
+def test_slerp_moves_at_constant_rate_along_shorter_arc(a, b, t):
+    a, b = unit(a), unit(b)
+    total = K.geodesic_angle(a, b)
+    s = K.qslerp(a, b, t)
+    # the distance to a is |t| x total while |t| x total <= pi; rounding of log, scaling and
+    # exp (a few ulp each of an angle <= pi) gives ~1e-15 rad; 1e-13 is the margin for the
+    # ill-conditioning of the angle of a product near a half-turn.
+    if abs(t) * total <= math.pi - 1e-6:
+        assert math.isclose(K.geodesic_angle(a, s), abs(t) * total, abs_tol=1e-13)
+    assert math.isclose(K.qnorm(s), 1.0, abs_tol=1e-15)
+
+
+def test_slerp_of_q_and_minus_q_stays_put():
+    q = unit((0.3, -0.5, 0.7, 0.2))
+    for t in (0.0, 0.3, 1.0):
+        assert np.allclose(K.qslerp(q, tuple(-c for c in q), t), q, rtol=0, atol=1e-16)
+
+
+@given(vec)
+def test_perpendicular_is_unit_and_orthogonal(u):
+    n = math.sqrt(sum(c * c for c in u))
+    if n < 1e-6:
+        return
+    u = tuple(c / n for c in u)
+    p = K.perpendicular(u)
+    assert math.isclose(K.hypot3(*p), 1.0, rel_tol=1e-15)
+    assert abs(np.dot(p, u)) < 1e-15
+
+
+def test_perpendicular_documented_choices():
+    assert K.perpendicular((1.0, 0.0, 0.0)) == (0.0, 0.0, 1.0)
+    assert K.perpendicular((0.0, 0.0, 1.0)) == (0.0, 1.0, 0.0)
+    assert K.perpendicular((0.0, 1.0, 0.0)) == (0.0, 0.0, -1.0)
+
+
+@given(vec, vec)
+def test_two_vectors_maps_u_onto_v_with_the_smallest_angle(u, v):
+    nu, nv = np.linalg.norm(u), np.linalg.norm(v)
+    if nu < 1e-6 or nv < 1e-6:
+        return
+    q = K.quat_from_two_vectors(u, v)
+    assert math.isclose(K.qnorm(q), 1.0, abs_tol=1e-15)
+    image = np.array(K.qrotate(q, tuple(np.array(u) / nu)))
+    assert np.allclose(image, np.array(v) / nv, atol=2e-15)
+    between = math.atan2(np.linalg.norm(np.cross(u, v)), np.dot(u, v))
+    ang = K.axis_angle_from_quat(q)[3]
+    assert math.isclose(ang, between, abs_tol=1e-14)
+
+
+@pytest.mark.parametrize("eps", [1e-4, 1e-8, 1e-10, 1e-13])
+def test_two_vectors_nearly_antiparallel_stays_exact(eps):
+    u = np.array([0.6, 0.0, 0.8])
+    v = -u + eps * np.array([0.8, 0.0, -0.6])
+    q = K.quat_from_two_vectors(tuple(u), tuple(v))
+    image = np.array(K.qrotate(q, tuple(u)))
+    # without re-orthogonalising the axis the error is ~1e-16/eps (1e-3 at eps = 1e-13)
+    assert np.allclose(image, v / np.linalg.norm(v), rtol=0, atol=1e-15)
+
+
+def test_two_vectors_parallel_and_antiparallel_exact():
+    assert K.quat_from_two_vectors((1.0, 2.0, 3.0), (2.0, 4.0, 6.0)) == (1.0, 0.0, 0.0, 0.0)
+    assert K.quat_from_two_vectors((1.0, 0.0, 0.0), (-5.0, 0.0, 0.0)) == (0.0, 0.0, 0.0, 1.0)
+    q = K.quat_from_two_vectors((1.0, 2.0, 3.0), (-1.0, -2.0, -3.0))
+    assert q[0] == 0.0 and abs(np.dot(q[1:], (1.0, 2.0, 3.0))) < 1e-15
+
+
+@given(quat)
+def test_matrix_kernels_round_trip_and_match_scipy(a):
+    q = unit(a)
+    m = K.matrix_from_quat(q)
+    assert np.allclose(np.reshape(m, (3, 3)), as_matrix(q), atol=1e-15 * 4)
+    back = K.quat_from_matrix(m)
+    assert back[0] >= 0.0
+    assert K.geodesic_angle(back, q) <= 1e-15 * 8
+
+
+@pytest.mark.parametrize("axis", [0, 1, 2])
+def test_matrix_to_quaternion_exact_at_half_turns(axis):
+    m = [1.0 if k == axis else -1.0 for k in range(3)]
+    q = K.quat_from_matrix((m[0], 0.0, 0.0, 0.0, m[1], 0.0, 0.0, 0.0, m[2]))
+    expected = [0.0, 0.0, 0.0, 0.0]
+    expected[1 + axis] = 1.0
+    assert q == tuple(expected)
+
+
+@pytest.mark.parametrize("angle", [-7.0, -math.pi, 0.0, 1e-300, 0.5, math.pi, 7.0])
+@pytest.mark.parametrize("axis", [0, 1, 2])
+def test_axis_quat_is_rotation_about_basis_axis(axis, angle):
+    r = np.zeros(3)
+    r[axis] = angle
+    assert K.geodesic_angle(K.axis_quat(axis, angle), K.quat_from_rotvec(tuple(r))) < 1e-15
+
+
+@pytest.mark.parametrize("x", [-2 * math.pi + 1e-9, -math.pi, -1.0, 0.0, math.pi, 2 * math.pi])
+def test_wrap_angle_lands_in_half_open_interval(x):
+    y = K.wrap_angle(x)
+    assert -math.pi < y <= math.pi
+    assert math.isclose(math.cos(y), math.cos(x), abs_tol=1e-15)
+    assert math.isclose(math.sin(y), math.sin(x), abs_tol=1e-15)
+
+
+test_kernels_agree_uncompiled = uncompiled_twin(__file__)
