@@ -1,0 +1,403 @@
+"""Rotors in Cl(3,0) as ``clifford`` multivectors: build, convert, compose, apply.
+
+A rotor is an even multivector R = w − x e23 − y e31 − z e12 with R R̃ = 1 that rotates
+vectors by v ↦ R v R̃ (:mod:`ga_rotors.isomorphism` gives the map to quaternions). The
+rotor of the rotation by α about the unit axis u is exp(−I u α/2) = cos(α/2) − I u sin(α/2).
+
+clifford's ``Cl(3)`` layout is created once, on first use (importing clifford takes about
+a second), so ``import ga_rotors`` and ``import ga_rotors.rotor`` stay light.
+
+Products, reverses and sandwiches are clifford's geometric product. The scalar formulas
+(exp, log, angles, conversions) are the shared kernels of :mod:`ga_rotors._kernels`,
+reached through the isomorphism: exp and log are exact at angle 0, at tiny angles
+(1e-300 ... 1e-9), at exactly π and π − 1e-12, and at R = ±1, where clifford's own
+``log_rotor`` fails.
+
+Inputs: rotors must be even (odd part, grades 1 and 3, at most UNIT_TOLERANCE) and of
+unit norm within UNIT_TOLERANCE (then renormalised); otherwise :class:`InputError`.
+
+Examples
+--------
+>>> import numpy as np
+>>> from ga_rotors import rotor
+>>> R = rotor.from_axis_angle([0, 0, 1], np.pi / 2)
+>>> np.round(rotor.apply(R, [1.0, 0.0, 0.0]), 15) + 0.0
+array([0., 1., 0.])
+"""
+
+from __future__ import annotations
+
+import functools
+
+import numpy as np
+
+from . import _kernels as K
+from . import euler as _euler
+from . import matrix as _matrix
+from . import quaternion as _quaternion
+from ._validate import as_float_array, require_unit
+from .errors import InputError
+from .isomorphism import from_even, to_even
+
+__all__ = [
+    "apply",
+    "compose",
+    "distance",
+    "exp",
+    "from_axis_angle",
+    "from_euler",
+    "from_matrix",
+    "from_quaternion",
+    "from_rotation_vector",
+    "from_two_vectors",
+    "inverse",
+    "layout",
+    "log",
+    "normalize",
+    "slerp",
+    "to_axis_angle",
+    "to_euler",
+    "to_matrix",
+    "to_quaternion",
+    "to_rotation_vector",
+]
+
+_VECTOR = (1, 2, 3)  # e1, e2, e3 in clifford's blade order
+_BIVECTOR = (4, 5, 6)  # e12, e13, e23
+
+
+@functools.cache
+def layout():
+    """clifford's ``Cl(3)`` layout, created on first call and shared.
+
+    Examples
+    --------
+    >>> layout().names
+    ['', 'e1', 'e2', 'e3', 'e12', 'e13', 'e23', 'e123']
+    """
+    from clifford import Cl
+
+    return Cl(3)[0]
+
+
+def _multivector(coefficients):
+    from clifford import MultiVector
+
+    return MultiVector(layout(), np.asarray(coefficients, dtype=np.float64))
+
+
+def _coefficients(x, name: str) -> np.ndarray:
+    from clifford import MultiVector
+
+    if not isinstance(x, MultiVector):
+        raise InputError(
+            f"{name}: expected a clifford MultiVector of Cl(3), got {type(x).__name__}"
+        )
+    if x.layout != layout():
+        raise InputError(
+            f"{name}: expected a multivector of Cl(3) (blades {layout().names}), got {x.layout}"
+        )
+    return as_float_array(x.value, name)
+
+
+def _quaternion_of(R, name: str = "R", unit: bool = True) -> np.ndarray:
+    q = from_even(_coefficients(R, name), name=name)
+    return require_unit(q, name) if unit else q
+
+
+def from_quaternion(q):
+    """The rotor of unit quaternion q: w − x e23 − y e31 − z e12.
+
+    Examples
+    --------
+    >>> from_quaternion([0.0, 0.0, 0.0, 1.0])     # k ↦ −e12
+    -(1.0^e12)
+    """
+    q = as_float_array(q, "q", last=4)
+    if q.shape != (4,):
+        raise InputError(f"q: expected one quaternion of shape (4,), got shape {q.shape}")
+    return _multivector(to_even(require_unit(q, "q")))
+
+
+def to_quaternion(R) -> np.ndarray:
+    """The unit quaternion (4,) of rotor R (inverse of :func:`from_quaternion`).
+
+    Examples
+    --------
+    >>> R = from_axis_angle([1.0, 0, 0], np.pi)
+    >>> np.round(to_quaternion(R), 15) + 0.0
+    array([0., 1., 0., 0.])
+    """
+    return _quaternion_of(R)
+
+
+def normalize(R):
+    """R / |R| for an even multivector R ≠ 0, |R|² = ⟨R R̃⟩₀.
+
+    Examples
+    --------
+    >>> normalize(2.0 + 0.0 * layout().blades["e12"])
+    1.0
+    """
+    q = _quaternion_of(R, unit=False)
+    return _multivector(to_even(_quaternion.normalize(q)))
+
+
+def compose(*rotors):
+    """The product R₁ R₂ ⋯ Rₙ: apply Rₙ first, R₁ last (like quaternion products).
+
+    Examples
+    --------
+    >>> a = from_axis_angle([0, 0, 1.0], 0.3)
+    >>> b = from_axis_angle([0, 0, 1.0], 0.4)
+    >>> round(to_axis_angle(compose(a, b))[1], 15)
+    0.7
+    """
+    if not rotors:
+        raise InputError("rotors: expected at least one rotor")
+    out = None
+    for n, R in enumerate(rotors):
+        R = _multivector(to_even(_quaternion_of(R, f"rotors[{n}]")))
+        out = R if out is None else out * R
+    return out
+
+
+def inverse(R):
+    """R⁻¹ = R̃ (the reverse) for a unit rotor.
+
+    Examples
+    --------
+    >>> R = from_axis_angle([0, 1.0, 0], 0.5)
+    >>> float((R * inverse(R))[()])
+    1.0
+    """
+    return ~_multivector(to_even(_quaternion_of(R)))
+
+
+def apply(R, v):
+    """Rotate vectors actively: R v R̃.
+
+    Parameters
+    ----------
+    R : MultiVector
+        A unit rotor.
+    v : MultiVector (grade 1) or array_like, shape (3,)
+        Returned in the same form.
+
+    Examples
+    --------
+    >>> e1 = layout().blades["e1"]
+    >>> apply(from_axis_angle([0, 0, 1.0], np.pi / 2), e1)(1).clean(1e-15)
+    (1.0^e2)
+    """
+    from clifford import MultiVector
+
+    R = _multivector(to_even(_quaternion_of(R)))
+    if isinstance(v, MultiVector):
+        c = _coefficients(v, "v")
+        if np.any(np.delete(c, _VECTOR) != 0):
+            raise InputError("v: expected a vector (grade 1 only)")
+        return R * v * ~R
+    v = as_float_array(v, "v", last=3)
+    if v.shape != (3,):
+        raise InputError(f"v: expected one vector of shape (3,), got shape {v.shape}")
+    c = np.zeros(8)
+    c[list(_VECTOR)] = v
+    return (R * _multivector(c) * ~R).value[list(_VECTOR)].copy()
+
+
+def _bivector_to_pure(B) -> tuple[float, float, float]:
+    """(x, y, z) with B = −x e23 − y e31 − z e12 (the pure quaternion of B)."""
+    c = _coefficients(B, "B")
+    if np.any(np.delete(c, _BIVECTOR) != 0):
+        raise InputError("B: expected a bivector (grade 2 only)")
+    q = from_even(c, name="B")
+    return (float(q[1]), float(q[2]), float(q[3]))
+
+
+def _pure_to_bivector(v):
+    return _multivector(to_even([0.0, v[0], v[1], v[2]]))
+
+
+def exp(B):
+    """exp(B) = cos|B| + B sin|B|/|B| for a bivector B; exact at |B| = 0 and tiny |B|.
+
+    exp(−I u α/2) is the rotor of the rotation by α about u.
+
+    Examples
+    --------
+    >>> e12 = layout().blades["e12"]
+    >>> R = exp(-(np.pi / 4) * e12)            # quarter-turn about z
+    >>> np.round(apply(R, [1.0, 0, 0]), 15) + 0.0
+    array([0., 1., 0.])
+    >>> exp(1e-300 * e12).value[[0, 4]]         # (1, e12) coefficients, exact
+    array([1.e+000, 1.e-300])
+    """
+    return _multivector(to_even(K.qexp_pure(_bivector_to_pure(B))))
+
+
+def log(R):
+    """The bivector B with exp(B) = R and |B| ∈ [0, π] (the principal logarithm).
+
+    Exact at R = 1 (B = 0), at tiny angles and at half-turns. At R = −1 every B with |B| = π
+    works; −π e12 (the z axis, as for quaternions) is returned. R and −R (the same
+    rotation) have different logarithms; :func:`to_rotation_vector` identifies them.
+
+    Examples
+    --------
+    >>> log(from_axis_angle([0, 0, 1.0], 1e-300)).value[4]     # e12 coefficient: −α/2
+    np.float64(-5e-301)
+    >>> log(-1.0 + 0.0 * layout().blades["e12"])
+    -(3.14159^e12)
+    """
+    return _pure_to_bivector(K.qlog_unit(tuple(_quaternion_of(R))))
+
+
+def slerp(R0, R1, t: float):
+    """R₀ exp(t log(R̃₀ R₁)) along the shorter arc (R̃₀R₁ negated if its scalar part is < 0).
+
+    Exact for nearly equal rotors; slerp(R, −R, t) = R. See
+    :func:`ga_rotors.quaternion.slerp` for the choices.
+
+    Examples
+    --------
+    >>> a, b = from_axis_angle([0, 0, 1.0], 0.0), from_axis_angle([0, 0, 1.0], 1.0)
+    >>> round(to_axis_angle(slerp(a, b, 0.25))[1], 15)
+    0.25
+    """
+    t = as_float_array(t, "t")
+    if t.shape != ():
+        raise InputError(f"t: expected one number, got shape {t.shape}")
+    R0 = _multivector(to_even(_quaternion_of(R0, "R0")))
+    R1 = _multivector(to_even(_quaternion_of(R1, "R1")))
+    D = ~R0 * R1
+    d = from_even(D.value, name="R0, R1")
+    if d[0] < 0.0:
+        d = -d
+    h = K.qlog_unit(tuple(d))
+    return R0 * exp(_pure_to_bivector((float(t) * h[0], float(t) * h[1], float(t) * h[2])))
+
+
+def distance(R0, R1) -> float:
+    """Geodesic angle ∈ [0, π] between the rotations of R0 and R1 (R and −R: distance 0).
+
+    The angle of R̃₀ R₁, 2·atan2(|⟨·⟩₂|, |⟨·⟩₀|): resolves 1e-16 rad.
+
+    Examples
+    --------
+    >>> a = from_axis_angle([1.0, 0, 0], 0.2)
+    >>> distance(a, compose(a, from_axis_angle([0, 1.0, 0], 1e-12)))
+    1e-12
+    """
+    R0 = _multivector(to_even(_quaternion_of(R0, "R0")))
+    R1 = _multivector(to_even(_quaternion_of(R1, "R1")))
+    return float(K.axis_angle_from_quat(tuple(from_even((~R0 * R1).value, name="R0, R1")))[3])
+
+
+# --- converters: through the unit quaternion of the same rotation --------------------------
+
+
+def from_axis_angle(axis, angle, degrees: bool = False):
+    """The rotor exp(−I u α/2) of the rotation by α about u (u ≠ 0, normalised here).
+
+    Examples
+    --------
+    >>> from_axis_angle([0, 0, 1.0], 180, degrees=True).clean(1e-15)
+    -(1.0^e12)
+    """
+    return from_quaternion(_quaternion.from_axis_angle(axis, angle, degrees=degrees))
+
+
+def to_axis_angle(R) -> tuple[np.ndarray, float]:
+    """Unit axis and angle ∈ [0, π] of the rotation of R (+z at angle 0).
+
+    Examples
+    --------
+    >>> to_axis_angle(from_axis_angle([0, 2.0, 0], 0.5))
+    (array([0., 1., 0.]), 0.5)
+    """
+    return _quaternion.to_axis_angle(to_quaternion(R))
+
+
+def from_rotation_vector(r):
+    """The rotor exp(−I r/2) of the rotation by |r| about r/|r|.
+
+    Examples
+    --------
+    >>> from_rotation_vector([0.0, 0.0, 0.0])
+    1.0
+    """
+    return from_quaternion(_quaternion.from_rotation_vector(r))
+
+
+def to_rotation_vector(R) -> np.ndarray:
+    """Rotation vector (angle ∈ [0, π] times axis) of R; R and −R agree.
+
+    Examples
+    --------
+    >>> to_rotation_vector(from_rotation_vector([0.1, 0.2, 0.3]))
+    array([0.1, 0.2, 0.3])
+    """
+    return _quaternion.to_rotation_vector(to_quaternion(R))
+
+
+def from_two_vectors(u, v):
+    """The smallest rotation taking u's direction onto v's (see
+    :func:`ga_rotors.quaternion.from_two_vectors` for parallel and antiparallel vectors).
+
+    Examples
+    --------
+    >>> R = from_two_vectors([1.0, 0, 0], [0, 0, 3.0])
+    >>> np.round(apply(R, [1.0, 0, 0]), 15) + 0.0
+    array([0., 0., 1.])
+    """
+    return from_quaternion(_quaternion.from_two_vectors(u, v))
+
+
+def from_matrix(m):
+    """The rotor of a rotation matrix (3, 3) (exact at half-turns).
+
+    Examples
+    --------
+    >>> from_matrix(np.diag([-1.0, -1.0, 1.0]))
+    -(1.0^e12)
+    """
+    return from_quaternion(_matrix.to_quaternion(m))
+
+
+def to_matrix(R) -> np.ndarray:
+    """The rotation matrix M of R: M v = R v R̃.
+
+    Examples
+    --------
+    >>> to_matrix(from_matrix(np.eye(3)))
+    array([[1., 0., 0.],
+           [0., 1., 0.],
+           [0., 0., 1.]])
+    """
+    return _matrix.from_quaternion(to_quaternion(R))
+
+
+def from_euler(seq: str, angles, degrees: bool = False):
+    """The rotor of Euler angles (3,) in sequence ``seq`` (scipy's naming).
+
+    Examples
+    --------
+    >>> R = from_euler("ZYZ", [0.3, 0.2, 0.1])
+    >>> to_euler(R, "ZYZ")
+    array([0.3, 0.2, 0.1])
+    """
+    return from_quaternion(_euler.to_quaternion(seq, angles, degrees=degrees))
+
+
+def to_euler(R, seq: str, degrees: bool = False, return_gimbal: bool = False):
+    """Euler angles of R in sequence ``seq``; gimbal lock as in :mod:`ga_rotors.euler`.
+
+    Examples
+    --------
+    >>> to_euler(from_axis_angle([0, 0, 1.0], 0.5), "zyx")
+    array([0.5, 0. , 0. ])
+    """
+    return _euler.from_quaternion(
+        to_quaternion(R), seq, degrees=degrees, return_gimbal=return_gimbal
+    )
