@@ -381,7 +381,8 @@ def to_axis_angle(q) -> tuple[np.ndarray, np.ndarray | float]:
     """Unit axis (..., 3) and angle (...) ∈ [0, π] of the rotation q.
 
     The angle is 2·atan2(|q⃗|, |w|): full precision at every angle, where the notes'
-    2·acos(w) loses half the digits near 0 and π. q and -q give the same axis and angle.
+    2·acos(w) loses half the digits when |w| is near 1 (small rotations). q and -q give
+    the same axis and angle.
     At angle 0 the axis is free and +z is returned (never NaN); at exactly π both ±u
     describe the rotation and q⃗/|q⃗| is returned.
 
