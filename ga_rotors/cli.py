@@ -18,7 +18,9 @@ import sys
 from .errors import GaRotorsError
 
 #: sub-command name -> module implementing it.
-COMMANDS: dict[str, str] = {}
+COMMANDS: dict[str, str] = {
+    "demo": "ga_rotors.demo",
+}
 
 
 def build_parser() -> argparse.ArgumentParser:
