@@ -23,8 +23,6 @@ export leaves such cells empty, never NaN.
 
 from __future__ import annotations
 
-import csv
-import io
 import os
 import tempfile
 from pathlib import Path
@@ -157,24 +155,26 @@ class Trajectory:
     def to_csv(self, path=None) -> str | Path:
         """Write every array as CSV columns (``R_e12``, ``q_w``, ...), atomically.
 
-        Full float64 precision (``repr``); cells past the end of a shorter array are
-        empty. Without ``path``, return the text.
+        ``%.17g`` (17 significant digits: every float64 round-trips exactly); cells past
+        the end of a shorter array are empty. Without ``path``, return the text.
         """
         cols = self.columns()
-        buf = io.StringIO()
-        writer = csv.writer(buf, lineterminator="\n")
-        writer.writerow([c[0] for c in cols])
         n = len(self)
-        for row in range(n):
-            cells = []
-            for _, name, comp in cols:
-                a = self._arrays[name]
-                if row >= a.shape[0]:
-                    cells.append("")
-                else:
-                    cells.append(repr(float(a[row] if comp is None else a[row, comp])))
-            writer.writerow(cells)
-        text = buf.getvalue()
+        table = np.empty((n, len(cols)))
+        lengths = np.empty(len(cols), dtype=np.int64)
+        for j, (_, name, comp) in enumerate(cols):
+            a = self._arrays[name]
+            lengths[j] = a.shape[0]
+            table[: a.shape[0], j] = a if comp is None else a[:, comp]
+        full = int(lengths.min()) if len(cols) else n
+        fmt = ",".join(["%.17g"] * len(cols))
+        lines = [",".join(c[0] for c in cols)]
+        lines.extend(fmt % row for row in map(tuple, table[:full].tolist()))
+        for r in range(full, n):
+            lines.append(
+                ",".join(f"{table[r, j]:.17g}" if r < lengths[j] else "" for j in range(len(cols)))
+            )
+        text = "\n".join(lines) + "\n"
         if path is None:
             return text
         return atomic_write(path, lambda fh: fh.write(text.encode("utf-8")))
