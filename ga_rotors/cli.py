@@ -19,6 +19,7 @@ from .errors import GaRotorsError
 
 #: sub-command name -> module implementing it.
 COMMANDS: dict[str, str] = {
+    "paper": "ga_rotors.paper",
     "demo": "ga_rotors.demo",
 }
 

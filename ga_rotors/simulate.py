@@ -28,8 +28,8 @@ __all__ = ["OUTPUTS", "PATH_ORDER", "simulate"]
 #: Paths in order of precedence for the primary path.
 PATH_ORDER = ("rotor", "quaternion", "euler")
 
-#: Derived outputs :func:`simulate` computes on request.
-OUTPUTS = ("energy", "L")
+#: Derived outputs :func:`simulate` computes on request, from the primary path.
+OUTPUTS = ("energy", "L", "L_space", "angles")
 
 #: |duration / step - round(duration / step)| allowed, relative: the step must divide the
 #: span; a few ulps of the quotient are representation error (0.3 / 0.1 = 2.9999999999999996).
@@ -109,8 +109,10 @@ def simulate(
     euler_angles : array_like (3,), optional
         Initial ZYZ angles (ψ, θ, φ) for the Euler-angle path; they must describe
         ``orientation``. Default: extracted from ``orientation`` with :mod:`ga_rotors.euler`.
-    outputs : sequence of {"energy", "L"}
-        Derived quantities of the primary path.
+    outputs : sequence of {"energy", "L", "L_space", "angles"}
+        Derived quantities of the primary path: kinetic energy, body and space angular
+        momentum, and the ZYZ Euler angles of its orientation (:mod:`ga_rotors.euler`;
+        a GimbalLockWarning if a sample sits at θ = 0 or π).
     sample_every : int
         Keep every k-th step (the last step is always kept).
     t0 : float
@@ -208,6 +210,18 @@ def simulate(
     if "L" in outputs:
         arrays["L"] = rigid.momentum(primary_w)
         components["L"] = ("1", "2", "3")
+    if "L_space" in outputs or "angles" in outputs:
+        primary = _paths.get(requested[0])
+        n = primary_w.shape[0]
+        q = primary.load().quaternions(arrays[primary.array][:n])
+        if "L_space" in outputs:
+            arrays["L_space"] = rigid.space_momentum(q, primary_w)
+            components["L_space"] = ("x", "y", "z")
+        if "angles" in outputs:
+            from . import euler
+
+            arrays["angles"] = euler.from_quaternion(q, "ZYZ")
+            components["angles"] = ("psi", "theta", "phi")
 
     meta = {
         "integrator": method.name,

@@ -34,6 +34,12 @@ from .errors import InputError
 __all__ = ["Trajectory", "atomic_write"]
 
 
+def _umask() -> int:
+    mask = os.umask(0o022)
+    os.umask(mask)
+    return mask
+
+
 def atomic_write(path, write) -> Path:
     """Call ``write(file_object)`` on a temporary file, then move it onto ``path``.
 
@@ -54,6 +60,7 @@ def atomic_write(path, write) -> Path:
         raise InputError(f"path: directory {parent} does not exist")
     fd, tmp = tempfile.mkstemp(dir=parent, prefix=f".{path.name}.", suffix=".tmp")
     try:
+        os.chmod(tmp, 0o666 & ~_umask())  # mkstemp makes 0600; give what open() would
         with os.fdopen(fd, "wb") as fh:
             write(fh)
         os.replace(tmp, path)

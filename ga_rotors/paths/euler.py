@@ -26,7 +26,7 @@ from math import cos, inf, sin
 import numpy as np
 
 from .._jit import jit
-from .._kernels import qmul, quat_from_rotvec
+from .._kernels import quat_from_euler
 from ..integrators._arith import axpy3 as axpy
 from ..integrators._arith import load3 as load
 from ..integrators._arith import rk4_sum3 as rk4_sum
@@ -78,10 +78,7 @@ def rate(x, w):
 @jit
 def to_quat(x):
     """q = q_z(ψ) ⊗ q_y(θ) ⊗ q_z(φ), the convention that defines the angles."""
-    return qmul(
-        qmul(quat_from_rotvec((0.0, 0.0, x[0])), quat_from_rotvec((0.0, x[1], 0.0))),
-        quat_from_rotvec((0.0, 0.0, x[2])),
-    )
+    return quat_from_euler(2, 1, 2, x[0], x[1], x[2])
 
 
 @jit

@@ -23,7 +23,7 @@ from __future__ import annotations
 import numpy as np
 
 from .._jit import jit
-from .._kernels import geodesic_angle, qconj, qmul, qrotate, quat_from_rotvec
+from .._kernels import qconj, qmul, qrotate, quat_from_rotvec
 from .._validate import as_float_array, require_unit
 from ..body import RigidBody
 from ..errors import InputError
@@ -48,15 +48,6 @@ def _orientations(t, q0, ls, inv_perp, nu, k, out_q, out_w, inertia):
         out_w[n, 0] = lb[0] / inertia[0]
         out_w[n, 1] = lb[1] / inertia[1]
         out_w[n, 2] = lb[2] / inertia[2]
-
-
-@jit
-def _errors(q_ref, q, out):
-    for n in range(q.shape[0]):
-        out[n] = geodesic_angle(
-            (q_ref[n, 0], q_ref[n, 1], q_ref[n, 2], q_ref[n, 3]),
-            (q[n, 0], q[n, 1], q[n, 2], q[n, 3]),
-        )
 
 
 class SymmetricTop:
@@ -138,10 +129,10 @@ class SymmetricTop:
         >>> top.orientation_error([0.5, 1.0], q).tolist()
         [0.0, 0.0]
         """
+        from ..quaternion import distance
+
         ref, _ = self.at(t)
-        q = np.ascontiguousarray(as_float_array(q, "q", last=4).reshape(-1, 4))
+        q = as_float_array(q, "q", last=4).reshape(-1, 4)
         if q.shape != ref.shape:
             raise InputError(f"q: expected {ref.shape[0]} orientations, got shape {q.shape}")
-        out = np.empty(q.shape[0])
-        _errors(ref, q, out)
-        return out
+        return np.atleast_1d(distance(ref, q))

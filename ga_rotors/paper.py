@@ -1,0 +1,194 @@
+"""Reproduce the paper's gyroscope: Figures 3–10 through rotors, quaternions and Euler angles.
+
+Integrates the paper's two torque-free scenes (θ₀ = 15° and 0.001°; RK4, 10,000 steps of
+1 ms) on the paper's printed inertia and on a uniform disk spinning about its symmetry
+axis, each along three orientation paths: the rotor equation dR/dt = ½RΩ in Cl(3,0), the
+quaternion equation, and the paper's z–y′–z″ Euler-angle rates. Prints the rotor/quaternion
+cross-check, every path's error against the exact symmetric-top solution, and what the
+Euler-angle path did near sin θ = 0; writes the figures (PNG) and the data (CSV).
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import pickle
+import sys
+import time
+from pathlib import Path
+
+__all__ = ["add_arguments", "reproduce", "run"]
+
+DEFAULT_OUT = "results"
+
+
+def add_arguments(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument(
+        "--out",
+        default=DEFAULT_OUT,
+        metavar="DIR",
+        help=f"output directory, created if missing (default: ./{DEFAULT_OUT})",
+    )
+    what = parser.add_mutually_exclusive_group()
+    what.add_argument(
+        "--no-figures", action="store_true", help="skip the PNG figures (data and summary only)"
+    )
+    what.add_argument(
+        "--figures-only",
+        action="store_true",
+        help="write only the PNG figures (how docs/figures/ is made)",
+    )
+
+
+def _out_dir(path) -> Path:
+    from .errors import InputError
+
+    out = Path(path)
+    if out.exists() and not out.is_dir():
+        raise InputError(f"--out: {out} exists and is not a directory")
+    try:
+        out.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise InputError(f"--out: cannot create directory {out}: {exc.strerror}") from None
+    return out
+
+
+class _Drawer:
+    """A forked process that imports matplotlib while the parent simulates, then draws.
+
+    Building figures costs more CPU than the simulations; on two cores the figures are
+    drawn while the parent writes the CSV files. Forking happens before the parent
+    imports numba or starts any thread.
+    """
+
+    def __init__(self):
+        self._to_child = os.pipe()
+        self._to_parent = os.pipe()
+        sys.stdout.flush()
+        sys.stderr.flush()
+        self.pid = os.fork()
+        if self.pid == 0:  # pragma: no cover - runs in the child, which reports through the pipe
+            self._child()
+        os.close(self._to_child[0])
+        os.close(self._to_parent[1])
+
+    def _child(self) -> None:
+        os.close(self._to_child[1])
+        os.close(self._to_parent[0])
+        try:
+            import matplotlib.figure  # noqa: F401 - the slow import, overlapped with the parent
+
+            from . import paper_figures
+
+            with os.fdopen(self._to_child[0], "rb") as fh:
+                job = pickle.load(fh)
+            if job is None:
+                result = ("skipped", [])
+            else:
+                data, out, digest = job
+                result = ("ok", paper_figures.draw_all(data, out, digest))
+        except BaseException as exc:  # reported to the parent, which raises it
+            result = ("error", f"{type(exc).__name__}: {exc}")
+        try:
+            with os.fdopen(self._to_parent[1], "wb") as fh:
+                pickle.dump(result, fh)
+        finally:
+            os._exit(0)
+
+    def send(self, job) -> None:
+        with os.fdopen(self._to_child[1], "wb") as fh:
+            pickle.dump(job, fh, protocol=pickle.HIGHEST_PROTOCOL)
+
+    def result(self) -> list[Path]:
+        from .errors import GaRotorsError
+
+        try:
+            with os.fdopen(self._to_parent[0], "rb") as fh:
+                status, value = pickle.load(fh)
+        except EOFError:
+            status, value = "error", "the figure process died"
+        finally:
+            os.waitpid(self.pid, 0)
+        if status == "error":
+            raise GaRotorsError(f"drawing the figures failed: {value}")
+        return value
+
+
+def reproduce(
+    out_dir=DEFAULT_OUT,
+    figures: bool = True,
+    data: bool = True,
+    parallel: bool = False,
+):
+    """Run the paper's scenes and write summary, CSV data and figures into ``out_dir``.
+
+    Parameters
+    ----------
+    out_dir : path
+        Created if missing.
+    figures : bool
+        Write the PNG figures (``fig03_…png`` to ``fig10_…png``, ``errors.png``).
+    data : bool
+        Write ``summary.txt`` and one CSV per scene (``paper_15deg.csv``, ...).
+    parallel : bool
+        Draw the figures in a forked process (POSIX; the command line does this).
+
+    Returns
+    -------
+    scenes : list of ga_rotors.paper_scenes.Scene
+    written : list of pathlib.Path
+        Files written, each atomically (a failed run leaves no half-written file).
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> scenes, written = reproduce(tempfile.mkdtemp(), figures=False)
+    >>> [p.name for p in written]
+    ['summary.txt', 'paper_15deg.csv', 'paper_0.001deg.csv', 'disk_15deg.csv', 'disk_0.001deg.csv']
+    >>> max(s.rotor_vs_quaternion for s in scenes) < 1e-12
+    True
+    """
+    out = _out_dir(out_dir)
+    drawer = _Drawer() if figures and parallel and hasattr(os, "fork") else None
+    sent = False
+    try:
+        from . import paper_figures, paper_scenes
+        from .trajectory import atomic_write
+
+        scenes = paper_scenes.run_all()
+        job = None
+        if figures:
+            job = (paper_figures.figure_data(scenes), out, paper_scenes.data_digest(scenes))
+        if drawer is not None:
+            drawer.send(job)
+            sent = True
+        written = []
+        if data:
+            text = paper_scenes.summary(scenes) + "\n"
+            written.append(atomic_write(out / "summary.txt", lambda fh: fh.write(text.encode())))
+            written += [s.trajectory.to_csv(out / f"{s.key}.csv") for s in scenes]
+        if figures and drawer is None:
+            written += paper_figures.draw_all(*job)
+    finally:
+        if drawer is not None:
+            if not sent:  # failed before the figures were handed over: release the child
+                drawer.send(None)
+            pictures = drawer.result()
+    if drawer is not None:
+        written += pictures
+    return scenes, written
+
+
+def run(args: argparse.Namespace) -> int:
+    start = time.perf_counter()
+    parallel = (os.cpu_count() or 1) > 1
+    scenes, written = reproduce(
+        args.out, figures=not args.no_figures, data=not args.figures_only, parallel=parallel
+    )
+    from .paper_scenes import summary
+
+    print(summary(scenes))
+    print()
+    where = os.path.relpath(Path(args.out).resolve())
+    print(f"wrote {len(written)} files to {where}/ in {time.perf_counter() - start:.1f} s")
+    return 0

@@ -1,0 +1,205 @@
+"""Figures 3–10 of the paper, redrawn from :mod:`ga_rotors.paper_scenes`, plus the errors.
+
+Each figure has two columns: the paper's printed inertia (left) and the consistent disk
+(right), so the reader sees at once what the paper's model does and what a disk spinning
+about its symmetry axis does. Every PNG carries the data digest
+(:func:`ga_rotors.paper_scenes.data_digest`) in its ``Description`` metadata, which the
+tests compare with a fresh run.
+
+Speed: building matplotlib Axes (ticks, spines, text) costs far more than drawing 10,000
+points, so one canvas per layout is built once and reused, its lines' data swapped
+between figures. This module needs only numpy and matplotlib: it draws from
+:class:`FigureData`, plain arrays, so a worker process can draw without importing the
+simulation stack.
+"""
+
+from __future__ import annotations
+
+import io
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+__all__ = ["DIGEST_PREFIX", "FIGURES", "FigureData", "draw_all", "figure_data", "read_digest"]
+
+DIGEST_PREFIX = "ga_rotors paper data "
+
+#: file stem -> title; the order is the paper's.
+FIGURES = {
+    "fig03_euler_angles_15deg": "Fig. 3: Euler angles, θ₀ = 15° (Euler-angle path; rotor dashed)",
+    "fig04_body_rates_15deg": "Fig. 4: body angular velocity, θ₀ = 15°",
+    "fig05_quaternion_15deg": "Fig. 5: quaternion path, θ₀ = 15°",
+    "fig06_euler_path_0.001deg": "Fig. 6: Euler angles from the Euler-angle path, θ₀ = 0.001°",
+    "fig07_rotor_angles_0.001deg": "Fig. 7: Euler angles of the rotor path, θ₀ = 0.001°",
+    "fig08_euler_rates_0.001deg": "Fig. 8: angle rates along the Euler-angle path, θ₀ = 0.001°",
+    "fig09_body_rates_0.001deg": "Fig. 9: body angular velocity, θ₀ = 0.001°",
+    "fig10_quaternion_0.001deg": "Fig. 10: quaternion path, θ₀ = 0.001°",
+    "errors": "Geodesic error against the exact solution (RK4, Δt = 1 ms)",
+}
+
+_DEG = 180.0 / np.pi
+_DPI = 72
+_WIDTH = 9.0
+_ROW = 1.45
+#: Arrays the figures read from a scene's trajectory.
+_ARRAYS = (
+    "t", "w", "q", "euler", "angles", "psi_plus_phi", "euler_rates", "error_R", "error_q",
+    "error_euler",
+)  # fmt: skip
+
+
+@dataclass
+class FigureData:
+    """What the figures need from one scene: labels and plain arrays."""
+
+    model: str
+    label: str
+    theta0_deg: float
+    arrays: dict
+
+
+def figure_data(scenes) -> list[FigureData]:
+    """Light copies of :class:`ga_rotors.paper_scenes.Scene` for drawing."""
+    return [
+        FigureData(s.model.name, s.model.label, s.theta0_deg, {k: s.trajectory[k] for k in _ARRAYS})
+        for s in scenes
+    ]
+
+
+def _panels(stem: str, d: FigureData) -> list[tuple[str, list[tuple[np.ndarray, np.ndarray]]]]:
+    """(y label, [(t, y), ...]) per panel; a second curve is drawn dashed."""
+    a = d.arrays
+    t = a["t"]
+    te = t[: a["euler"].shape[0]]
+    path, rotor = a["euler"] * _DEG, a["angles"] * _DEG
+    names = ("ψ (°)", "θ (°)", "φ (°)")
+    if stem.startswith("fig03"):
+        return [(n, [(te, path[:, k]), (t, rotor[:, k])]) for k, n in enumerate(names)]
+    if stem.startswith(("fig04", "fig09")):
+        return [(f"ω {ax} (rad/s)", [(t, a["w"][:, k])]) for k, ax in enumerate(("x3", "y3", "z3"))]
+    if stem.startswith(("fig05", "fig10")):
+        return [(f"q{k}", [(t, a["q"][:, k])]) for k in range(4)]
+    if stem.startswith("fig06"):
+        rows = [(n, [(te, path[:, k])]) for k, n in enumerate(names)]
+        return [*rows, ("ψ + φ (°)", [(te, path[:, 0] + path[:, 2])])]
+    if stem.startswith("fig07"):
+        rows = [(n, [(t, rotor[:, k])]) for k, n in enumerate(names)]
+        return [*rows, ("ψ + φ (°)", [(t, a["psi_plus_phi"] * _DEG)])]
+    if stem.startswith("fig08"):
+        r = a["euler_rates"]
+        labels = ("dψ/dt (rad/s)", "dθ/dt (rad/s)", "dφ/dt (rad/s)")
+        return [(n, [(te, r[:, k])]) for k, n in enumerate(labels)]
+    raise KeyError(stem)
+
+
+class _Canvas:
+    """A reusable grid of Axes with two lines each."""
+
+    def __init__(self, nrows: int, log: bool = False, three: bool = False):
+        from matplotlib.figure import Figure
+
+        height = _ROW * nrows + 0.7
+        self.fig = Figure(figsize=(_WIDTH, height))
+        self.fig.subplots_adjust(
+            left=0.08, right=0.99, top=1 - 0.6 / height, bottom=0.45 / height, wspace=0.22,
+            hspace=0.15,
+        )  # fmt: skip
+        self.axes = self.fig.subplots(nrows, 2, sharex=True, squeeze=False)
+        styles = ("-", "-", "-") if three else ("-", "--")
+        self.lines = []
+        for ax in self.axes.flat:
+            if log:
+                ax.set_yscale("log")
+            ax.tick_params(labelsize=7)
+            self.lines.append([ax.plot([], [], s, lw=0.8)[0] for s in styles])
+        for ax in self.axes[-1]:
+            ax.set_xlabel("t (s)", fontsize=8)
+
+    def fill(self, title: str, columns: list[tuple[str, list]]) -> None:
+        for col, (heading, panels) in enumerate(columns):
+            self.axes[0, col].set_title(heading, fontsize=8)
+            for row, (ylabel, curves) in enumerate(panels):
+                ax = self.axes[row, col]
+                lines = self.lines[row * 2 + col]
+                for k, line in enumerate(lines):
+                    if k < len(curves):
+                        line.set_data(*curves[k])
+                        line.set_visible(True)
+                    else:
+                        line.set_visible(False)
+                ax.set_ylabel(ylabel, fontsize=8)
+                ax.relim(visible_only=True)
+                ax.autoscale_view()
+        self.fig.suptitle(title, fontsize=10)
+
+    def png(self, digest: str) -> bytes:
+        """The figure as a 64-colour palette PNG (a third of the RGB size: these are line
+        plots), with the data digest in its ``Description`` text chunk."""
+        from matplotlib.backends.backend_agg import FigureCanvasAgg
+        from PIL import Image, PngImagePlugin
+
+        canvas = FigureCanvasAgg(self.fig)
+        self.fig.set_dpi(_DPI)
+        canvas.draw()
+        image = Image.frombuffer("RGBA", canvas.get_width_height(), canvas.buffer_rgba())
+        image = image.convert("RGB").quantize(colors=64, method=Image.Quantize.MEDIANCUT)
+        info = PngImagePlugin.PngInfo()
+        info.add_text("Description", DIGEST_PREFIX + digest)
+        buf = io.BytesIO()
+        image.save(buf, format="png", pnginfo=info)
+        return buf.getvalue()
+
+
+def _error_columns(data: list[FigureData]) -> list[tuple[str, list]]:
+    floor = 1e-17  # an exact zero (t = 0) has no place on a log axis
+    columns = []
+    for model in dict.fromkeys(d.model for d in data):
+        panels = []
+        for d in (d for d in data if d.model == model):
+            t = d.arrays["t"]
+            curves = []
+            for name in ("error_R", "error_q", "error_euler"):
+                e = d.arrays[name]
+                curves.append((t[: e.shape[0]], np.maximum(e, floor)))
+            panels.append((f"θ₀ = {d.theta0_deg:g}°: error (rad)", curves))
+        columns.append((f"{model}: rotor, quaternion, Euler-angle path", panels))
+    return columns
+
+
+def draw_all(data: list[FigureData], out_dir, digest: str) -> list[Path]:
+    """Write every figure as ``<out_dir>/<stem>.png`` (atomically); return the paths."""
+    from .trajectory import atomic_write
+
+    out_dir = Path(out_dir)
+    by_key = {(d.model, d.theta0_deg): d for d in data}
+    canvases: dict[int, _Canvas] = {}
+    written = []
+    for stem, title in FIGURES.items():
+        if stem == "errors":
+            canvas = _Canvas(2, log=True, three=True)
+            canvas.fill(title, _error_columns(data))
+            canvas.axes[0, 0].legend(
+                canvas.lines[0], ["rotor", "quaternion", "Euler angles"], fontsize=7
+            )
+        else:
+            theta = 15.0 if stem.endswith("_15deg") else 0.001
+            pair = [by_key[("paper", theta)], by_key[("disk", theta)]]
+            columns = [(d.label, _panels(stem, d)) for d in pair]
+            nrows = len(columns[0][1])
+            if nrows not in canvases:
+                canvases[nrows] = _Canvas(nrows)
+            canvas = canvases[nrows]
+            canvas.fill(title, columns)
+        data_png = canvas.png(digest)
+        written.append(atomic_write(out_dir / f"{stem}.png", lambda fh, b=data_png: fh.write(b)))
+    return written
+
+
+def read_digest(png) -> str | None:
+    """The data digest stored in a figure written by :func:`draw_all`, or None."""
+    from PIL import Image
+
+    with Image.open(png) as im:
+        text = im.info.get("Description", "")
+    return text[len(DIGEST_PREFIX) :] if text.startswith(DIGEST_PREFIX) else None
