@@ -11,8 +11,8 @@ with clifford's MultiVector products on random inputs.
 Run ``python -m ga_rotors._generate_rotor_kernels`` after changing this file.
 
 Conventions used (docs/conventions.md): I = e123, body angular velocity ω enters the rotor
-equation as Ṙ = ½ R Ω with Ω = −I ω; the quaternion ↔ rotor map sends i ↦ −e23,
-j ↦ −e31, k ↦ −e12 (an algebra isomorphism ℍ → Cl⁺(3,0)).
+equation as Ṙ = ½ R Ω with Ω = −I ω; the quaternion ↔ rotor map is the one table of
+:data:`ga_rotors.isomorphism.ISOMORPHISM` (i ↦ −e23, j ↦ −e31, k ↦ −e12).
 """
 
 from __future__ import annotations
@@ -22,15 +22,6 @@ from fractions import Fraction
 from pathlib import Path
 
 TARGET = Path(__file__).with_name("_rotor_kernels.py")
-
-#: Images of the quaternion units i, j, k as blade-name -> coefficient (clifford's blade
-#: names). e31 is written through e13 = −e31.
-QUATERNION_IMAGES = {
-    "i": {"e23": -1},
-    "j": {"e13": +1},  # −e31 = +e13
-    "k": {"e12": -1},
-}
-
 
 def _layout():
     import clifford
@@ -186,23 +177,23 @@ def generate() -> str:
         f"    return {_tuple_expr([rate[i] for i in even], '    ')}\n"
     )
 
-    # Quaternion -> rotor: q0 + q1 i + q2 j + q3 k with the unit images above.
+    # Quaternion <-> rotor: each quaternion component goes to one blade with a sign.
+    from .isomorphism import EVEN, ISOMORPHISM
+
+    if tuple(even) != EVEN:
+        raise RuntimeError(f"clifford's even blades {even} are not isomorphism.EVEN {EVEN}")
+
     rotor_of_q = [_Poly() for _ in range(layout.gaDims)]
-    rotor_of_q[0].add(("q0",), 1)
-    for sym, unit in zip(q_symbols[1:], "ijk", strict=True):
-        for blade, c in QUATERNION_IMAGES[unit].items():
-            rotor_of_q[_blade_index(layout, blade)].add((sym,), c)
+    quat_of_r = [_Poly() for _ in range(4)]
+    for component, blade, sign in ISOMORPHISM:
+        rotor_of_q[blade].add((q_symbols[component],), int(sign))
+        quat_of_r[component].add((f"a{even.index(blade)}",), int(sign))
     funcs.append(
         "@jit\ndef rotor_from_quat(q):\n"
         '    """The rotor of unit quaternion q = (w, x, y, z): i ↦ −e23, j ↦ −e31, k ↦ −e12."""\n'
         "    q0, q1, q2, q3 = q\n"
         f"    return {_tuple_expr([rotor_of_q[i] for i in even], '    ')}\n"
     )
-    # The inverse map: each image is ±one blade, so invert coefficient by coefficient.
-    quat_of_r = [_Poly({("a0",): 1})]
-    for unit in "ijk":
-        (blade, c), = QUATERNION_IMAGES[unit].items()
-        quat_of_r.append(_Poly({(f"a{even.index(_blade_index(layout, blade))}",): c}))
     funcs.append(
         "@jit\ndef quat_from_rotor(a):\n"
         '    """The unit quaternion (w, x, y, z) of rotor a: the inverse of rotor_from_quat."""\n'

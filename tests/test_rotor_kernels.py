@@ -93,6 +93,14 @@ def test_rotor_and_quaternion_rotate_vectors_alike(a, v):
     assert np.allclose(got, expected, rtol=0, atol=1e-12 * (1 + np.abs(v).max()))
 
 
+@given(even4)
+def test_quaternion_map_is_the_isomorphism_table(q):
+    from ga_rotors import isomorphism
+
+    full = isomorphism.to_even(q)
+    assert np.array_equal(np.array(RK.rotor_from_quat(q)), full[list(isomorphism.EVEN)])
+
+
 def test_rotor_rate_matches_quaternion_rate_through_the_map():
     rng = np.random.default_rng(4)
     for _ in range(50):

@@ -1,0 +1,78 @@
+"""`ga-rotors paper`: files written, figures current, errors reported without tracebacks."""
+
+from __future__ import annotations
+
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from ga_rotors import cli, paper_figures, paper_scenes
+
+ROOT = Path(__file__).resolve().parent.parent
+DIGEST = paper_scenes.data_digest(paper_scenes.run_all())
+
+
+def test_committed_figures_show_what_the_code_computes():
+    figures = sorted((ROOT / "docs" / "figures").glob("*.png"))
+    assert {p.stem for p in figures} == set(paper_figures.FIGURES)
+    for png in figures:
+        assert paper_figures.read_digest(png) == DIGEST, (
+            f"{png.name} is stale: run ga-rotors paper --out docs/figures --figures-only"
+        )
+
+
+def test_data_and_summary_are_written(tmp_path, capsys):
+    assert cli.main(["paper", "--out", str(tmp_path / "new"), "--no-figures"]) == 0
+    out = capsys.readouterr().out
+    assert "rotor-quat" in out and "disk_0.001deg" in out
+    names = sorted(p.name for p in (tmp_path / "new").iterdir())
+    assert names == sorted(
+        ["summary.txt", "paper_15deg.csv", "paper_0.001deg.csv", "disk_15deg.csv",
+         "disk_0.001deg.csv"]
+    )  # fmt: skip
+    text = (tmp_path / "new" / "paper_0.001deg.csv").read_text()
+    header = text.splitlines()[0].split(",")
+    assert header[:4] == ["t", "w_1", "w_2", "w_3"] and "error_euler" in header
+    assert "nan" not in text.lower()
+    data = np.loadtxt(tmp_path / "new" / "disk_15deg.csv", delimiter=",", skiprows=1)
+    assert data.shape == (10001, len(header))
+
+
+def test_full_command_draws_every_figure_in_its_worker(tmp_path):
+    # A subprocess, so the forked figure worker runs as it does for users.
+    env = {**os.environ, "PYTHONPATH": str(ROOT), "MPLBACKEND": "Agg"}
+    proc = subprocess.run(
+        [sys.executable, "-m", "ga_rotors", "paper", "--out", str(tmp_path)],
+        env=env, capture_output=True, text=True, timeout=300,
+    )  # fmt: skip
+    assert proc.returncode == 0, proc.stderr
+    assert "wrote 14 files" in proc.stdout
+    for stem in paper_figures.FIGURES:
+        assert paper_figures.read_digest(tmp_path / f"{stem}.png") == DIGEST
+    assert not list(tmp_path.glob(".*.tmp"))
+
+
+def test_out_that_is_a_file_is_refused_without_traceback(tmp_path, capsys):
+    target = tmp_path / "taken"
+    target.write_text("x")
+    assert cli.main(["paper", "--out", str(target)]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith("ga-rotors: error: --out:") and "Traceback" not in err
+
+
+@pytest.mark.skipif(not hasattr(os, "fork"), reason="the worker needs fork")
+def test_figure_worker_failure_is_reported(tmp_path, monkeypatch):
+    from ga_rotors import paper
+    from ga_rotors.errors import GaRotorsError
+
+    def broken(*args, **kwargs):
+        raise RuntimeError("no canvas")
+
+    monkeypatch.setattr(paper_figures, "draw_all", broken)  # inherited by the fork
+    with pytest.raises(GaRotorsError, match="drawing the figures failed: RuntimeError: no canvas"):
+        paper.reproduce(tmp_path, parallel=True)
+    assert not list(tmp_path.glob("*.png")) and not list(tmp_path.glob(".*.tmp"))
