@@ -16,6 +16,11 @@ class InputError(GaRotorsError, ValueError):
     """An argument has the wrong shape, type or value; the message names it."""
 
 
+class PrecisionError(GaRotorsError, ArithmeticError):
+    """A computation cannot reach the accuracy it promises (an exact reference whose
+    rounding-error bound exceeds the requested limit); raised instead of a degraded answer."""
+
+
 class GimbalLockWarning(UserWarning):
     """Euler angles were extracted at (or within round-off of) a gimbal lock.
 

@@ -1,0 +1,78 @@
+"""Jacobi elliptic functions and integrals with the complementary parameter, against mpmath
+at 30 digits, including m₁ down to 1e-30 where float m = 1 − m₁ has no digit of m₁ left."""
+
+from __future__ import annotations
+
+import mpmath as mp
+import numpy as np
+import pytest
+
+from ga_rotors.reference import elliptic
+
+mp.mp.dps = 30
+
+# Each function is a handful of roundings of arguments of size ≤ |u|: the absolute error
+# model is c·ε·(1 + |u|) with c ~ 10; 16 leaves room for the final sqrt/products.
+EPS = np.finfo(float).eps
+
+
+def _bound(u):
+    return 16 * EPS * (1 + abs(u))
+
+
+@pytest.mark.parametrize("m1_text", ["0.7", "1e-3", "1e-8", "1e-14", "1e-30"])
+def test_jacobi_near_and_far_from_m_equal_1(m1_text):
+    with mp.workdps(70):  # m = 1 − 1e-30 must keep its m₁ digits in the oracle too
+        m1 = mp.mpf(m1_text)
+        m = 1 - m1
+        k = float(mp.ellipk(m))
+        for u in np.linspace(-2.6 * k, 4.3 * k, 11):
+            sn, cn, dn = elliptic.jacobi(u, float(m), float(m1))
+            for got, name in zip((sn, cn, dn), ("sn", "cn", "dn"), strict=True):
+                want = mp.ellipfun(name, mp.mpf(u), m=m)
+                assert abs(float(got - want)) <= _bound(u), (name, u)
+
+
+def test_jacobi_separatrix_limit_is_hyperbolic():
+    u = np.linspace(-5, 5, 11)
+    sn, cn, dn = elliptic.jacobi(u, 1.0, 0.0)
+    assert np.allclose(sn, np.tanh(u), rtol=0, atol=1e-16)
+    assert np.allclose(cn, 1 / np.cosh(u), rtol=0, atol=1e-16) and np.array_equal(cn, dn)
+
+
+def _mp_pi(u, n, m):
+    k = mp.ellipk(m)
+    j = mp.nint(u / (2 * k))
+    r = u - 2 * j * k
+
+    def f(t):
+        return 1 / (1 - n * mp.ellipfun("sn", t, m=m) ** 2)
+
+    whole = mp.quad(f, [0, k / 2, k]) if j else 0
+    return 2 * j * whole + mp.quad(f, [0, r / 2, r])
+
+
+@pytest.mark.parametrize("m1_text", ["0.3", "1e-6", "1e-14"])
+@pytest.mark.parametrize("n", [-3.0, 0.999])
+def test_pi_integral_against_quadrature(m1_text, n):
+    m1 = mp.mpf(m1_text)
+    m = 1 - m1
+    k = float(mp.ellipk(m))
+    for u in (0.99 * k, -2.4 * k):
+        want = _mp_pi(mp.mpf(u), n, m)
+        got = elliptic.pi_integral(u, n, float(m), float(m1), 1 - n)
+        # Π is a sum of terms of size ≤ |Π| + |u| each carrying a few ulps.
+        assert abs(float(want) - got) <= 16 * EPS * (1 + abs(u) + abs(float(want)))
+
+
+def test_incomplete_first_any_amplitude():
+    for m1 in ("0.5", "1e-10"):
+        m = 1 - mp.mpf(m1)
+        for phi in (0.3, 1.5, 2.9, -4.0, 10.0):
+            got = elliptic.incomplete_first(phi, float(m), float(mp.mpf(m1)))
+            assert abs(float(mp.ellipf(phi, m)) - got) <= 16 * EPS * (1 + abs(phi)) * 10
+
+
+def test_pi_integral_rejects_pole():
+    with pytest.raises(ValueError, match="n < 1"):
+        elliptic.pi_integral(0.1, 1.0, 0.5, 0.5)

@@ -1,0 +1,116 @@
+"""The exact asymmetric top against an independent 30-digit Taylor integration
+(tests/mp_oracle.py), its invariants, its flip period, and its precision guard."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from mp_oracle import integrate
+from scipy.special import ellipk
+
+from ga_rotors import _kernels as K
+from ga_rotors.errors import InputError, PrecisionError
+from ga_rotors.reference.asymmetric_top import AsymmetricTop
+
+TIMES = (0.5, 3.0, 9.0)
+
+
+def _unit(q):
+    q = np.asarray(q, float)
+    return q / np.linalg.norm(q)
+
+
+CASES = {
+    "far_from_separatrix": ((1.0, 2.0, 3.0), (1.0, 0, 0, 0), (1.0, 0.5, 0.2)),
+    "near_major_axis_unsorted_moments": ((2.0, 1.0, 3.0), (0.5, 0.5, 0.5, 0.5), (0.3, 1.0, -0.2)),
+    "separatrix_1e-3_off_middle_axis": ((1.0, 2.0, 3.0), (1.0, 0, 0, 0), (1e-3, 2.0, 1e-3)),
+    "separatrix_1e-6_descending_moments": (
+        (3.0, 2.0, 1.0),
+        (0.9, 0.1, -0.3, 0.2),
+        (1e-6, 1.0, 1e-6),
+    ),
+    "nearly_spherical_body": ((1.0, 1 + 1e-6, 1 + 2e-6), (1.0, 0, 0, 0), (0.3, 1.0, -0.2)),
+    "flat_lamina_I3_eq_I1_plus_I2": ((1.0, 1.5, 2.5), (0.3, 0.1, 0.9, 0.2), (1.0, -1.0, 0.2)),
+    "small_wobble_about_minor_axis": ((1.0, 2.0, 3.0), (0.3, 0.1, 0.9, 0.2), (2.0, 1e-3, 0.0)),
+    "exactly_on_separatrix_m1_zero": ((1.0, 2.0, 3.0), (1.0, 0, 0, 0), (1.0, 0.0, 1.0 / 3**0.5)),
+}
+
+
+@pytest.mark.parametrize("name", list(CASES))
+def test_matches_30_digit_integration_within_its_own_bound(name):
+    inertia, q0, w0 = CASES[name]
+    q0 = _unit(q0)
+    top = AsymmetricTop(inertia, q0, w0)
+    s = top.state(TIMES)
+    for i, ref in enumerate(integrate(inertia, q0, w0, TIMES)):
+        ref = np.array([float(x) for x in ref])
+        err = K.geodesic_angle(tuple(ref[:4]), tuple(s.q[i]))
+        assert err <= s.error[i] <= 1e-11, (TIMES[i], err, s.error[i])
+        # ω is a product of an amplitude and an elliptic function: a few ulps of |ω|.
+        assert np.abs(ref[4:] - s.w[i]).max() <= 16 * 2.2e-16 * (1 + np.abs(w0).max())
+
+
+def test_invariants_conserved_along_a_long_run():
+    inertia = np.array([1.0, 2.0, 3.0])
+    top = AsymmetricTop(inertia, _unit((0.3, 0.1, 0.9, 0.2)), (1.0, 0.5, 0.2))
+    s = top.state(np.linspace(0, 1000, 201))
+    lb = s.w * inertia
+    ls = np.array([K.qrotate(tuple(q), tuple(v)) for q, v in zip(s.q, lb, strict=True)])
+    energy = 0.5 * (inertia * s.w**2).sum(1)
+    # ω to a few ulps at each time, independently: invariants to ~10 ulps of their size.
+    assert np.abs(energy - top.energy).max() <= 16 * 2.2e-16 * top.energy
+    assert np.abs(ls - ls[0]).max() <= 16 * 2.2e-16 * top.momentum + s.error.max() * top.momentum
+
+
+def test_flip_period_is_2K_over_rate_and_matches_sign_changes():
+    # ε = 1e-3 off the middle axis: the middle-axis rate (∝ sn) reverses every 2K(m)/λ.
+    top = AsymmetricTop((1.0, 2.0, 3.0), (1.0, 0, 0, 0), (1e-3, 2.0, 1e-3))
+    assert math.isclose(top.flip_period, 2 * ellipk(top.m) / top.rate, rel_tol=1e-6)
+    t = np.linspace(0, 3 * top.flip_period, 30001)
+    wb = top.angular_velocity(t)[:, 1]
+    flips = t[1:][np.sign(wb[1:]) != np.sign(wb[:-1])]
+    assert len(flips) == 3
+    assert np.allclose(np.diff(flips), top.flip_period, rtol=0, atol=2 * (t[1] - t[0]))
+
+
+def test_modulus_is_exact_near_separatrix_where_floats_lose_it():
+    # 1e-8 off the middle axis: 1 − m ≈ 1e-16, which 1 − m in floats cannot resolve.
+    top = AsymmetricTop((1.0, 2.0, 3.0), (1.0, 0, 0, 0), (1e-8, 2.0, 1e-8))
+    assert 0 < top.m1 < 1e-14 and top.m1 / top.m < 1e-14
+    from fractions import Fraction as F
+
+    i, w = [F(x) for x in (1.0, 2.0, 3.0)], [F(x) for x in (1e-8, 2.0, 1e-8)]
+    l2 = sum((a * b) ** 2 for a, b in zip(i, w, strict=True))
+    two_e = sum(a * b * b for a, b in zip(i, w, strict=True))
+    exact = (i[2] - i[0]) * (l2 - two_e * i[1]) / ((i[2] - i[1]) * (l2 - two_e * i[0]))
+    assert top.m1 == float(exact)
+
+
+def test_steady_rotation_about_each_axis_is_exact():
+    for axis in range(3):
+        w0 = [0.0, 0.0, 0.0]
+        w0[axis] = 1.7
+        top = AsymmetricTop((1.0, 2.0, 3.0), (1.0, 0, 0, 0), w0)
+        q, w = top.at([2.0])
+        want = K.quat_from_rotvec(tuple(2.0 * x for x in w0))
+        assert K.geodesic_angle(tuple(q[0]), want) <= 1e-15
+        assert np.array_equal(w[0], w0)
+
+
+def test_reports_precision_loss_instead_of_returning_it():
+    top = AsymmetricTop((1.0, 2.0, 3.0), (1.0, 0, 0, 0), (1e-3, 2.0, 1e-3))
+    bound = top.state([1e7], max_error=1.0).error[0]
+    assert bound > 1e-10  # u ≈ 1e7: ~1e-9 absolute in the phase
+    with pytest.raises(PrecisionError, match="exceeds max_error"):
+        top.state([1e7])
+
+
+def test_rejects_symmetric_body_and_bad_input():
+    with pytest.raises(InputError, match="symmetric_top"):
+        AsymmetricTop((1.0, 1.0, 2.0), (1.0, 0, 0, 0), (1.0, 0.0, 0.0))
+    with pytest.raises(InputError, match="orientation"):
+        AsymmetricTop((1.0, 2.0, 3.0), (2.0, 0, 0, 0), (1.0, 0.0, 0.0))
+    with pytest.raises(InputError, match="angular_velocity"):
+        AsymmetricTop((1.0, 2.0, 3.0), (1.0, 0, 0, 0), (1.0, float("nan"), 0.0))
