@@ -51,7 +51,7 @@ from fractions import Fraction
 
 import numpy as np
 
-from .. import _kernels as K
+from .. import quaternion as Q
 from .._validate import as_float_array, require_unit
 from ..body import RigidBody
 from ..errors import InputError, PrecisionError
@@ -89,25 +89,11 @@ class State:
     error: np.ndarray
 
 
-def _qz(angle):
-    h = 0.5 * np.asarray(angle)
-    z = np.zeros_like(h)
-    return np.stack([np.cos(h), z, z, np.sin(h)], axis=-1)
-
-
-def _qx(angle):
-    h = 0.5 * np.asarray(angle)
-    z = np.zeros_like(h)
-    return np.stack([np.cos(h), np.sin(h), z, z], axis=-1)
-
-
-def _qmul(a, b):
-    """Broadcast Hamilton product on (..., 4) arrays, through the one compiled kernel."""
-    a, b = np.broadcast_arrays(np.asarray(a, float), np.asarray(b, float))
-    out = np.empty(a.shape)
-    for idx in np.ndindex(a.shape[:-1]):
-        out[idx] = K.qmul(tuple(a[idx]), tuple(b[idx]))
-    return out
+def axis_rotation(axis: int, angle) -> np.ndarray:
+    """Unit quaternions of rotations by ``angle`` (array) about body axis 0, 1 or 2."""
+    unit = np.zeros(3)
+    unit[axis] = 1.0
+    return Q.from_axis_angle(unit, np.asarray(angle, dtype=float))
 
 
 class AsymmetricTop:
@@ -215,23 +201,21 @@ class AsymmetricTop:
             self.flip_period = 2.0 * elliptic.complete_first(self.m, self.m1) / self.rate
         self._relabel = _RELABEL[a]
         e0 = self._direction(np.array([w]))
-        self._frame0 = _qmul(
-            _qmul(self.q0, K.qconj(self._relabel)), _conj(self._nutation_spin(e0)[0])
+        self._frame0 = Q.multiply(
+            Q.multiply(self.q0, Q.conjugate(self._relabel)), Q.conjugate(self._nutation_spin(e0)[0])
         )
         self._pi0 = float(elliptic.pi_integral(self._u0, self._n, self.m, self.m1))
 
     def _direction(self, w):
         """P L_body / |L|: the relabelled body components of the unit momentum."""
-        lb = w * np.asarray(self.moments)
-        rel = np.array([K.qrotate(self._relabel, tuple(v)) for v in lb])
-        return rel / self.momentum
+        return Q.rotate(self._relabel, w * np.asarray(self.moments)) / self.momentum
 
     @staticmethod
     def _nutation_spin(e):
         """R_x(θ) ⊗ R_z(φ) with (sin θ sin φ, sin θ cos φ, cos θ) = e."""
         theta = np.arctan2(np.hypot(e[:, 0], e[:, 1]), e[:, 2])
         phi = np.arctan2(e[:, 0], e[:, 1])
-        return _qmul(_qx(theta), _qz(phi))
+        return Q.multiply(axis_rotation(0, theta), axis_rotation(2, phi))
 
     # -- the solution ---------------------------------------------------------------
 
@@ -271,7 +255,7 @@ class AsymmetricTop:
         --------
         >>> top = AsymmetricTop((2.0, 1.0, 3.0), (1.0, 0.0, 0.0, 0.0), (0.3, 1.0, -0.2))
         >>> s = top.state(np.linspace(0.0, 10.0, 5))
-        >>> L = [K.qrotate(tuple(q), tuple(w * (2.0, 1.0, 3.0))) for q, w in zip(s.q, s.w)]
+        >>> L = Q.rotate(s.q, s.w * (2.0, 1.0, 3.0))  # space-frame angular momentum
         >>> bool(np.allclose(L, L[0], rtol=0, atol=1e-13))
         True
         """
@@ -279,15 +263,18 @@ class AsymmetricTop:
         w = self.angular_velocity(t)
         if self._steady:
             half = 0.5 * t[:, None] * np.asarray(self.w0)
-            rot = np.array([K.qexp_pure(tuple(h)) for h in half])
-            q = _qmul(self.q0, rot)
+            rot = Q.exp(np.concatenate([np.zeros((t.size, 1)), half], axis=1))
+            q = Q.multiply(self.q0, rot)
             err = 8.0 * _EPS * (1.0 + np.abs(t) * np.abs(self.w0).max())
             return self._checked(State(q, w, err), max_error)
         u = self.rate * t + self._u0
         pi = elliptic.pi_integral(u, self._n, self.m, self.m1)
         psi = self.momentum * t / self.moments[self._axes[0]] + self._coef * (pi - self._pi0)
         e = self._direction(w)
-        q = _qmul(_qmul(self._frame0, _qz(psi)), _qmul(self._nutation_spin(e), self._relabel))
+        q = Q.multiply(
+            Q.multiply(self._frame0, axis_rotation(2, psi)),
+            Q.multiply(self._nutation_spin(e), self._relabel),
+        )
         q = q * np.where(q[:, :1] < 0.0, -1.0, 1.0)
         err = self._rounding_bound(t, u, pi, e)
         return self._checked(State(q, w, err), max_error)
@@ -363,13 +350,7 @@ def _orientation_error(ref, q) -> np.ndarray:
     q = as_float_array(q, "q", last=4).reshape(-1, 4)
     if q.shape != ref.shape:
         raise InputError(f"q: expected {ref.shape[0]} orientations, got shape {q.shape}")
-    return np.array([K.geodesic_angle(tuple(a), tuple(b)) for a, b in zip(ref, q, strict=True)])
-
-
-def _conj(q):
-    q = np.array(q, dtype=float)
-    q[..., 1:] *= -1.0
-    return q
+    return np.atleast_1d(Q.distance(ref, q))
 
 
 def _times(t) -> np.ndarray:

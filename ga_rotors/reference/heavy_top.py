@@ -38,27 +38,16 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.optimize import brentq
 
+from .. import quaternion as Q
 from .._validate import as_float_array, require_unit
 from ..body import RigidBody
 from ..errors import InputError, PrecisionError
 from . import elliptic
-from .asymmetric_top import State, _orientation_error, _qmul, _times
+from .asymmetric_top import State, _orientation_error, _times, axis_rotation
 
 __all__ = ["HeavyTop", "State"]
 
 _EPS = float(np.finfo(float).eps)
-
-
-def _qz(angle):
-    h = 0.5 * np.asarray(angle)
-    z = np.zeros_like(h)
-    return np.stack([np.cos(h), z, z, np.sin(h)], axis=-1)
-
-
-def _qy(angle):
-    h = 0.5 * np.asarray(angle)
-    z = np.zeros_like(h)
-    return np.stack([np.cos(h), z, np.sin(h), z], axis=-1)
 
 
 @dataclass(frozen=True)
@@ -267,7 +256,9 @@ class HeavyTop:
         half_bma, half_bpa = 0.5 * self._b_minus_a, 0.5 * self._b_plus_a
         psi = self._psi0 + half_bma * p_plus + half_bpa * p_minus
         phi = self._phi0 + (self._w3 - self._a) * t - half_bma * p_plus + half_bpa * p_minus
-        q = _qmul(_qmul(_qz(psi), _qy(theta)), _qz(phi))
+        q = Q.multiply(
+            Q.multiply(axis_rotation(2, psi), axis_rotation(1, theta)), axis_rotation(2, phi)
+        )
         # Body rates from the angles' rates (z–y′–z″): ω = (−ψ̇ sθ cφ + θ̇ sφ, ψ̇ sθ sφ + θ̇ cφ, ω₃).
         u = 0.5 * (one_plus - one_minus)
         sin_t = np.sqrt(one_minus * one_plus)
