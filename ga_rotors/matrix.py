@@ -21,7 +21,7 @@ from __future__ import annotations
 import numpy as np
 
 from . import _kernels as K
-from ._batch import Batch, finite, put, row4
+from ._batch import Batch, put, residue, row4
 from ._jit import jit
 from ._validate import UNIT_TOLERANCE, as_float_array
 from .errors import InputError
@@ -35,26 +35,26 @@ ORTHONORMAL_TOLERANCE = 2.0 * UNIT_TOLERANCE + 2.0 * UNIT_TOLERANCE**2
 
 @jit
 def _to_quaternion_loop(m, out):
+    bad = 0.0
     for n in range(out.shape[0]):
         r = K.quat_from_matrix(
             (m[n, 0, 0], m[n, 0, 1], m[n, 0, 2], m[n, 1, 0], m[n, 1, 1], m[n, 1, 2],
              m[n, 2, 0], m[n, 2, 1], m[n, 2, 2])
         )  # fmt: skip
         put(out, n, r)
-        if not finite(r):
-            return n
-    return -1
+        bad += residue(r)
+    return bad == 0.0
 
 
 @jit
 def _from_quaternion_loop(q, out, tol):
+    bad = 0.0
     for n in range(out.shape[0]):
         r = K.matrix_from_quat(K.qunit(row4(q, n), tol))
         for k in range(9):
             out[n, k // 3, k % 3] = r[k]
-        if not finite(r):
-            return n
-    return -1
+        bad += residue(r)
+    return bad == 0.0
 
 
 def check_rotation_matrix(m, name: str = "m") -> np.ndarray:
@@ -115,7 +115,7 @@ def to_quaternion(m) -> np.ndarray:
     lead = a.shape[:-2]
     flat = np.ascontiguousarray(a.reshape((-1, 3, 3)))
     out = np.empty((flat.shape[0], 4))
-    if _to_quaternion_loop(flat, out) >= 0:  # pragma: no cover - inputs were checked finite
+    if not _to_quaternion_loop(flat, out):  # pragma: no cover - inputs were checked finite
         raise InputError("m: conversion produced a non-finite quaternion")
     return out.reshape((*lead, 4))
 
@@ -132,5 +132,5 @@ def from_quaternion(q) -> np.ndarray:
     """
     b = Batch((q, "q", 4))
     out = np.empty((b.n, 3, 3))
-    b.fail(_from_quaternion_loop(b.flat[0], out, UNIT_TOLERANCE), unit=("q",))
+    b.fail(_from_quaternion_loop(b.flat[0], out, UNIT_TOLERANCE), out, unit=("q",))
     return out.reshape((*b.shape, 3, 3))

@@ -24,10 +24,12 @@ array([0., 1., 0.])
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from . import _kernels as K
-from ._batch import Batch, finite, put, row3, row4
+from ._batch import Batch, put, residue, row3, row4
 from ._jit import jit
 from ._validate import UNIT_TOLERANCE, as_float_array
 from .euler import from_quaternion as to_euler
@@ -62,10 +64,38 @@ __all__ = [
 ]
 
 _CONJ = np.array([1.0, -1.0, -1.0, -1.0])
+_F64 = np.dtype(np.float64)
+
+
+def _single(a, b, la: int, lb: int):
+    """a and b as tuples of floats when both are single float64 arrays, else None.
+
+    One quaternion at a time is dominated by per-call overhead, not arithmetic: this path
+    calls one compiled scalar kernel on tuples instead of broadcasting into a batch loop.
+    Any non-finite result falls through to the checked path, which then names the bad
+    argument.
+    """
+    if (
+        type(a) is np.ndarray
+        and type(b) is np.ndarray
+        and a.shape == (la,)
+        and b.shape == (lb,)
+        and a.dtype == _F64
+        and b.dtype == _F64
+    ):
+        return tuple(a.tolist()), tuple(b.tolist())
+    return None
+
+
+def _finite_sum(r) -> bool:
+    # inf - inf and nan propagate through the sum; an overflowing sum of finite values
+    # only sends the call down the checked path, which is correct either way.
+    return math.isfinite(sum(r))
+
 
 # ---------------------------------------------------------------------------------------
 # compiled loops: one per public operation, each a thin shell around one kernel.
-# Each returns the first flat index whose result is not finite (or -1). Why checking the
+# Each returns True when every result is finite (see _batch.residue). Why checking the
 # result suffices is noted per loop; NaN/inf inputs always reach the result there.
 
 
@@ -73,157 +103,162 @@ _CONJ = np.array([1.0, -1.0, -1.0, -1.0])
 def _multiply_loop(a, sa, b, sb, out):
     # every input component multiplies some nonzero component of the other factor, or
     # multiplies zeros (inf * 0 = nan): non-finite inputs always give a non-finite result.
+    bad = 0.0
     for n in range(out.shape[0]):
         r = K.qmul(row4(a, n * sa), row4(b, n * sb))
         put(out, n, r)
-        if not finite(r):
-            return n
-    return -1
+        bad += residue(r)
+    return bad == 0.0
 
 
 @jit
 def _divide_loop(a, sa, b, sb, out):
+    bad = 0.0
     for n in range(out.shape[0]):
         r = K.qmul(row4(a, n * sa), K.qinverse(row4(b, n * sb)))
         put(out, n, r)
-        if not finite(r):
-            return n
-    return -1
+        bad += residue(r)
+    return bad == 0.0
 
 
 @jit
 def _inverse_loop(a, out):
+    bad = 0.0
     for n in range(out.shape[0]):
         r = K.qinverse(row4(a, n))
         put(out, n, r)
-        if not finite(r):
-            return n
-    return -1
+        bad += residue(r)
+    return bad == 0.0
 
 
 @jit
 def _norm_loop(a, out):
+    bad = 0.0
     for n in range(out.shape[0]):
         r = K.qnorm(row4(a, n))
         out[n] = r
-        if not finite((r,)):
-            return n
-    return -1
+        bad += r - r
+    return bad == 0.0
 
 
 @jit
 def _normalize_loop(a, out):
+    bad = 0.0
     for n in range(out.shape[0]):
         r = K.qnormalize(row4(a, n))
         put(out, n, r)
-        if not finite(r):
-            return n
-    return -1
+        bad += residue(r)
+    return bad == 0.0
 
 
 @jit
 def _rotate_loop(q, sq, v, sv, out, tol):
     # qunit turns non-unit and non-finite q into NaN; a non-finite v reaches the result
     # through its own term v + ...
+    bad = 0.0
     for n in range(out.shape[0]):
         r = K.qrotate(K.qunit(row4(q, n * sq), tol), row3(v, n * sv))
         put(out, n, r)
-        if not finite(r):
-            return n
-    return -1
+        bad += residue(r)
+    return bad == 0.0
+
+
+@jit
+def _rotate_one(q, v, tol):
+    return K.qrotate(K.qunit(q, tol), v)
 
 
 @jit
 def _axis_angle_loop(q, out, tol):
+    bad = 0.0
     for n in range(out.shape[0]):
         r = K.axis_angle_from_quat(K.qunit(row4(q, n), tol))
         put(out, n, r)
-        if not finite(r):
-            return n
-    return -1
+        bad += residue(r)
+    return bad == 0.0
 
 
 @jit
 def _from_axis_angle_loop(u, su, t, st, out):
+    bad = 0.0
     for n in range(out.shape[0]):
         r = K.quat_from_axis_angle(row3(u, n * su), t[n * st])
         put(out, n, r)
-        if not finite(r):
-            return n
-    return -1
+        bad += residue(r)
+    return bad == 0.0
 
 
 @jit
 def _from_rotvec_loop(v, out):
+    bad = 0.0
     for n in range(out.shape[0]):
         r = K.quat_from_rotvec(row3(v, n))
         put(out, n, r)
-        if not finite(r):
-            return n
-    return -1
+        bad += residue(r)
+    return bad == 0.0
 
 
 @jit
 def _to_rotvec_loop(q, out, tol):
+    bad = 0.0
     for n in range(out.shape[0]):
         r = K.rotvec_from_quat(K.qunit(row4(q, n), tol))
         put(out, n, r)
-        if not finite(r):
-            return n
-    return -1
+        bad += residue(r)
+    return bad == 0.0
 
 
 @jit
 def _exp_loop(a, out):
     # exp(-inf) = 0 would hide an infinite input: check the input too.
+    bad = 0.0
     for n in range(out.shape[0]):
         x = row4(a, n)
         r = K.qexp(x)
         put(out, n, r)
-        if not (finite(x) and finite(r)):
-            return n
-    return -1
+        bad += residue(x) + residue(r)
+    return bad == 0.0
 
 
 @jit
 def _log_loop(a, out):
+    bad = 0.0
     for n in range(out.shape[0]):
         x = row4(a, n)
         r = K.qlog(x)
         put(out, n, r)
-        if not (finite(x) and finite(r)):
-            return n
-    return -1
+        bad += residue(x) + residue(r)
+    return bad == 0.0
 
 
 @jit
 def _slerp_loop(a, sa, b, sb, t, st, out, tol):
+    bad = 0.0
     for n in range(out.shape[0]):
         r = K.qslerp(K.qunit(row4(a, n * sa), tol), K.qunit(row4(b, n * sb), tol), t[n * st])
         put(out, n, r)
-        if not finite(r):
-            return n
-    return -1
+        bad += residue(r)
+    return bad == 0.0
 
 
 @jit
 def _distance_loop(a, sa, b, sb, out, tol):
+    bad = 0.0
     for n in range(out.shape[0]):
         r = K.geodesic_angle(K.qunit(row4(a, n * sa), tol), K.qunit(row4(b, n * sb), tol))
         out[n] = r
-        if not finite((r,)):
-            return n
-    return -1
+        bad += r - r
+    return bad == 0.0
 
 
 @jit
 def _two_vectors_loop(u, su, v, sv, out):
+    bad = 0.0
     for n in range(out.shape[0]):
         r = K.quat_from_two_vectors(row3(u, n * su), row3(v, n * sv))
         put(out, n, r)
-        if not finite(r):
-            return n
-    return -1
+        bad += residue(r)
+    return bad == 0.0
 
 
 # ---------------------------------------------------------------------------------------
@@ -254,9 +289,14 @@ def multiply(p, q) -> np.ndarray:
     >>> multiply([[1.0, 0, 0, 0], i], j).shape
     (2, 4)
     """
+    single = _single(p, q, 4, 4)
+    if single is not None:
+        r = K.qmul(*single)
+        if _finite_sum(r):
+            return np.array(r)
     b = Batch((p, "p", 4), (q, "q", 4))
     out = b.empty(4)
-    b.fail(_multiply_loop(b.flat[0], b.steps[0], b.flat[1], b.steps[1], out), what="product")
+    b.fail(_multiply_loop(b.flat[0], b.steps[0], b.flat[1], b.steps[1], out), out, what="product")
     return b.shaped(out)
 
 
@@ -283,7 +323,7 @@ def norm(q) -> np.ndarray | float:
     """
     b = Batch((q, "q", 4))
     out = b.empty()
-    b.fail(_norm_loop(b.flat[0], out), what="norm")
+    b.fail(_norm_loop(b.flat[0], out), out, what="norm")
     r = b.shaped(out)
     return float(r) if r.ndim == 0 else r
 
@@ -309,7 +349,7 @@ def inverse(q) -> np.ndarray:
     """
     b = Batch((q, "q", 4))
     out = b.empty(4)
-    b.fail(_inverse_loop(b.flat[0], out), nonzero=("q",), what="inverse")
+    b.fail(_inverse_loop(b.flat[0], out), out, nonzero=("q",), what="inverse")
     return b.shaped(out)
 
 
@@ -324,8 +364,8 @@ def divide(p, q) -> np.ndarray:
     """
     b = Batch((p, "p", 4), (q, "q", 4))
     out = b.empty(4)
-    index = _divide_loop(b.flat[0], b.steps[0], b.flat[1], b.steps[1], out)
-    b.fail(index, nonzero=("q",), what="quotient")
+    ok = _divide_loop(b.flat[0], b.steps[0], b.flat[1], b.steps[1], out)
+    b.fail(ok, out, nonzero=("q",), what="quotient")
     return b.shaped(out)
 
 
@@ -339,7 +379,7 @@ def normalize(q) -> np.ndarray:
     """
     b = Batch((q, "q", 4))
     out = b.empty(4)
-    b.fail(_normalize_loop(b.flat[0], out), nonzero=("q",), what="normalised quaternion")
+    b.fail(_normalize_loop(b.flat[0], out), out, nonzero=("q",), what="normalised quaternion")
     return b.shaped(out)
 
 
@@ -363,17 +403,22 @@ def rotate(q, v) -> np.ndarray:
     ...
     ga_rotors.errors.InputError: q: expected unit quaternions (| |q| - 1 | <= 1e-06), got norm 2 ...
     """
+    single = _single(q, v, 4, 3)
+    if single is not None:
+        r = _rotate_one(single[0], single[1], UNIT_TOLERANCE)
+        if _finite_sum(r):
+            return np.array(r)
     b = Batch((q, "q", 4), (v, "v", 3))
     out = b.empty(3)
-    index = _rotate_loop(b.flat[0], b.steps[0], b.flat[1], b.steps[1], out, UNIT_TOLERANCE)
-    b.fail(index, unit=("q",), what="rotated vector")
+    ok = _rotate_loop(b.flat[0], b.steps[0], b.flat[1], b.steps[1], out, UNIT_TOLERANCE)
+    b.fail(ok, out, unit=("q",), what="rotated vector")
     return b.shaped(out)
 
 
 def _axis_angle(q) -> np.ndarray:
     b = Batch((q, "q", 4))
     out = b.empty(4)
-    b.fail(_axis_angle_loop(b.flat[0], out, UNIT_TOLERANCE), unit=("q",))
+    b.fail(_axis_angle_loop(b.flat[0], out, UNIT_TOLERANCE), out, unit=("q",))
     return b.shaped(out)
 
 
@@ -472,8 +517,8 @@ def from_axis_angle(axis, angle, degrees: bool = False) -> np.ndarray:
         angle = np.radians(as_float_array(angle, "angle"))
     b = Batch((axis, "axis", 3), (angle, "angle", None))
     out = b.empty(4)
-    index = _from_axis_angle_loop(b.flat[0], b.steps[0], b.flat[1], b.steps[1], out)
-    b.fail(index, nonzero=("axis",))
+    ok = _from_axis_angle_loop(b.flat[0], b.steps[0], b.flat[1], b.steps[1], out)
+    b.fail(ok, out, nonzero=("axis",))
     return b.shaped(out)
 
 
@@ -487,7 +532,7 @@ def from_rotation_vector(r) -> np.ndarray:
     """
     b = Batch((r, "r", 3))
     out = b.empty(4)
-    b.fail(_from_rotvec_loop(b.flat[0], out))
+    b.fail(_from_rotvec_loop(b.flat[0], out), out)
     return b.shaped(out)
 
 
@@ -501,7 +546,7 @@ def to_rotation_vector(q) -> np.ndarray:
     """
     b = Batch((q, "q", 4))
     out = b.empty(3)
-    b.fail(_to_rotvec_loop(b.flat[0], out, UNIT_TOLERANCE), unit=("q",))
+    b.fail(_to_rotvec_loop(b.flat[0], out, UNIT_TOLERANCE), out, unit=("q",))
     return b.shaped(out)
 
 
@@ -517,7 +562,7 @@ def exp(q) -> np.ndarray:
     """
     b = Batch((q, "q", 4))
     out = b.empty(4)
-    b.fail(_exp_loop(b.flat[0], out), what="exponential")
+    b.fail(_exp_loop(b.flat[0], out), out, what="exponential")
     return b.shaped(out)
 
 
@@ -536,7 +581,7 @@ def log(q) -> np.ndarray:
     """
     b = Batch((q, "q", 4))
     out = b.empty(4)
-    b.fail(_log_loop(b.flat[0], out), nonzero=("q",), what="logarithm")
+    b.fail(_log_loop(b.flat[0], out), out, nonzero=("q",), what="logarithm")
     return b.shaped(out)
 
 
@@ -561,8 +606,8 @@ def slerp(q0, q1, t) -> np.ndarray:
     b = Batch((q0, "q0", 4), (q1, "q1", 4), (t, "t", None))
     out = b.empty(4)
     f, s = b.flat, b.steps
-    index = _slerp_loop(f[0], s[0], f[1], s[1], f[2], s[2], out, UNIT_TOLERANCE)
-    b.fail(index, unit=("q0", "q1"))
+    ok = _slerp_loop(f[0], s[0], f[1], s[1], f[2], s[2], out, UNIT_TOLERANCE)
+    b.fail(ok, out, unit=("q0", "q1"))
     return b.shaped(out)
 
 
@@ -582,8 +627,8 @@ def distance(q0, q1) -> np.ndarray | float:
     """
     b = Batch((q0, "q0", 4), (q1, "q1", 4))
     out = b.empty()
-    index = _distance_loop(b.flat[0], b.steps[0], b.flat[1], b.steps[1], out, UNIT_TOLERANCE)
-    b.fail(index, unit=("q0", "q1"))
+    ok = _distance_loop(b.flat[0], b.steps[0], b.flat[1], b.steps[1], out, UNIT_TOLERANCE)
+    b.fail(ok, out, unit=("q0", "q1"))
     r = b.shaped(out)
     return float(r) if r.ndim == 0 else r
 
@@ -612,5 +657,9 @@ def from_two_vectors(u, v) -> np.ndarray:
     """
     b = Batch((u, "u", 3), (v, "v", 3))
     out = b.empty(4)
-    b.fail(_two_vectors_loop(b.flat[0], b.steps[0], b.flat[1], b.steps[1], out), nonzero=("u", "v"))
+    b.fail(
+        _two_vectors_loop(b.flat[0], b.steps[0], b.flat[1], b.steps[1], out),
+        out,
+        nonzero=("u", "v"),
+    )
     return b.shaped(out)
