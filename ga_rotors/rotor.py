@@ -28,6 +28,7 @@ array([0., 1., 0.])
 from __future__ import annotations
 
 import functools
+import math
 
 import numpy as np
 
@@ -35,9 +36,9 @@ from . import _kernels as K
 from . import euler as _euler
 from . import matrix as _matrix
 from . import quaternion as _quaternion
-from ._validate import as_float_array, require_unit
+from ._validate import UNIT_TOLERANCE, as_float_array, require_unit
 from .errors import InputError
-from .isomorphism import from_even, to_even
+from .isomorphism import ISOMORPHISM, from_even, to_even
 
 __all__ = [
     "apply",
@@ -105,6 +106,33 @@ def _quaternion_of(R, name: str = "R", unit: bool = True) -> np.ndarray:
     return require_unit(q, name) if unit else q
 
 
+def _unit(R, name: str = "R") -> tuple[float, float, float, float]:
+    """The unit quaternion of rotor R as a tuple, validated and renormalised.
+
+    One rotor at a time, NumPy's per-call overhead dominates, so the common case (finite,
+    exactly even, norm within tolerance) is accepted with scalar math through the same
+    coefficient table; anything else goes through :func:`_quaternion_of`, which raises
+    the precise error.
+    """
+    c = _coefficients(R, name).tolist()
+    if math.isfinite(sum(c)) and c[1] == c[2] == c[3] == c[7] == 0.0:
+        q = [0.0] * 4
+        for component, blade, sign in ISOMORPHISM:
+            q[component] = sign * c[blade]
+        n = math.hypot(*q)
+        if abs(n - 1.0) <= UNIT_TOLERANCE:
+            return (q[0] / n, q[1] / n, q[2] / n, q[3] / n)
+    return tuple(_quaternion_of(R, name).tolist())
+
+
+def _rotor(q):
+    """The rotor of a unit quaternion (4 floats), without validation."""
+    c = np.zeros(8)
+    for component, blade, sign in ISOMORPHISM:
+        c[blade] = sign * q[component]
+    return _multivector(c)
+
+
 def from_quaternion(q):
     """The rotor of unit quaternion q: w − x e23 − y e31 − z e12.
 
@@ -128,7 +156,7 @@ def to_quaternion(R) -> np.ndarray:
     >>> np.round(to_quaternion(R), 15) + 0.0
     array([0., 1., 0., 0.])
     """
-    return _quaternion_of(R)
+    return np.array(_unit(R))
 
 
 def normalize(R):
@@ -157,7 +185,7 @@ def compose(*rotors):
         raise InputError("rotors: expected at least one rotor")
     out = None
     for n, R in enumerate(rotors):
-        R = _multivector(to_even(_quaternion_of(R, f"rotors[{n}]")))
+        R = _rotor(_unit(R, f"rotors[{n}]"))
         out = R if out is None else out * R
     return out
 
@@ -171,7 +199,7 @@ def inverse(R):
     >>> float((R * inverse(R))[()])
     1.0
     """
-    return ~_multivector(to_even(_quaternion_of(R)))
+    return ~_rotor(_unit(R))
 
 
 def apply(R, v):
@@ -192,7 +220,7 @@ def apply(R, v):
     """
     from clifford import MultiVector
 
-    R = _multivector(to_even(_quaternion_of(R)))
+    R = _rotor(_unit(R))
     if isinstance(v, MultiVector):
         c = _coefficients(v, "v")
         if np.any(np.delete(c, _VECTOR) != 0):
@@ -250,7 +278,7 @@ def log(R):
     >>> log(-1.0 + 0.0 * layout().blades["e12"])
     -(3.14159^e12)
     """
-    return _pure_to_bivector(K.qlog_unit(tuple(_quaternion_of(R))))
+    return _pure_to_bivector(K.qlog_unit(_unit(R)))
 
 
 def slerp(R0, R1, t: float):
@@ -268,8 +296,8 @@ def slerp(R0, R1, t: float):
     t = as_float_array(t, "t")
     if t.shape != ():
         raise InputError(f"t: expected one number, got shape {t.shape}")
-    R0 = _multivector(to_even(_quaternion_of(R0, "R0")))
-    R1 = _multivector(to_even(_quaternion_of(R1, "R1")))
+    R0 = _rotor(_unit(R0, "R0"))
+    R1 = _rotor(_unit(R1, "R1"))
     D = ~R0 * R1
     d = from_even(D.value, name="R0, R1")
     if d[0] < 0.0:
@@ -289,8 +317,8 @@ def distance(R0, R1) -> float:
     >>> distance(a, compose(a, from_axis_angle([0, 1.0, 0], 1e-12)))
     1e-12
     """
-    R0 = _multivector(to_even(_quaternion_of(R0, "R0")))
-    R1 = _multivector(to_even(_quaternion_of(R1, "R1")))
+    R0 = _rotor(_unit(R0, "R0"))
+    R1 = _rotor(_unit(R1, "R1"))
     return float(K.axis_angle_from_quat(tuple(from_even((~R0 * R1).value, name="R0, R1")))[3])
 
 
