@@ -51,9 +51,9 @@ SEQUENCES: tuple[str, ...] = _ORDERS + tuple(s.lower() for s in _ORDERS)
 #: third angles are treated as locked together. Quaternions built from angles exactly at
 #: the singularity land within ~2e-16 of it (cos(π/2) is 6e-17, not 0); 1e-14 leaves
 #: a factor 50 for a few more roundings. Setting the third angle to 0 moves the rotation
-#: by at most twice this distance, 2e-14 rad, so the returned angles stay exact to
-#: round-off. Beyond it the angles are computed in full: the rotation they describe is
-#: exact, though the first and third individually carry errors ~1e-16/(distance).
+#: by at most twice this distance, 2e-14 rad. Beyond it the angles are computed in full:
+#: the rotation they describe is exact, though the first and third individually carry
+#: errors ~1e-16/(distance).
 GIMBAL_TOLERANCE = 1e-14
 
 

@@ -78,7 +78,19 @@ def test_every_sequence_round_trips_the_rotation(q, seq):
         warnings.simplefilter("ignore", GimbalLockWarning)
         a = euler.from_quaternion(q, seq)
     assert np.all(np.abs(a) <= math.pi)
-    assert Q.distance(euler.to_quaternion(seq, a), q) <= 16 * U
+    # within GIMBAL_TOLERANCE of a lock the third angle is forced to 0, which moves the
+    # rotation by at most twice that distance (a commutator bound)
+    assert Q.distance(euler.to_quaternion(seq, a), q) <= 16 * U + 2 * euler.GIMBAL_TOLERANCE
+
+
+@pytest.mark.parametrize("seq", ["ZYZ", "zxz", "XYZ", "zyx"])
+def test_forcing_the_third_angle_near_a_lock_stays_within_its_bound(seq):
+    # the hypothesis case that found it: a half-turn about y with a 1e-15 z component
+    q = np.array([0.0, 0.0, 1.0, 1e-15])
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", GimbalLockWarning)
+        a = euler.from_quaternion(q, seq)
+    assert Q.distance(euler.to_quaternion(seq, a), q) <= 16 * U + 2 * euler.GIMBAL_TOLERANCE
 
 
 @pytest.mark.parametrize("seq", euler.SEQUENCES)

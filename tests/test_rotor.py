@@ -234,7 +234,9 @@ def test_every_converter_round_trips(q):
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", GimbalLockWarning)  # a random q may sit at the lock
         angles = rotor.to_euler(R, "ZYZ")
-    assert Q.distance(rotor.to_quaternion(rotor.from_euler("ZYZ", angles)), q) <= 16 * U
+    # near a lock the third angle is forced to 0, moving the rotation by <= 2 GIMBAL_TOLERANCE
+    budget = 16 * U + 2 * euler.GIMBAL_TOLERANCE
+    assert Q.distance(rotor.to_quaternion(rotor.from_euler("ZYZ", angles)), q) <= budget
 
 
 def test_converters_match_scipy_on_random_rotations_and_half_turns():
