@@ -204,9 +204,10 @@ def body_omega_from_quaternion_rate(q, qdot) -> np.ndarray:
 
 
 def _cl3():
-    import clifford
+    from .rotor import layout  # the one shared Cl(3) layout (building one costs ~1 s)
 
-    return clifford.Cl(3)
+    lay = layout()
+    return lay, lay.blades
 
 
 def rotor_rate(R, w):
@@ -221,9 +222,8 @@ def rotor_rate(R, w):
 
     Examples
     --------
-    >>> import clifford
-    >>> layout, blades = clifford.Cl(3)
-    >>> R = layout.scalar * 1.0
+    >>> from ga_rotors import rotor
+    >>> R = rotor.from_quaternion([1.0, 0.0, 0.0, 0.0])
     >>> rotor_rate(R, [0.0, 0.0, 2.0])  # rotation about z: Ṙ = -e12
     -(1.0^e12)
     """
@@ -243,9 +243,8 @@ def body_omega_from_rotor_rate(R, Rdot) -> np.ndarray:
 
     Examples
     --------
-    >>> import clifford
-    >>> layout, blades = clifford.Cl(3)
-    >>> R = layout.scalar * 1.0
+    >>> from ga_rotors import rotor
+    >>> R = rotor.from_quaternion([1.0, 0.0, 0.0, 0.0])
     >>> body_omega_from_rotor_rate(R, rotor_rate(R, [0.1, 0.2, 0.3]))
     array([0.1, 0.2, 0.3])
     """

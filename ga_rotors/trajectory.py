@@ -13,6 +13,8 @@ q        (n, 4)    quaternion path: (w, x, y, z)
 euler    (m, 3)    Euler-angle path: integrated ZYZ angles (ψ, θ, φ), rad
 energy   (n,)      kinetic energy ½ ω·Iω (J) of the primary path
 L        (n, 3)    body-frame angular momentum Iω
+L_space  (n, 3)    space-frame angular momentum q (Iω) q*
+angles   (n, 3)    ZYZ angles (ψ, θ, φ) of the primary path's orientation (ga_rotors.euler)
 ======== ========= ===================================================================
 
 An array can be shorter than ``t`` (``m < n``) when its path stopped early because its
