@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 from hypothesis import given
 from hypothesis import strategies as st
-from oracles import U, random_unit, rotation_error, to_scipy, unit_quaternions
+from oracles import U, half_turns, random_unit, rotation_error, to_scipy, unit_quaternions
 from scipy.spatial.transform import Rotation
 from uncompiled import uncompiled_twin
 
@@ -121,6 +121,18 @@ def test_near_gimbal_lock_stays_exact_where_scipys_threshold_is_not(seq, offset)
     # scipy snaps anything within 1e-7 rad and loses the rotation by ~ the offset
     theirs = scipy_angles(to_scipy(q), seq)
     assert rotation_error(q, Rotation.from_euler(seq, theirs)) > 0.1 * offset
+
+
+@pytest.mark.parametrize("seq", euler.SEQUENCES)
+def test_half_turns_about_random_axes_in_every_sequence_match_scipy(seq):
+    q = half_turns(60 + euler.SEQUENCES.index(seq), 20)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", GimbalLockWarning)
+        ours = euler.from_quaternion(q, seq)
+    theirs = scipy_angles(to_scipy(q), seq)
+    # compare rotations, not angles: both triples must reproduce the half-turn
+    assert rotation_error(euler.to_quaternion(seq, ours), to_scipy(q)).max() <= 16 * U
+    assert (Rotation.from_euler(seq, theirs).inv() * to_scipy(q)).magnitude().max() <= 16 * U
 
 
 def test_identity_in_every_sequence():
