@@ -131,7 +131,13 @@ PROPERTIES = frozenset(
 )
 
 #: Modules that register integrators on import, loaded on first registry access.
-BUILTIN_MODULES = ("ga_rotors.integrators.rk4",)
+BUILTIN_MODULES = (
+    "ga_rotors.integrators.rk4",
+    "ga_rotors.integrators.lie_group",
+    "ga_rotors.integrators.splitting",
+    "ga_rotors.integrators.variational",
+    "ga_rotors.integrators.implicit",
+)
 
 
 def _kernel_location(kernel, what: str) -> tuple[str, str]:

@@ -39,15 +39,28 @@ import numpy as np
 from scipy.optimize import brentq
 
 from .. import quaternion as Q
+from .._jit import jit
 from .._validate import as_float_array, require_unit
 from ..body import RigidBody
 from ..errors import InputError, PrecisionError
 from . import elliptic
 from .asymmetric_top import State, _orientation_error, _times, axis_rotation
 
-__all__ = ["HeavyTop", "State"]
+__all__ = ["HeavyTop", "State", "gravity_torque"]
 
 _EPS = float(np.finfo(float).eps)
+
+
+@jit
+def gravity_torque(t, q, w, p):
+    """Body-frame gravity torque on the heavy top: mgl · (Z_y, −Z_x, 0), p = (mgl,).
+
+    Z = q* ẑ q is the vertical in body coordinates (the third row of q's rotation matrix);
+    the centre of mass sits at l along body +z, gravity along space −z.
+    """
+    zx = 2.0 * (q[1] * q[3] - q[0] * q[2])
+    zy = 2.0 * (q[2] * q[3] + q[0] * q[1])
+    return (p[0] * zy, -p[0] * zx, 0.0)
 
 
 @dataclass(frozen=True)

@@ -1,0 +1,50 @@
+"""Implicit midpoint on (orientation, ω): y₁ = y₀ + h f((y₀ + y₁)/2).
+
+Solved for the slope k = f(y₀ + h/2 k) by fixed-point iteration until k stops changing
+(to 2 ulps of its size; contraction factor ≈ h |∂f/∂y|/2, so 6–10 sweeps at the step sizes
+of the accuracy study; at most 60). Order 2, time-reversible. It preserves every quadratic
+invariant exactly (Cooper 1987): |q|² and |R|² of the kinematics, and for the free body
+the energy ½ ωᵀIω and |L|² = |Iω|², up to the iteration's tolerance and rounding.
+"""
+
+from __future__ import annotations
+
+from ._arith import axpy3
+from .base import FREE, TORQUED, TemplateIntegrator, register
+from .slots import accel, o_axpy, o_rate
+
+
+def midpoint_step(t, x, w, h, inertia, params):
+    """Implicit midpoint by fixed-point iteration on the slope."""
+    half = 0.5 * h
+    kx = o_rate(x, w)
+    kw = accel(t, x, w, inertia, params)
+    for _ in range(60):
+        xm = o_axpy(x, half, kx)
+        wm = axpy3(w, half, kw)
+        nx = o_rate(xm, wm)
+        nw = accel(t + half, xm, wm, inertia, params)
+        change = 0.0
+        size = 0.0
+        for j in range(len(nx)):
+            change = max(change, abs(nx[j] - kx[j]))
+            size = max(size, abs(nx[j]))
+        for j in range(3):
+            change = max(change, abs(nw[j] - kw[j]))
+            size = max(size, abs(nw[j]))
+        kx, kw = nx, nw
+        if change <= 4.4e-16 * size:
+            break
+    return o_axpy(x, h, kx), axpy3(w, h, kw)
+
+
+MIDPOINT = register(
+    TemplateIntegrator(
+        name="midpoint",
+        order=2,
+        description="implicit midpoint rule (fixed-point iteration)",
+        conserves=frozenset({"unit_norm", "energy", "momentum_norm", "time_reversible"}),
+        paths=frozenset({"rotor", "quaternion"}),
+        steps={FREE: midpoint_step, TORQUED: midpoint_step},
+    )
+)
