@@ -200,9 +200,7 @@ def _accel_source(kind: str, imports: _Imports) -> str:
 
     if kind == FREE:
         imports.kernel("free_euler_rates", body.free_euler_rates)
-        return (
-            "def accel(t, x, w, inertia, params):\n    return free_euler_rates(inertia, w)\n"
-        )
+        return "def accel(t, x, w, inertia, params):\n    return free_euler_rates(inertia, w)\n"
     imports.kernel("euler_rates", body.euler_rates)
     return (
         "def accel(t, x, w, inertia, params):\n"

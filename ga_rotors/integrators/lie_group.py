@@ -24,8 +24,9 @@ space, where every method reduces to its underlying Runge–Kutta tableau.
 
 from __future__ import annotations
 
-from .._kernels import cross, qmul, quat_from_rotvec
-from ._arith import axpy3
+from .._kernels import cross
+from ._arith import axpy3, rk4_sum3
+from ._rigid import turn
 from .base import FREE, KINEMATIC, TORQUED, TemplateIntegrator, register
 from .slots import accel, o_from_quat, o_quat, omega
 
@@ -38,11 +39,6 @@ CG3_B = (13.0 / 51.0, -2.0 / 3.0, 24.0 / 17.0)
 MAGNUS_C1 = 0.5 - 3.0**0.5 / 6.0
 MAGNUS_C2 = 0.5 + 3.0**0.5 / 6.0
 MAGNUS_K = 3.0**0.5 / 12.0
-
-
-def turn(q, h, v):
-    """q ⊗ Exp(h v): q moved along the body rate v for a time h."""
-    return qmul(q, quat_from_rotvec((h * v[0], h * v[1], h * v[2])))
 
 
 def lie_euler_step(t, x, w, h, inertia, params):
@@ -61,7 +57,11 @@ def dexpinv(u, w):
     c = cross(u, w)
     d = cross(u, c)
     k = 1.0 / 12.0
-    return (w[0] + 0.5 * c[0] + k * d[0], w[1] + 0.5 * c[1] + k * d[1], w[2] + 0.5 * c[2] + k * d[2])
+    return (
+        w[0] + 0.5 * c[0] + k * d[0],
+        w[1] + 0.5 * c[1] + k * d[1],
+        w[2] + 0.5 * c[2] + k * d[2],
+    )
 
 
 def rkmk4_step(t, x, w, h, inertia, params):
@@ -88,11 +88,7 @@ def rkmk4_step(t, x, w, h, inertia, params):
         c * (k1u[1] + 2.0 * (k2u[1] + k3u[1]) + k4u[1]),
         c * (k1u[2] + 2.0 * (k2u[2] + k3u[2]) + k4u[2]),
     )
-    w_new = (
-        w[0] + c * (k1w[0] + 2.0 * (k2w[0] + k3w[0]) + k4w[0]),
-        w[1] + c * (k1w[1] + 2.0 * (k2w[1] + k3w[1]) + k4w[1]),
-        w[2] + c * (k1w[2] + 2.0 * (k2w[2] + k3w[2]) + k4w[2]),
-    )
+    w_new = rk4_sum3(w, h, k1w, k2w, k3w, k4w)
     return o_from_quat(turn(q, 1.0, u)), w_new
 
 
@@ -114,12 +110,7 @@ def cf4_step(t, x, w, h, inertia, params):
     early = tuple_combo(3.0, 2.0, 2.0, -1.0, w, w2, w3, w4)
     late = tuple_combo(-1.0, 2.0, 2.0, 3.0, w, w2, w3, w4)
     q_new = turn(turn(q, c, early), c, late)
-    s = h / 6.0
-    w_new = (
-        w[0] + s * (k1w[0] + 2.0 * (k2w[0] + k3w[0]) + k4w[0]),
-        w[1] + s * (k1w[1] + 2.0 * (k2w[1] + k3w[1]) + k4w[1]),
-        w[2] + s * (k1w[2] + 2.0 * (k2w[2] + k3w[2]) + k4w[2]),
-    )
+    w_new = rk4_sum3(w, h, k1w, k2w, k3w, k4w)
     return o_from_quat(q_new), w_new
 
 
@@ -173,7 +164,6 @@ LIE_EULER = register(
         conserves=frozenset({"unit_norm"}),
         paths=_SPHERE,
         steps={FREE: lie_euler_step, TORQUED: lie_euler_step, KINEMATIC: lie_euler_kinematic_step},
-        helpers=(turn,),
     )
 )
 RKMK4 = register(
@@ -184,7 +174,7 @@ RKMK4 = register(
         conserves=frozenset({"unit_norm"}),
         paths=_SPHERE,
         steps={FREE: rkmk4_step, TORQUED: rkmk4_step},
-        helpers=(turn, dexpinv),
+        helpers=(dexpinv,),
     )
 )
 CF4 = register(
@@ -195,7 +185,7 @@ CF4 = register(
         conserves=frozenset({"unit_norm"}),
         paths=_SPHERE,
         steps={FREE: cf4_step, TORQUED: cf4_step},
-        helpers=(turn, tuple_combo),
+        helpers=(tuple_combo,),
     )
 )
 CG3 = register(
@@ -206,7 +196,6 @@ CG3 = register(
         conserves=frozenset({"unit_norm"}),
         paths=_SPHERE,
         steps={FREE: cg3_step, TORQUED: cg3_step},
-        helpers=(turn,),
     )
 )
 MAGNUS4 = register(
@@ -217,6 +206,5 @@ MAGNUS4 = register(
         conserves=frozenset({"unit_norm"}),
         paths=_SPHERE,
         steps={KINEMATIC: magnus4_kinematic_step},
-        helpers=(turn,),
     )
 )

@@ -28,7 +28,8 @@ properties hold, except the space-frame L, which the torque changes.
 
 from __future__ import annotations
 
-from .._kernels import qconj, qmul, qrotate, quat_from_rotvec
+from .._kernels import qmul, quat_from_rotvec
+from ._rigid import momenta, rates, rotate_about
 from .base import FREE, TORQUED, TemplateIntegrator, register
 from .slots import o_from_quat, o_quat, torque
 
@@ -48,17 +49,6 @@ _W1, _W2, _W3 = -1.17767998417887, 0.235573213359357, 0.784513610477560
 YOSHIDA6 = (_W3, _W2, _W1, 1.0 - 2.0 * (_W1 + _W2 + _W3), _W1, _W2, _W3)
 
 
-def rotate_about(q, L, axis, angle):
-    """Exact flow about body axis ``axis`` by ``angle``: q ⊗ r and r* L r."""
-    if axis == 0:
-        r = quat_from_rotvec((angle, 0.0, 0.0))
-    elif axis == 1:
-        r = quat_from_rotvec((0.0, angle, 0.0))
-    else:
-        r = quat_from_rotvec((0.0, 0.0, angle))
-    return qmul(q, r), qrotate(qconj(r), L)
-
-
 def free_strang(q, L, h, inertia):
     """Strang splitting of the free body into axis rotations 1 2 3 2 1."""
     q, L = rotate_about(q, L, 0, 0.5 * h * L[0] / inertia[0])
@@ -71,8 +61,7 @@ def free_strang(q, L, h, inertia):
 
 def kick(t, q, L, h, inertia, params):
     """L += h τ(q): the exact flow of an orientation-dependent torque."""
-    w = (L[0] / inertia[0], L[1] / inertia[1], L[2] / inertia[2])
-    tau = torque(t, q, w, params)
+    tau = torque(t, q, rates(L, inertia), params)
     return (L[0] + h * tau[0], L[1] + h * tau[1], L[2] + h * tau[2])
 
 
@@ -81,16 +70,6 @@ def kdk(t, q, L, h, inertia, params):
     L = kick(t, q, L, 0.5 * h, inertia, params)
     q, L = free_strang(q, L, h, inertia)
     return q, kick(t + h, q, L, 0.5 * h, inertia, params)
-
-
-def momenta(w, inertia):
-    """L = I ω."""
-    return (inertia[0] * w[0], inertia[1] * w[1], inertia[2] * w[2])
-
-
-def rates(L, inertia):
-    """ω = I⁻¹ L."""
-    return (L[0] / inertia[0], L[1] / inertia[1], L[2] / inertia[2])
 
 
 def split2_step(t, x, w, h, inertia, params):
@@ -185,7 +164,7 @@ _SPHERE = frozenset({"rotor", "quaternion"})
 _FREE_PROPS = frozenset(
     {"unit_norm", "momentum_norm", "space_momentum", "symplectic", "time_reversible"}
 )
-_HELPERS = (rotate_about, free_strang, kick, kdk, momenta, rates)
+_HELPERS = (free_strang, kick, kdk)
 
 
 def _splitting(name, order, description, free_step, torqued_step=None):
@@ -205,14 +184,30 @@ def _splitting(name, order, description, free_step, torqued_step=None):
     )
 
 
-SPLIT2 = _splitting("split2", 2, "Lie–Poisson Strang splitting into exact axis rotations "
-                    "(torqued: kick–drift–kick)", split2_step, kdk2_step)
-SPLIT4 = _splitting("split4", 4, "Suzuki's 5-stage composition of the Strang splitting",
-                    split4_step, kdk4_step)
-SPLIT4_YOSHIDA = _splitting("split4_yoshida", 4, "Yoshida's triple jump of the Strang "
-                            "splitting", split4_yoshida_step, kdk4_yoshida_step)
-SPLIT6 = _splitting("split6", 6, "Yoshida's 7-stage order-6 composition of the Strang "
-                    "splitting", split6_step, kdk6_step)
+SPLIT2 = _splitting(
+    "split2",
+    2,
+    "Lie–Poisson Strang splitting into exact axis rotations (torqued: kick–drift–kick)",
+    split2_step,
+    kdk2_step,
+)
+SPLIT4 = _splitting(
+    "split4", 4, "Suzuki's 5-stage composition of the Strang splitting", split4_step, kdk4_step
+)
+SPLIT4_YOSHIDA = _splitting(
+    "split4_yoshida",
+    4,
+    "Yoshida's triple jump of the Strang splitting",
+    split4_yoshida_step,
+    kdk4_yoshida_step,
+)
+SPLIT6 = _splitting(
+    "split6",
+    6,
+    "Yoshida's 7-stage order-6 composition of the Strang splitting",
+    split6_step,
+    kdk6_step,
+)
 SPLIT_SYM = register(
     TemplateIntegrator(
         name="split_sym",
@@ -221,6 +216,6 @@ SPLIT_SYM = register(
         conserves=_FREE_PROPS,
         paths=_SPHERE,
         steps={FREE: split_sym_step},
-        helpers=(rotate_about, momenta, rates, symmetric_pair, symmetric_flow),
+        helpers=(symmetric_pair, symmetric_flow),
     )
 )

@@ -24,21 +24,9 @@ from __future__ import annotations
 from math import sqrt
 
 from .._kernels import cross, qconj, qmul, qrotate
+from ._rigid import momenta, rates, solve3
 from .base import FREE, TORQUED, TemplateIntegrator, register
 from .slots import o_from_quat, o_quat, torque
-
-
-def solve3(a, b):
-    """x with A x = b for a 3×3 A given as a 9-tuple (rows), by Cramer's rule."""
-    a00, a01, a02, a10, a11, a12, a20, a21, a22 = a
-    c00 = a11 * a22 - a12 * a21
-    c01 = a12 * a20 - a10 * a22
-    c02 = a10 * a21 - a11 * a20
-    det = a00 * c00 + a01 * c01 + a02 * c02
-    x0 = b[0] * c00 + b[1] * (a02 * a21 - a01 * a22) + b[2] * (a01 * a12 - a02 * a11)
-    x1 = b[0] * c01 + b[1] * (a00 * a22 - a02 * a20) + b[2] * (a02 * a10 - a00 * a12)
-    x2 = b[0] * c02 + b[1] * (a01 * a20 - a00 * a21) + b[2] * (a00 * a11 - a01 * a10)
-    return (x0 / det, x1 / det, x2 / det)
 
 
 def discrete_rotation(g, inertia, guess):
@@ -77,18 +65,22 @@ def discrete_rotation(g, inertia, guess):
 
 def lgvi_free_step(t, x, w, h, inertia, params):
     """Discrete Moser–Veselov step of the free body."""
-    pi = (inertia[0] * w[0], inertia[1] * w[1], inertia[2] * w[2])
+    pi = momenta(w, inertia)
     f = discrete_rotation(
         (h * pi[0], h * pi[1], h * pi[2]), inertia, (0.5 * h * w[0], 0.5 * h * w[1], 0.5 * h * w[2])
     )
     p = qrotate(qconj(f), pi)
-    return o_from_quat(qmul(o_quat(x), f)), (p[0] / inertia[0], p[1] / inertia[1], p[2] / inertia[2])
+    return o_from_quat(qmul(o_quat(x), f)), (
+        p[0] / inertia[0],
+        p[1] / inertia[1],
+        p[2] / inertia[2],
+    )
 
 
 def lgvi_torqued_step(t, x, w, h, inertia, params):
     """LGVI step with the body torque M(q) (orientation-dependent torques)."""
     q = o_quat(x)
-    pi = (inertia[0] * w[0], inertia[1] * w[1], inertia[2] * w[2])
+    pi = momenta(w, inertia)
     m0 = torque(t, q, w, params)
     hh = 0.5 * h * h
     g = (h * pi[0] + hh * m0[0], h * pi[1] + hh * m0[1], h * pi[2] + hh * m0[2])
@@ -97,15 +89,14 @@ def lgvi_torqued_step(t, x, w, h, inertia, params):
     q1 = qmul(q, f)
     p = qrotate(fc, pi)
     m0r = qrotate(fc, m0)
-    w_guess = (p[0] / inertia[0], p[1] / inertia[1], p[2] / inertia[2])
-    m1 = torque(t + h, q1, w_guess, params)
+    m1 = torque(t + h, q1, rates(p, inertia), params)
     half = 0.5 * h
     p = (
         p[0] + half * (m0r[0] + m1[0]),
         p[1] + half * (m0r[1] + m1[1]),
         p[2] + half * (m0r[2] + m1[2]),
     )
-    return o_from_quat(q1), (p[0] / inertia[0], p[1] / inertia[1], p[2] / inertia[2])
+    return o_from_quat(q1), rates(p, inertia)
 
 
 LGVI = register(
@@ -118,6 +109,6 @@ LGVI = register(
         ),
         paths=frozenset({"rotor", "quaternion"}),
         steps={FREE: lgvi_free_step, TORQUED: lgvi_torqued_step},
-        helpers=(solve3, discrete_rotation),
+        helpers=(discrete_rotation,),
     )
 )
