@@ -156,55 +156,51 @@ def magnus4_kinematic_step(t, x, h, params):
 
 _SPHERE = frozenset({"rotor", "quaternion"})
 
-LIE_EULER = register(
-    TemplateIntegrator(
-        name="lie_euler",
-        order=1,
-        description="Lie–Euler: q ⊗ Exp(hω), ω + hω̇",
-        conserves=frozenset({"unit_norm"}),
-        paths=_SPHERE,
-        steps={FREE: lie_euler_step, TORQUED: lie_euler_step, KINEMATIC: lie_euler_kinematic_step},
+
+def _lie(name, order, description, steps, helpers=()):
+    """Register a Lie-group method: unit norm by construction, sphere paths only."""
+    return register(
+        TemplateIntegrator(
+            name=name,
+            order=order,
+            description=description,
+            conserves=frozenset({"unit_norm"}),
+            paths=_SPHERE,
+            steps=steps,
+            helpers=helpers,
+        )
     )
+
+
+LIE_EULER = _lie(
+    "lie_euler",
+    1,
+    "Lie–Euler: q ⊗ Exp(hω), ω + hω̇",
+    {FREE: lie_euler_step, TORQUED: lie_euler_step, KINEMATIC: lie_euler_kinematic_step},
 )
-RKMK4 = register(
-    TemplateIntegrator(
-        name="rkmk4",
-        order=4,
-        description="Runge–Kutta–Munthe-Kaas with RK4's tableau and a truncated dexp⁻¹",
-        conserves=frozenset({"unit_norm"}),
-        paths=_SPHERE,
-        steps={FREE: rkmk4_step, TORQUED: rkmk4_step},
-        helpers=(dexpinv,),
-    )
+RKMK4 = _lie(
+    "rkmk4",
+    4,
+    "Runge–Kutta–Munthe-Kaas with RK4's tableau and a truncated dexp⁻¹",
+    {FREE: rkmk4_step, TORQUED: rkmk4_step},
+    (dexpinv,),
 )
-CF4 = register(
-    TemplateIntegrator(
-        name="cf4",
-        order=4,
-        description="commutator-free Lie group method of order 4 (Celledoni–Marthinsen–Owren)",
-        conserves=frozenset({"unit_norm"}),
-        paths=_SPHERE,
-        steps={FREE: cf4_step, TORQUED: cf4_step},
-        helpers=(tuple_combo,),
-    )
+CF4 = _lie(
+    "cf4",
+    4,
+    "commutator-free Lie group method of order 4 (Celledoni–Marthinsen–Owren)",
+    {FREE: cf4_step, TORQUED: cf4_step},
+    (tuple_combo,),
 )
-CG3 = register(
-    TemplateIntegrator(
-        name="cg3",
-        order=3,
-        description="Crouch–Grossman order 3: products of exponentials of frozen rates",
-        conserves=frozenset({"unit_norm"}),
-        paths=_SPHERE,
-        steps={FREE: cg3_step, TORQUED: cg3_step},
-    )
+CG3 = _lie(
+    "cg3",
+    3,
+    "Crouch–Grossman order 3: products of exponentials of frozen rates",
+    {FREE: cg3_step, TORQUED: cg3_step},
 )
-MAGNUS4 = register(
-    TemplateIntegrator(
-        name="magnus4",
-        order=4,
-        description="fourth-order Magnus expansion for a prescribed ω(t) (two Gauss points)",
-        conserves=frozenset({"unit_norm"}),
-        paths=_SPHERE,
-        steps={KINEMATIC: magnus4_kinematic_step},
-    )
+MAGNUS4 = _lie(
+    "magnus4",
+    4,
+    "fourth-order Magnus expansion for a prescribed ω(t) (two Gauss points)",
+    {KINEMATIC: magnus4_kinematic_step},
 )

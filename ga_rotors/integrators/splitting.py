@@ -72,29 +72,38 @@ def kdk(t, q, L, h, inertia, params):
     return q, kick(t + h, q, L, 0.5 * h, inertia, params)
 
 
+def compose_free(q, L, h, inertia, weights):
+    """Strang steps of sizes w·h for w in ``weights`` (a symmetric composition)."""
+    for c in weights:
+        q, L = free_strang(q, L, c * h, inertia)
+    return q, L
+
+
+def compose_kdk(t, q, L, h, inertia, params, weights):
+    """Kick–drift–kick steps of sizes w·h for w in ``weights``, time advanced along."""
+    for c in weights:
+        q, L = kdk(t, q, L, c * h, inertia, params)
+        t += c * h
+    return q, L
+
+
 def split2_step(t, x, w, h, inertia, params):
     q, L = free_strang(o_quat(x), momenta(w, inertia), h, inertia)
     return o_from_quat(q), rates(L, inertia)
 
 
 def split4_step(t, x, w, h, inertia, params):
-    q, L = o_quat(x), momenta(w, inertia)
-    for c in SUZUKI4:
-        q, L = free_strang(q, L, c * h, inertia)
+    q, L = compose_free(o_quat(x), momenta(w, inertia), h, inertia, SUZUKI4)
     return o_from_quat(q), rates(L, inertia)
 
 
 def split4_yoshida_step(t, x, w, h, inertia, params):
-    q, L = o_quat(x), momenta(w, inertia)
-    for c in YOSHIDA4:
-        q, L = free_strang(q, L, c * h, inertia)
+    q, L = compose_free(o_quat(x), momenta(w, inertia), h, inertia, YOSHIDA4)
     return o_from_quat(q), rates(L, inertia)
 
 
 def split6_step(t, x, w, h, inertia, params):
-    q, L = o_quat(x), momenta(w, inertia)
-    for c in YOSHIDA6:
-        q, L = free_strang(q, L, c * h, inertia)
+    q, L = compose_free(o_quat(x), momenta(w, inertia), h, inertia, YOSHIDA6)
     return o_from_quat(q), rates(L, inertia)
 
 
@@ -104,29 +113,17 @@ def kdk2_step(t, x, w, h, inertia, params):
 
 
 def kdk4_step(t, x, w, h, inertia, params):
-    q, L = o_quat(x), momenta(w, inertia)
-    s = t
-    for c in SUZUKI4:
-        q, L = kdk(s, q, L, c * h, inertia, params)
-        s += c * h
+    q, L = compose_kdk(t, o_quat(x), momenta(w, inertia), h, inertia, params, SUZUKI4)
     return o_from_quat(q), rates(L, inertia)
 
 
 def kdk4_yoshida_step(t, x, w, h, inertia, params):
-    q, L = o_quat(x), momenta(w, inertia)
-    s = t
-    for c in YOSHIDA4:
-        q, L = kdk(s, q, L, c * h, inertia, params)
-        s += c * h
+    q, L = compose_kdk(t, o_quat(x), momenta(w, inertia), h, inertia, params, YOSHIDA4)
     return o_from_quat(q), rates(L, inertia)
 
 
 def kdk6_step(t, x, w, h, inertia, params):
-    q, L = o_quat(x), momenta(w, inertia)
-    s = t
-    for c in YOSHIDA6:
-        q, L = kdk(s, q, L, c * h, inertia, params)
-        s += c * h
+    q, L = compose_kdk(t, o_quat(x), momenta(w, inertia), h, inertia, params, YOSHIDA6)
     return o_from_quat(q), rates(L, inertia)
 
 
@@ -164,7 +161,7 @@ _SPHERE = frozenset({"rotor", "quaternion"})
 _FREE_PROPS = frozenset(
     {"unit_norm", "momentum_norm", "space_momentum", "symplectic", "time_reversible"}
 )
-_HELPERS = (free_strang, kick, kdk)
+_HELPERS = (free_strang, kick, kdk, compose_free, compose_kdk)
 
 
 def _splitting(name, order, description, free_step, torqued_step=None):
