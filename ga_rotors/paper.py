@@ -17,9 +17,14 @@ import sys
 import time
 from pathlib import Path
 
+from .errors import GaRotorsError
+
 __all__ = ["add_arguments", "reproduce", "run"]
 
 DEFAULT_OUT = "results"
+#: Figure-drawing processes forked by the command line (two cores: two workers, while the
+#: parent simulates and then writes the CSV files).
+_WORKERS = 2
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
@@ -56,12 +61,13 @@ def _out_dir(path) -> Path:
 class _Drawer:
     """A forked process that imports matplotlib while the parent simulates, then draws.
 
-    Building figures costs more CPU than the simulations; on two cores the figures are
-    drawn while the parent writes the CSV files. Forking happens before the parent
+    Building figures costs more CPU than the simulations, so two such processes share the
+    figures while the parent writes the CSV files. Forking happens before the parent
     imports numba or starts any thread.
     """
 
-    def __init__(self):
+    def __init__(self, stems: tuple[str, ...]):
+        self.stems = stems
         self._to_child = os.pipe()
         self._to_parent = os.pipe()
         sys.stdout.flush()
@@ -86,7 +92,7 @@ class _Drawer:
                 result = ("skipped", [])
             else:
                 data, out, digest = job
-                result = ("ok", paper_figures.draw_all(data, out, digest))
+                result = ("ok", paper_figures.draw_all(data, out, digest, self.stems))
         except BaseException as exc:  # reported to the parent, which raises it
             result = ("error", f"{type(exc).__name__}: {exc}")
         try:
@@ -100,8 +106,6 @@ class _Drawer:
             pickle.dump(job, fh, protocol=pickle.HIGHEST_PROTOCOL)
 
     def result(self) -> list[Path]:
-        from .errors import GaRotorsError
-
         try:
             with os.fdopen(self._to_parent[0], "rb") as fh:
                 status, value = pickle.load(fh)
@@ -149,8 +153,13 @@ def reproduce(
     True
     """
     out = _out_dir(out_dir)
-    drawer = _Drawer() if figures and parallel and hasattr(os, "fork") else None
-    sent = False
+    drawers = []
+    if figures and parallel and hasattr(os, "fork"):
+        from .paper_figures import FIGURES  # numpy only; no matplotlib in the parent yet
+
+        stems = tuple(FIGURES)
+        drawers = [_Drawer(stems[k::_WORKERS]) for k in range(_WORKERS)]
+    sent = 0
     try:
         from . import paper_figures, paper_scenes
         from .trajectory import atomic_write
@@ -159,23 +168,30 @@ def reproduce(
         job = None
         if figures:
             job = (paper_figures.figure_data(scenes), out, paper_scenes.data_digest(scenes))
-        if drawer is not None:
+        for drawer in drawers:
             drawer.send(job)
-            sent = True
+            sent += 1
         written = []
         if data:
             text = paper_scenes.summary(scenes) + "\n"
             written.append(atomic_write(out / "summary.txt", lambda fh: fh.write(text.encode())))
             written += [s.trajectory.to_csv(out / f"{s.key}.csv") for s in scenes]
-        if figures and drawer is None:
+        if figures and not drawers:
             written += paper_figures.draw_all(*job)
     finally:
-        if drawer is not None:
-            if not sent:  # failed before the figures were handed over: release the child
-                drawer.send(None)
-            pictures = drawer.result()
-    if drawer is not None:
-        written += pictures
+        for drawer in drawers[sent:]:  # failed before the figures were handed over
+            drawer.send(None)
+        results = []
+        for drawer in drawers:  # collect every worker, then report the first failure
+            try:
+                results.append(drawer.result())
+            except GaRotorsError as exc:
+                results.append(exc)
+    for r in results:
+        if isinstance(r, Exception):
+            raise r
+    by_name = {p.stem: p for r in results for p in r}
+    written += [by_name[stem] for stem in paper_figures.FIGURES if stem in by_name]
     return scenes, written
 
 

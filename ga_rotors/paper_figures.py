@@ -172,15 +172,19 @@ def _error_columns(data: list[FigureData]) -> list[tuple[str, list]]:
     return columns
 
 
-def draw_all(data: list[FigureData], out_dir, digest: str) -> list[Path]:
-    """Write every figure as ``<out_dir>/<stem>.png`` (atomically); return the paths."""
+def draw_all(data: list[FigureData], out_dir, digest: str, stems=None) -> list[Path]:
+    """Write figures as ``<out_dir>/<stem>.png`` (atomically); return the paths.
+
+    ``stems``: the figures to draw (default: all of :data:`FIGURES`, in order).
+    """
     from .trajectory import atomic_write
 
     out_dir = Path(out_dir)
     by_key = {(d.model, d.theta0_deg): d for d in data}
     canvases: dict[int, _Canvas] = {}
     written = []
-    for stem, title in FIGURES.items():
+    for stem in FIGURES if stems is None else stems:
+        title = FIGURES[stem]
         if stem == "errors":
             canvas = _Canvas(2, log=True, three=True)
             canvas.fill(title, _error_columns(data))
