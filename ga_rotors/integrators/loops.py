@@ -11,12 +11,16 @@ and compiles them there. Both loops share one calling convention::
 * ``t = t0 + i·h`` is computed, not accumulated, so times carry no drift;
 * ``rows`` is the number of samples written; it is smaller than the arrays when the state
   stopped being finite (the samples before are valid, nothing after is written).
+
+The right-hand-side templates (``dynamics_rhs``, ``kinematic_rhs``) evaluate the vector
+field once, for integrators that are not compiled loops (scipy's DOP853); see
+:func:`ga_rotors.integrators._codegen.vector_field`.
 """
 
 from __future__ import annotations
 
 from ._arith import finite_row, store3
-from .slots import o_load, o_store, o_watch, omega, step
+from .slots import accel, o_load, o_rate, o_store, o_watch, omega, step
 
 
 def fixed_step_loop(x0, w0, t0, h, nsteps, every, inertia, params, out_t, out_x, out_w, stats):
@@ -67,3 +71,20 @@ def kinematic_loop(x0, w0, t0, h, nsteps, every, inertia, params, out_t, out_x, 
                 return row
             row += 1
     return row
+
+
+def dynamics_rhs(t, y, inertia, params, out):
+    """out = ẏ for y = (path state..., ω1, ω2, ω3)."""
+    n = y.shape[0]
+    x = o_load(y)
+    w = (y[n - 3], y[n - 2], y[n - 1])
+    o_store(out.reshape((1, n)), 0, o_rate(x, w))
+    dw = accel(t, x, w, inertia, params)
+    out[n - 3] = dw[0]
+    out[n - 2] = dw[1]
+    out[n - 1] = dw[2]
+
+
+def kinematic_rhs(t, y, inertia, params, out):
+    """out = ẋ for the path state y under the prescribed ω(t)."""
+    o_store(out.reshape((1, y.shape[0])), 0, o_rate(o_load(y), omega(t, params)))
