@@ -173,13 +173,19 @@ def batched(n: int, repeats: int, peers: dict[str, bool]) -> None:
 COLD = """
 import time
 t0 = time.perf_counter()
+import numpy as np
 import ga_rotors.quaternion as Q
 t1 = time.perf_counter()
-Q.multiply([1.0, 0, 0, 0], [0, 1.0, 0, 0])
+p, q = np.array([1.0, 0, 0, 0]), np.array([0, 1.0, 0, 0])
+Q.multiply(p, q)
 t2 = time.perf_counter()
-Q.multiply([1.0, 0, 0, 0], [0, 1.0, 0, 0])
+Q.multiply(p, q)
 t3 = time.perf_counter()
-print(t1 - t0, t2 - t1, t3 - t2)
+Q.multiply(p[None], q)
+t4 = time.perf_counter()
+Q.multiply(p[None], q)
+t5 = time.perf_counter()
+print(t1 - t0, t2 - t1, t3 - t2, t4 - t3, t5 - t4)
 """
 
 
@@ -200,12 +206,16 @@ def cold(repeats: int) -> None:
     import_s = min(w[0] for w in warm)
     first_s = min(w[1] for w in warm)
     second_s = min(w[2] for w in warm)
+    batch_first_s = min(w[3] for w in warm)
+    batch_second_s = min(w[4] for w in warm)
     with tempfile.TemporaryDirectory() as empty:
         fresh = run({**base, "NUMBA_CACHE_DIR": empty})
     print("\nstart-up (fresh processes, minimum of", repeats, "runs)")
-    print(f"  import ga_rotors.quaternion                       {import_s * 1e3:8.1f} ms")
+    print(f"  import numpy + ga_rotors.quaternion               {import_s * 1e3:8.1f} ms")
     print(f"  first multiply, numba cache on disk (cold start)  {first_s * 1e3:8.1f} ms")
     print(f"  second multiply (warm)                            {second_s * 1e6:8.1f} µs")
+    print(f"  first batched multiply (its loop from the cache)  {batch_first_s * 1e3:8.1f} ms")
+    print(f"  second batched multiply (warm)                    {batch_second_s * 1e6:8.1f} µs")
     print(f"  first multiply, empty cache (one-off compile)     {fresh[1] * 1e3:8.1f} ms")
     t0 = time.perf_counter()
     subprocess.run([sys.executable, "-c", "import ga_rotors"], cwd=ROOT, check=True)
