@@ -1,0 +1,78 @@
+"""The shape every derivation returns: a list of checked steps and a readable report.
+
+A :class:`Step` states a claim, shows the computation that settles it, and records
+whether it held. A :class:`Derivation` is a titled list of steps; ``critical`` marks
+the derivations the numeric package relies on (``ga-rotors verify`` exits non-zero if
+one of those fails).
+
+Examples
+--------
+>>> d = Derivation("tiny", "1 + 1 = 2", (Step("sum", "1 + 1 -> 2", True),), critical=False)
+>>> d.ok
+True
+>>> print(d.report())
+tiny
+====
+1 + 1 = 2
+<BLANKLINE>
+  [ok] sum
+       1 + 1 -> 2
+<BLANKLINE>
+result: holds
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import sympy
+
+
+@dataclass(frozen=True)
+class Step:
+    """One checked claim: what is claimed, the computation shown, and whether it held."""
+
+    claim: str
+    shown: str
+    holds: bool
+
+
+@dataclass(frozen=True)
+class Derivation:
+    """A titled sequence of checked steps."""
+
+    title: str
+    statement: str
+    steps: tuple[Step, ...]
+    critical: bool = True
+    details: tuple[str, ...] = field(default=())
+
+    @property
+    def ok(self) -> bool:
+        return all(s.holds for s in self.steps)
+
+    def failures(self) -> list[Step]:
+        return [s for s in self.steps if not s.holds]
+
+    def report(self) -> str:
+        """Plain-text report: statement, each step with its computation, extra details."""
+        lines = [self.title, "=" * len(self.title), self.statement, ""]
+        for s in self.steps:
+            lines.append(f"  [{'ok' if s.holds else 'FAILED'}] {s.claim}")
+            lines.extend(f"       {line}" for line in s.shown.splitlines())
+        if self.details:
+            lines.append("")
+            lines.extend(self.details)
+        lines.append("")
+        lines.append(f"result: {'holds' if self.ok else 'FAILS'}")
+        return "\n".join(lines)
+
+
+def show(expr) -> str:
+    """A one-line rendering of a SymPy object (products written with ·, powers as **)."""
+    return sympy.sstr(expr).replace("*", "·").replace("··", "**")
+
+
+def step(claim: str, shown: str, holds) -> Step:
+    """A :class:`Step` with ``holds`` coerced to a plain bool."""
+    return Step(claim, shown, bool(holds))
