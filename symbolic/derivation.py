@@ -23,6 +23,7 @@ result: holds
 
 from __future__ import annotations
 
+import re
 from dataclasses import dataclass, field
 
 import sympy
@@ -68,9 +69,22 @@ class Derivation:
         return "\n".join(lines)
 
 
+_SUPERSCRIPTS = str.maketrans("0123456789", "⁰¹²³⁴⁵⁶⁷⁸⁹")
+
+
 def show(expr) -> str:
-    """A one-line rendering of a SymPy object (products written with ·, powers as **)."""
-    return sympy.sstr(expr).replace("*", "·").replace("··", "**")
+    """A one-line rendering of a SymPy object: products as ·, small powers as superscripts.
+
+    Examples
+    --------
+    >>> import sympy
+    >>> x, y = sympy.symbols("x y")
+    >>> show(2 * x**2 * y - 1)
+    '2·x²·y - 1'
+    """
+    text = sympy.sstr(expr)
+    text = re.sub(r"\*\*(\d+)", lambda m: m.group(1).translate(_SUPERSCRIPTS), text)
+    return text.replace("*", "·")
 
 
 def step(claim: str, shown: str, holds) -> Step:

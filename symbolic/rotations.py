@@ -109,46 +109,42 @@ def unskew(m: sympy.Matrix) -> tuple[sympy.Expr, sympy.Expr, sympy.Expr]:
     )
 
 
-def time_dependent(names: Sequence[str]):
-    """Angles as functions of t, with symbols for the angles and their rates.
+def time_derivative(expr, angles: Sequence, rates: Sequence):
+    """d/dt of an expression (or matrix) in the angles, by the chain rule Σ ∂/∂a · ȧ."""
+    return sum((sympy.diff(expr, a) * r for a, r in zip(angles, rates, strict=True)),
+               sympy.zeros(*expr.shape) if isinstance(expr, sympy.MatrixBase) else sympy.S.Zero)  # fmt: skip
 
-    Returns (t, functions, angle symbols, rate symbols, to_symbols) where ``to_symbols``
-    replaces each function and its first derivative by plain symbols, so that results
-    are ordinary expressions in (angle, rate) pairs.
+
+def body_rates_by_axes(seq: str, angles: Sequence, rates: Sequence) -> tuple[sympy.Expr, ...]:
+    """ω_body = Σ_k (F_{k+1} ⋯ F_last)ᵀ e_{axis k} ȧ_k, F_k the factors in product order.
+
+    Each rate turns the body about its own axis as that axis sits after the later factors,
+    seen from the body: the compact closed form.
     """
-    t = sympy.Symbol("t", real=True)
-    funcs = [sympy.Function(n, real=True)(t) for n in names]
-    angles = sympy.symbols(list(names), real=True)
-    rates = sympy.symbols([f"{n}dot" for n in names], real=True)
-
-    def to_symbols(expr):
-        expr = sympy.sympify(expr)
-        expr = expr.subs({sympy.Derivative(f, t): r for f, r in zip(funcs, rates, strict=True)})
-        return expr.subs(dict(zip(funcs, angles, strict=True)))
-
-    return t, funcs, angles, rates, to_symbols
-
-
-def body_rates_from_matrix(seq: str, names: Sequence[str] = ("a", "b", "c")):
-    """Body angular velocity from Euler rates, by [ω]× = Rᵀ Ṙ.
-
-    Returns (angles, rates, ω) with ω a 3-tuple of expressions.
-    """
-    t, funcs, angles, rates, to_symbols = time_dependent(names)
-    r = euler_matrix(seq, funcs)
-    omega = unskew((r.T * r.diff(t)).applyfunc(to_symbols))
-    return angles, rates, omega
+    factors = _ordered(seq, list(zip(angles, rates, strict=True)))
+    omega = sympy.zeros(3, 1)
+    for k, (axis, (_, rate)) in enumerate(factors):
+        later = sympy.eye(3)
+        for axis2, (angle2, _) in factors[k + 1 :]:
+            later = later * axis_matrix(axis2, angle2)
+        e = sympy.zeros(3, 1)
+        e[_axis_index(axis)] = 1
+        omega += later.T * e * rate
+    return tuple(omega)
 
 
-def body_rates_from_quaternion(seq: str, names: Sequence[str] = ("a", "b", "c")):
-    """Body angular velocity from Euler rates, by (0, ω) = 2 q* q̇."""
-    t, funcs, angles, rates, to_symbols = time_dependent(names)
-    q = euler_quaternion(seq, funcs)
-    qdot = tuple(sympy.diff(c, t) for c in q)
+def body_rates_from_matrix(seq: str, angles: Sequence, rates: Sequence) -> tuple[sympy.Expr, ...]:
+    """Body angular velocity from Euler rates, by [ω]× = Rᵀ Ṙ."""
+    r = euler_matrix(seq, angles)
+    return unskew(r.T * time_derivative(r, angles, rates))
+
+
+def body_rates_from_quaternion(seq: str, angles: Sequence, rates: Sequence):
+    """Body angular velocity from Euler rates, by (0, ω) = 2 q* q̇; returns (ω, scalar part)."""
+    q = euler_quaternion(seq, angles)
+    qdot = tuple(time_derivative(c, angles, rates) for c in q)
     w = hamilton.mul(hamilton.conj(q), qdot)
-    omega = tuple(sympy.expand(to_symbols(2 * c)) for c in w[1:])
-    scalar = sympy.expand(to_symbols(2 * w[0]))
-    return angles, rates, omega, scalar
+    return tuple(2 * c for c in w[1:]), 2 * w[0]
 
 
 def rate_jacobian(omega: Sequence, rates: Sequence) -> sympy.Matrix:

@@ -1,0 +1,131 @@
+"""Symbols, derived reference forms and evidence helpers shared by the audit entries.
+
+Every reference form here is derived (from the Hamilton table, the rotor algebra or
+rotation matrices), and the expensive ones are cached so the whole audit derives each
+only once per process.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Sequence
+from functools import lru_cache
+
+import sympy
+
+from .. import hamilton, rotations, trig
+from ..derivation import Step, show, step
+
+# The paper's Euler angles (ψ precession, θ nutation, φ spin) and their rates.
+PSI, THETA, PHI = sympy.symbols("ψ θ φ", real=True)
+ANGLES = (PSI, THETA, PHI)
+RATE_NAMES = ("ψ̇", "θ̇", "φ̇")
+PSID, THETAD, PHID = sympy.symbols(RATE_NAMES, real=True)
+RATES = (PSID, THETAD, PHID)
+# Body angular velocity components (ωx3, ωy3, ωz3) and a vector v.
+WX, WY, WZ = sympy.symbols("ωx ωy ωz", real=True)
+OMEGA = (WX, WY, WZ)
+V = sympy.symbols("v1:4", real=True)
+Q = hamilton.symbols("q")
+Q0, Q1, Q2, Q3 = Q
+P = hamilton.symbols("p")
+
+#: A fixed, exactly unit quaternion for counterexamples: (1, 2, 3, 4)/√30 -> rational
+#: squares make every matrix entry rational.
+Q_SAMPLE = tuple(sympy.Rational(c) / sympy.sqrt(30) for c in (1, 2, 3, 4))
+#: Fixed Euler angles for counterexamples (radians), chosen with no symmetry.
+ANGLE_SAMPLE = {PSI: sympy.Rational(3, 10), THETA: sympy.Rational(1, 2), PHI: sympy.Rational(7, 10)}
+
+
+def c2(a):
+    return sympy.cos(a / 2)
+
+
+def s2(a):
+    return sympy.sin(a / 2)
+
+
+@lru_cache(maxsize=None)
+def zyz_quaternion() -> hamilton.Quat:
+    """q_z(ψ) q_y(θ) q_z(φ): intrinsic z-y'-z'', body to space."""
+    return rotations.euler_quaternion("ZYZ", ANGLES)
+
+
+@lru_cache(maxsize=None)
+def zyz_matrix() -> sympy.Matrix:
+    """Rz(ψ) Ry(θ) Rz(φ): the same rotation as a matrix, body to space (active)."""
+    return rotations.euler_matrix("ZYZ", ANGLES)
+
+
+@lru_cache(maxsize=None)
+def zyz_consistent() -> Step:
+    """Our own check: the quaternion and matrix constructions of z-y'-z'' agree."""
+    return step(
+        "M(q_z(ψ) q_y(θ) q_z(φ)) = Rz(ψ) Ry(θ) Rz(φ) (quaternion and matrix routes agree)",
+        "entry-wise trigonometric identity",
+        trig.matrices_equal(hamilton.rotation_matrix(zyz_quaternion()), zyz_matrix()),
+    )
+
+
+@lru_cache(maxsize=None)
+def zyz_body_rates() -> tuple[tuple[sympy.Expr, ...], Step]:
+    """ω in the body frame from the Euler rates, derived three ways that must agree:
+    the axis-by-axis closed form, [ω]× = Rᵀ Ṙ, and (0, ω) = 2 q* q̇."""
+    omega = rotations.body_rates_by_axes("ZYZ", ANGLES, RATES)
+    omega_m = rotations.body_rates_from_matrix("ZYZ", ANGLES, RATES)
+    omega_q, scalar = rotations.body_rates_from_quaternion("ZYZ", ANGLES, RATES)
+    agree = trig.all_identities(omega, omega_m) and trig.all_identities(omega, omega_q)
+    check = step(
+        "body ω from Euler rates: the axis sum, [ω]× = Rᵀ Ṙ and (0, ω) = 2 q* q̇ agree",
+        "ω = " + show(omega) + "; the scalar part of 2 q* q̇ vanishes",
+        agree and trig.is_zero(scalar),
+    )
+    return omega, check
+
+
+def first_difference(a: Sequence, b: Sequence, point: dict) -> str:
+    """'entry k: a = x, b = y' at the first entry where a and b differ at ``point``."""
+    for k, (x, y) in enumerate(zip(a, b, strict=True)):
+        xv = sympy.nsimplify(sympy.sympify(x).subs(point))
+        yv = sympy.nsimplify(sympy.sympify(y).subs(point))
+        if sympy.simplify(xv - yv) != 0:
+            return f"entry {k}: {sympy.sstr(sympy.N(xv, 6))} vs {sympy.sstr(sympy.N(yv, 6))}"
+    return "no difference at this point"
+
+
+def numeric(expr, point: dict, digits: int = 6) -> str:
+    return sympy.sstr(sympy.N(sympy.sympify(expr).subs(point), digits))
+
+
+def all_zero(exprs: Sequence) -> bool:
+    return all(sympy.expand(e) == 0 for e in exprs)
+
+
+def polys_equal(a: Sequence, b: Sequence) -> bool:
+    """Exact polynomial equality of two sequences of expressions."""
+    return all(sympy.expand(x - y) == 0 for x, y in zip(a, b, strict=True))
+
+
+def trig_equal(a: Sequence, b: Sequence) -> bool:
+    """Exact trigonometric identity, entry by entry."""
+    return all(trig.is_identity(x, y) for x, y in zip(a, b, strict=True))
+
+
+def matrix_str(m: sympy.Matrix) -> str:
+    return "[" + "; ".join(", ".join(show(x) for x in m.row(r)) for r in range(m.rows)) + "]"
+
+
+def evaluate(f: Callable, point: dict):
+    return sympy.sympify(f).subs(point)
+
+
+def on_unit_sphere(expr, q=Q) -> sympy.Expr:
+    """Remainder of expr modulo q0² + q1² + q2² + q3² − 1 (zero iff it vanishes for unit q).
+
+    The divisor is monic in q0, so the remainder is canonical (degree ≤ 1 in q0).
+    """
+    return sympy.expand(sympy.rem(sympy.expand(expr), hamilton.norm2(q) - 1, q[0]))
+
+
+def unit_matrices_equal(a: sympy.Matrix, b: sympy.Matrix) -> bool:
+    """Entry-wise equality for every unit q."""
+    return all(on_unit_sphere(x - y) == 0 for x, y in zip(a, b, strict=True))
