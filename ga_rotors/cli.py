@@ -21,6 +21,7 @@ from .errors import GaRotorsError
 COMMANDS: dict[str, str] = {
     "paper": "ga_rotors.paper",
     "demo": "ga_rotors.demo",
+    "verify": "symbolic.verify",
 }
 
 

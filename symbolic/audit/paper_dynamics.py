@@ -166,12 +166,13 @@ def eq14() -> Finding:
                     "v_B3 = R v_I"),
         ),
         verdict=verdict_of(is_active or is_passive),
-        corrected="R = [Rz(ψ) Ry(θ) Rz(φ)]ᵀ (passive: components in B3 of a vector given in I; "
-        "the paper does not say which way R acts, and (12), (38)-(40) use it this way) with "
-        "entry (2,1) = −cos ψ cos θ sin φ − sin ψ cos φ. The active body-to-space matrix is its "
-        "transpose: " + matrix_str(r),
+        corrected="entry (2,1) = −cos ψ cos θ sin φ − sin ψ cos φ; the matrix is then "
+        "[Rz(ψ) Ry(θ) Rz(φ)]ᵀ, the passive matrix (components in B3 of a vector given in I; the "
+        "paper does not say which way R acts, and (12), (38)-(40) use it this way). The active "
+        "body-to-space matrix is its transpose.",
         evidence=f"entry-wise trigonometric identities; the printed matrix has row 1 · row 2 = "
-        f"{off} ≠ 0 at (0.3, 0.5, 0.7) rad, so it is not a rotation for any sign convention.",
+        f"{off} ≠ 0 at (0.3, 0.5, 0.7) rad, so it is not a rotation for any sign convention. "
+        f"Rz(ψ)Ry(θ)Rz(φ) = {matrix_str(r)}.",
         checks=(
             zyz_consistent(),
             step("with entry (2,1) corrected the matrix is the transpose of Rz(ψ)Ry(θ)Rz(φ)",

@@ -351,15 +351,18 @@ def eq12() -> Finding:
                     "rotation"),
         ),
         verdict=verdict_of(is_m),
-        corrected="w = q v q* = M v with M = Qᵀ = " + matrix_str(corrected) + ". The printed Q is "
-        "the passive (direction-cosine) matrix, Q v = q* v q, which is how (38)-(40) use it.",
+        corrected="w = q v q* = Qᵀ v: the matrix of (10) is the transpose of Q (the q0 terms "
+        "off the diagonal change sign), M = [1 − 2(q2² + q3²), 2(q1q2 − q0q3), 2(q1q3 + q0q2); "
+        "2(q1q2 + q0q3), 1 − 2(q1² + q3²), 2(q2q3 − q0q1); 2(q1q3 − q0q2), 2(q2q3 + q0q1), "
+        "1 − 2(q1² + q2²)]. The printed Q is the passive (direction-cosine) matrix, "
+        "Q v = q* v q, which is how (38)-(40) use it.",
         evidence=f"Q = M(q)ᵀ on |q| = 1, exactly. Counterexample at q = (1, 2, 3, 4)/√30, "
         f"v = e1: q v q* = {w_true}, Q v = {w_printed}.",
         checks=(
             step("M(q) read off q (0, v) q* equals the rotor-sandwich matrix",
                  "see 'Rotor sandwich' derivation", rotors.rotor_sandwich().ok),
-            step("M(q) = the textbook unit form on |q| = 1", matrix_str(corrected),
-                 unit_matrices_equal(m, corrected)),
+            step("M(q) = the textbook unit form on |q| = 1 (the corrected form above)",
+                 matrix_str(corrected), unit_matrices_equal(m, corrected)),
         ),
         critical=True,
         notes="The paper's own chain (12) -> (14) -> (38)-(40) is consistent because (14) is "
