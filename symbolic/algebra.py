@@ -125,7 +125,9 @@ class CliffordAlgebra:
 
     @cached_property
     def _table(self) -> dict[tuple[Blade, Blade], tuple[int, Blade]]:
-        return {(a, b): blade_product(a, b, self.signature) for a in self.blades for b in self.blades}
+        return {
+            (a, b): blade_product(a, b, self.signature) for a in self.blades for b in self.blades
+        }
 
     def product_of_blades(self, a: Blade, b: Blade) -> tuple[int, Blade]:
         """(sign, blade) with e_a e_b = sign e_blade (table lookup)."""
@@ -317,7 +319,9 @@ class Multivector:
 
     # -- involutions and projections ---------------------------------------------------
     def _signed(self, sign_of_grade: Callable[[int], int]) -> Multivector:
-        return Multivector(self.algebra, {b: sign_of_grade(len(b)) * c for b, c in self.terms.items()})
+        return Multivector(
+            self.algebra, {b: sign_of_grade(len(b)) * c for b, c in self.terms.items()}
+        )
 
     def reverse(self) -> Multivector:
         """Ã: each blade of grade r gets the sign (-1)^(r(r-1)/2)."""
@@ -342,7 +346,9 @@ class Multivector:
 
     def subs(self, *args, **kwargs) -> Multivector:
         """Substitute in every coefficient (``sympy.Expr.subs`` arguments)."""
-        return Multivector(self.algebra, {b: c.subs(*args, **kwargs) for b, c in self.terms.items()})
+        return Multivector(
+            self.algebra, {b: c.subs(*args, **kwargs) for b, c in self.terms.items()}
+        )
 
     def applyfunc(self, f: Callable[[sympy.Expr], sympy.Expr]) -> Multivector:
         return Multivector(self.algebra, {b: f(c) for b, c in self.terms.items()})

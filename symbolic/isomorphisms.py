@@ -25,7 +25,7 @@ from __future__ import annotations
 
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
-from functools import lru_cache
+from functools import cache
 from itertools import permutations, product
 
 import sympy
@@ -73,7 +73,7 @@ def _bijective_step(algebra: CliffordAlgebra, coordinates: Sequence[Sequence]) -
     )
 
 
-@lru_cache(maxsize=None)
+@cache
 def reals_from_cl00() -> Isomorphism:
     """Cl(0,0) ≅ ℝ: the algebra of a zero-dimensional space is its scalars.
 
@@ -85,10 +85,11 @@ def reals_from_cl00() -> Isomorphism:
     cl = CliffordAlgebra(0, 0)
     steps = (
         step("Cl(0,0) has the single basis blade 1", f"blades: {cl.blades}", cl.blades == ((),)),
-        _homomorphism_step(cl, lambda m: m[()], lambda x, y: x * y,
-                           lambda x, y: sympy.expand(x - y) == 0, "ℝ"),
+        _homomorphism_step(
+            cl, lambda m: m[()], lambda x, y: x * y, lambda x, y: sympy.expand(x - y) == 0, "ℝ"
+        ),
         _bijective_step(cl, [[1]]),
-    )  # fmt: skip
+    )
     return Isomorphism(
         "Cl(0,0) ≅ ℝ",
         "With no basis vectors, multivectors are real numbers and the geometric product is "
@@ -99,7 +100,7 @@ def reals_from_cl00() -> Isomorphism:
     )
 
 
-@lru_cache(maxsize=None)
+@cache
 def complex_from_cl01() -> Isomorphism:
     """Cl(0,1) ≅ ℂ with φ(a + b e1) = a + b i.
 
@@ -118,15 +119,14 @@ def complex_from_cl01() -> Isomorphism:
     z = cl.multivector({(): x[0], (1,): x[1]})
     steps = (
         step("e1² = -1, like i² = -1", f"e1 e1 = {e1 * e1}", e1 * e1 == -1),
-        _homomorphism_step(cl, phi, lambda u, v: u * v,
-                           lambda u, v: sympy.expand(u - v) == 0, "ℂ"),
+        _homomorphism_step(cl, phi, lambda u, v: u * v, lambda u, v: sympy.expand(u - v) == 0, "ℂ"),
         _bijective_step(cl, [[1, 0], [0, 1]]),
         step(
             "no zero divisors: z z̄ = |z|² (z̄ the Clifford conjugate) vanishes only at z = 0",
             f"z = {z};  z z̄ = {z * z.conjugate()}",
             (z * z.conjugate()) == x[0] ** 2 + x[1] ** 2,
         ),
-    )  # fmt: skip
+    )
     return Isomorphism(
         "Cl(0,1) ≅ ℂ",
         "One basis vector squaring to -1 plays the imaginary unit: φ(a + b e1) = a + b i.",
@@ -141,7 +141,7 @@ def _cl02_to_h(m: Multivector) -> hamilton.Quat:
     return (m[()], m[(1,)], m[(2,)], m[(1, 2)])
 
 
-@lru_cache(maxsize=None)
+@cache
 def quaternions_from_cl02() -> Isomorphism:
     """Cl(0,2) ≅ ℍ with i = e1, j = e2, k = e1e2 (the paper's §5, with the signs restored).
 
@@ -193,7 +193,7 @@ def quaternions_from_cl02() -> Isomorphism:
     )
 
 
-@lru_cache(maxsize=None)
+@cache
 def split_complex_from_cl10() -> Isomorphism:
     """Cl(1,0) ≅ ℝ⊕ℝ with φ(a + b e1) = (a + b, a - b), and the zero divisor (1 + e1)(1 - e1).
 
@@ -212,16 +212,24 @@ def split_complex_from_cl10() -> Isomorphism:
     steps = (
         step("e1² = +1", f"e1 e1 = {e1 * e1}", e1 * e1 == 1),
         _homomorphism_step(
-            cl, phi, lambda u, v: (u[0] * v[0], u[1] * v[1]),
+            cl,
+            phi,
+            lambda u, v: (u[0] * v[0], u[1] * v[1]),
             lambda u, v: all(sympy.expand(s - t) == 0 for s, t in zip(u, v, strict=True)),
             "ℝ⊕ℝ (componentwise product)",
         ),
         _bijective_step(cl, [[1, 1], [1, -1]]),
-        step("zero divisor: (1 + e1)(1 - e1) = 0 with both factors nonzero",
-             f"(1 + e1)(1 - e1) = {zd}", zd.is_zero()),
-        step("idempotents: ((1 ± e1)/2)² = (1 ± e1)/2",
-             f"((1 + e1)/2)² = {((1 + e1) / 2) ** 2}", ((1 + e1) / 2) ** 2 == (1 + e1) / 2),
-    )  # fmt: skip
+        step(
+            "zero divisor: (1 + e1)(1 - e1) = 0 with both factors nonzero",
+            f"(1 + e1)(1 - e1) = {zd}",
+            zd.is_zero(),
+        ),
+        step(
+            "idempotents: ((1 ± e1)/2)² = (1 ± e1)/2",
+            f"((1 + e1)/2)² = {((1 + e1) / 2) ** 2}",
+            ((1 + e1) / 2) ** 2 == (1 + e1) / 2,
+        ),
+    )
     return Isomorphism(
         "Cl(1,0) ≅ ℝ⊕ℝ",
         "A basis vector squaring to +1 gives the split-complex numbers, which are two copies "
@@ -242,7 +250,7 @@ CL20_MATRICES: dict[str, sympy.Matrix] = {
 }
 
 
-@lru_cache(maxsize=None)
+@cache
 def matrices_from_cl20() -> Isomorphism:
     """Cl(2,0) ≅ M₂(ℝ) through e1 -> diag(1, -1), e2 -> [[0, 1], [1, 0]].
 
@@ -261,25 +269,38 @@ def matrices_from_cl20() -> Isomorphism:
     zd = (1 + e1) * (1 - e1)
     coords = [list(CL20_MATRICES[names[b]]) for b in cl.blades]
     steps = (
-        step("e1² = e2² = +1, (e1e2)² = -1",
-             f"e1 e1 = {e1 * e1}, e2 e2 = {e2 * e2}, e12 e12 = {(e1 * e2) ** 2}",
-             e1 * e1 == 1 and e2 * e2 == 1 and (e1 * e2) ** 2 == -1),
-        step("the matrices satisfy the same relations and e1 e2 -> the matrix of e12",
-             f"E1 E2 = {(CL20_MATRICES['e1'] * CL20_MATRICES['e2']).tolist()}",
-             CL20_MATRICES["e1"] * CL20_MATRICES["e2"] == CL20_MATRICES["e12"]
-             and CL20_MATRICES["e1"] ** 2 == sympy.eye(2)
-             and CL20_MATRICES["e2"] ** 2 == sympy.eye(2)),
-        _homomorphism_step(cl, phi, lambda u, v: u * v,
-                           lambda u, v: (u - v).applyfunc(sympy.expand).is_zero_matrix,
-                           "M₂(ℝ)"),
+        step(
+            "e1² = e2² = +1, (e1e2)² = -1",
+            f"e1 e1 = {e1 * e1}, e2 e2 = {e2 * e2}, e12 e12 = {(e1 * e2) ** 2}",
+            e1 * e1 == 1 and e2 * e2 == 1 and (e1 * e2) ** 2 == -1,
+        ),
+        step(
+            "the matrices satisfy the same relations and e1 e2 -> the matrix of e12",
+            f"E1 E2 = {(CL20_MATRICES['e1'] * CL20_MATRICES['e2']).tolist()}",
+            CL20_MATRICES["e1"] * CL20_MATRICES["e2"] == CL20_MATRICES["e12"]
+            and CL20_MATRICES["e1"] ** 2 == sympy.eye(2)
+            and CL20_MATRICES["e2"] ** 2 == sympy.eye(2),
+        ),
+        _homomorphism_step(
+            cl,
+            phi,
+            lambda u, v: u * v,
+            lambda u, v: (u - v).applyfunc(sympy.expand).is_zero_matrix,
+            "M₂(ℝ)",
+        ),
         _bijective_step(cl, coords),
-        step("zero divisor: (1 + e1)(1 - e1) = 0, i.e. diag(2, 0) diag(0, 2) = 0",
-             f"(1 + e1)(1 - e1) = {zd}; φ(1 + e1) = {phi(1 + e1).tolist()}, "
-             f"φ(1 - e1) = {phi(1 - e1).tolist()}",
-             zd.is_zero() and (phi(1 + e1) * phi(1 - e1)).is_zero_matrix),
-        step("so e1 has no quaternion image: i² = -1 but e1² = +1",
-             f"e1 e1 = {e1 * e1}", e1 * e1 != -1),
-    )  # fmt: skip
+        step(
+            "zero divisor: (1 + e1)(1 - e1) = 0, i.e. diag(2, 0) diag(0, 2) = 0",
+            f"(1 + e1)(1 - e1) = {zd}; φ(1 + e1) = {phi(1 + e1).tolist()}, "
+            f"φ(1 - e1) = {phi(1 - e1).tolist()}",
+            zd.is_zero() and (phi(1 + e1) * phi(1 - e1)).is_zero_matrix,
+        ),
+        step(
+            "so e1 has no quaternion image: i² = -1 but e1² = +1",
+            f"e1 e1 = {e1 * e1}",
+            e1 * e1 != -1,
+        ),
+    )
     return Isomorphism(
         "Cl(2,0) ≅ M₂(ℝ)",
         "Two basis vectors squaring to +1 generate all real 2×2 matrices: the same dimension "
@@ -315,7 +336,8 @@ class Assignment:
 
     def images(self) -> tuple[str, str, str]:
         return tuple(
-            ("-" if s < 0 else "") + BIVECTORS[p][0] for s, p in zip(self.signs, self.perm, strict=True)
+            ("-" if s < 0 else "") + BIVECTORS[p][0]
+            for s, p in zip(self.signs, self.perm, strict=True)
         )  # type: ignore[return-value]
 
     def label(self) -> str:
@@ -382,7 +404,7 @@ def rotor_to_quaternion(r: Multivector) -> hamilton.Quat:
     return (r[()], -r[(2, 3)], r[(1, 3)], -r[(1, 2)])
 
 
-@lru_cache(maxsize=None)
+@cache
 def even_cl3_assignments() -> EvenSubalgebra:
     """All 48 signed assignments of i, j, k to e23, e31, e12, classified.
 
@@ -404,24 +426,43 @@ def even_cl3_assignments() -> EvenSubalgebra:
     hom = quaternion_to_rotor(hamilton.mul(q, p)) == quaternion_to_rotor(q) * quaternion_to_rotor(p)
     counts = {k: sum(a.kind == k for a in assignments) for k in ("isomorphism", "anti-isomorphism")}
     steps = (
-        step("the bivectors square to -1 and multiply like reversed quaternion units",
-             f"e23² = {e23 * e23}, e31² = {e31 * e31}, e12² = {e12 * e12}; "
-             f"e23 e31 = {e23 * e31}, e31 e12 = {e31 * e12}, e12 e23 = {e12 * e23}",
-             all(b * b == -1 for b in (e23, e31, e12)) and e23 * e31 == -e12),
-        step("48 signed assignments: 24 isomorphisms, 24 anti-isomorphisms, none neither",
-             f"counts: {counts}", counts == {"isomorphism": 24, "anti-isomorphism": 24}),
-        step("isomorphism exactly when det(signed permutation) = -1",
-             "det = -1 for every isomorphism, +1 for every anti-isomorphism",
-             all((a.kind == "isomorphism") == (a.det == -1) for a in assignments)),
-        step("the numeric package's map i -> -e23, j -> -e31, k -> -e12 is an isomorphism",
-             chosen.label() + f": {chosen.kind}", chosen.kind == "isomorphism"),
-        step("... for general quaternions: φ(q p) = φ(q) φ(p)",
-             f"φ(q) = {quaternion_to_rotor(q)}", hom),
-        step("the 'obvious' map i -> e23, j -> e31, k -> e12 is an anti-isomorphism",
-             obvious.label() + f": {obvious.kind}", obvious.kind == "anti-isomorphism"),
-        step("in clifford's blade order e31 = -e13, so φ(q) = w - x e23 + y e13 - z e12",
-             f"e3 e1 = {CL3.blade(3, 1)}", CL3.blade(3, 1) == -CL3.blade(1, 3)),
-    )  # fmt: skip
+        step(
+            "the bivectors square to -1 and multiply like reversed quaternion units",
+            f"e23² = {e23 * e23}, e31² = {e31 * e31}, e12² = {e12 * e12}; "
+            f"e23 e31 = {e23 * e31}, e31 e12 = {e31 * e12}, e12 e23 = {e12 * e23}",
+            all(b * b == -1 for b in (e23, e31, e12)) and e23 * e31 == -e12,
+        ),
+        step(
+            "48 signed assignments: 24 isomorphisms, 24 anti-isomorphisms, none neither",
+            f"counts: {counts}",
+            counts == {"isomorphism": 24, "anti-isomorphism": 24},
+        ),
+        step(
+            "isomorphism exactly when det(signed permutation) = -1",
+            "det = -1 for every isomorphism, +1 for every anti-isomorphism",
+            all((a.kind == "isomorphism") == (a.det == -1) for a in assignments),
+        ),
+        step(
+            "the numeric package's map i -> -e23, j -> -e31, k -> -e12 is an isomorphism",
+            chosen.label() + f": {chosen.kind}",
+            chosen.kind == "isomorphism",
+        ),
+        step(
+            "... for general quaternions: φ(q p) = φ(q) φ(p)",
+            f"φ(q) = {quaternion_to_rotor(q)}",
+            hom,
+        ),
+        step(
+            "the 'obvious' map i -> e23, j -> e31, k -> e12 is an anti-isomorphism",
+            obvious.label() + f": {obvious.kind}",
+            obvious.kind == "anti-isomorphism",
+        ),
+        step(
+            "in clifford's blade order e31 = -e13, so φ(q) = w - x e23 + y e13 - z e12",
+            f"e3 e1 = {CL3.blade(3, 1)}",
+            CL3.blade(3, 1) == -CL3.blade(1, 3),
+        ),
+    )
     table = ["  #  assignment                            det  kind"]
     for n, a in enumerate(assignments, 1):
         table.append(f"  {n:2d} {a.label():37s} {a.det:+d}   {a.kind}")

@@ -111,8 +111,10 @@ def unskew(m: sympy.Matrix) -> tuple[sympy.Expr, sympy.Expr, sympy.Expr]:
 
 def time_derivative(expr, angles: Sequence, rates: Sequence):
     """d/dt of an expression (or matrix) in the angles, by the chain rule Σ ∂/∂a · ȧ."""
-    return sum((sympy.diff(expr, a) * r for a, r in zip(angles, rates, strict=True)),
-               sympy.zeros(*expr.shape) if isinstance(expr, sympy.MatrixBase) else sympy.S.Zero)  # fmt: skip
+    return sum(
+        (sympy.diff(expr, a) * r for a, r in zip(angles, rates, strict=True)),
+        sympy.zeros(*expr.shape) if isinstance(expr, sympy.MatrixBase) else sympy.S.Zero,
+    )
 
 
 def body_rates_by_axes(seq: str, angles: Sequence, rates: Sequence) -> tuple[sympy.Expr, ...]:

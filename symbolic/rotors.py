@@ -21,7 +21,7 @@ True
 from __future__ import annotations
 
 from dataclasses import dataclass
-from functools import lru_cache
+from functools import cache
 
 import sympy
 
@@ -63,7 +63,14 @@ def rodrigues_matrix(axis, angle) -> sympy.Matrix:
     """cos α I + sin α [u]× + (1 - cos α) u uᵀ: rotation by α about the unit vector u."""
     u = sympy.Matrix(axis)
     ux = sympy.Matrix([[0, -u[2], u[1]], [u[2], 0, -u[0]], [-u[1], u[0], 0]])
-    return sympy.cos(angle) * sympy.eye(3) + sympy.sin(angle) * ux + (1 - sympy.cos(angle)) * u * u.T
+    return (
+        sympy.cos(angle) * sympy.eye(3) + sympy.sin(angle) * ux + (1 - sympy.cos(angle)) * u * u.T
+    )
+
+
+def axis_angle(angle, axis) -> hamilton.Quat:
+    """cos(angle/2) + u sin(angle/2): the unit quaternion of a rotation by angle about unit u."""
+    return (sympy.cos(angle / 2), *(c * sympy.sin(angle / 2) for c in axis))
 
 
 def spherical_unit(lat, lon) -> tuple[sympy.Expr, sympy.Expr, sympy.Expr]:
@@ -79,7 +86,7 @@ class Sandwich(Derivation):
     matrix: sympy.Matrix | None = None
 
 
-@lru_cache(maxsize=None)
+@cache
 def rotor_sandwich() -> Sandwich:
     """The rotor sandwich equals the quaternion rotation operator, entry by entry."""
     q = hamilton.symbols("q")
@@ -92,31 +99,51 @@ def rotor_sandwich() -> Sandwich:
     norm2 = hamilton.norm2(q)
     alpha, lat, lon = sympy.symbols("alpha lat lon", real=True)
     u = spherical_unit(lat, lon)
-    q_axis = (sympy.cos(alpha / 2), *(c * sympy.sin(alpha / 2) for c in u))
+    q_axis = axis_angle(alpha, u)
     m_axis = hamilton.rotation_matrix(q_axis)
     steps = (
-        step("R̃ = φ(q*): reversing a rotor conjugates its quaternion",
-             f"R = {r}\nR̃ = {r.reverse()}", r.reverse() == quaternion_to_rotor(hamilton.conj(q))),
-        step("R v R̃ is a pure vector (grades 0, 2, 3 vanish identically)",
-             f"grades present: {sorted(image.grades)}", image.grades <= {1}),
-        step("R v R̃ = q (0, v) q*, component by component, for every q (no unit assumption)",
-             "\n".join(f"e{k + 1}: {show(c)}" for k, c in enumerate(vector_part(image))),
-             all(sympy.expand(a - b) == 0
-                 for a, b in zip(vector_part(image), from_quaternion, strict=True))),
-        step("its matrix M(q) = ∂(R v R̃)/∂v is the quaternion one",
-             f"M = {show(m_rotor)}", (m_rotor - m).is_zero_matrix),
-        step("for |q| = 1 it is the textbook form: M - M_unit = (|q|² - 1) I",
-             f"M_unit = {show(unit_rotation_matrix(q))}",
-             (m - unit_rotation_matrix(q) - (norm2 - 1) * sympy.eye(3))
-             .applyfunc(sympy.expand).is_zero_matrix),
-        step("M is a rotation up to scale: Mᵀ M = |q|⁴ I and det M = |q|⁶",
-             "expanded exactly",
-             (m.T * m - norm2**2 * sympy.eye(3)).applyfunc(sympy.expand).is_zero_matrix
-             and sympy.expand(m.det() - norm2**3) == 0),
-        step("q = cos(α/2) + u sin(α/2) (|u| = 1) rotates by α about u: M = Rodrigues",
-             "u = (cos lat cos lon, cos lat sin lon, sin lat); entries equal as trig identities",
-             trig.matrices_equal(m_axis, rodrigues_matrix(u, alpha))),
-    )  # fmt: skip
+        step(
+            "R̃ = φ(q*): reversing a rotor conjugates its quaternion",
+            f"R = {r}\nR̃ = {r.reverse()}",
+            r.reverse() == quaternion_to_rotor(hamilton.conj(q)),
+        ),
+        step(
+            "R v R̃ is a pure vector (grades 0, 2, 3 vanish identically)",
+            f"grades present: {sorted(image.grades)}",
+            image.grades <= {1},
+        ),
+        step(
+            "R v R̃ = q (0, v) q*, component by component, for every q (no unit assumption)",
+            "\n".join(f"e{k + 1}: {show(c)}" for k, c in enumerate(vector_part(image))),
+            all(
+                sympy.expand(a - b) == 0
+                for a, b in zip(vector_part(image), from_quaternion, strict=True)
+            ),
+        ),
+        step(
+            "its matrix M(q) = ∂(R v R̃)/∂v is the quaternion one",
+            f"M = {show(m_rotor)}",
+            (m_rotor - m).is_zero_matrix,
+        ),
+        step(
+            "for |q| = 1 it is the textbook form: M - M_unit = (|q|² - 1) I",
+            f"M_unit = {show(unit_rotation_matrix(q))}",
+            (m - unit_rotation_matrix(q) - (norm2 - 1) * sympy.eye(3))
+            .applyfunc(sympy.expand)
+            .is_zero_matrix,
+        ),
+        step(
+            "M is a rotation up to scale: Mᵀ M = |q|⁴ I and det M = |q|⁶",
+            "expanded exactly",
+            (m.T * m - norm2**2 * sympy.eye(3)).applyfunc(sympy.expand).is_zero_matrix
+            and sympy.expand(m.det() - norm2**3) == 0,
+        ),
+        step(
+            "q = cos(α/2) + u sin(α/2) (|u| = 1) rotates by α about u: M = Rodrigues",
+            "u = (cos lat cos lon, cos lat sin lon, sin lat); entries equal as trig identities",
+            trig.matrices_equal(m_axis, rodrigues_matrix(u, alpha)),
+        ),
+    )
     return Sandwich(
         "Rotor sandwich = quaternion rotation operator",
         "With R = φ(q) = w - x e23 - y e31 - z e12, the rotor action v -> R v R̃ is the "
@@ -136,7 +163,7 @@ class Kinematics(Derivation):
     quaternion_rate: tuple[sympy.Expr, ...] = ()
 
 
-@lru_cache(maxsize=None)
+@cache
 def rotor_kinematics() -> Kinematics:
     """dR/dt = ½ R Ω with Ω = -Iω is the quaternion kinematics q̇ = ½ q ⊗ (0, ω)."""
     q = hamilton.symbols("q")
@@ -154,28 +181,44 @@ def rotor_kinematics() -> Kinematics:
     space_v = r * vector(v) * r.reverse()
     cross_space = sympy.Matrix(vector_part(space_w)).cross(sympy.Matrix(vector_part(space_v)))
     steps = (
-        step("Ω = -I ω = -(ω1 e23 + ω2 e31 + ω3 e12) = φ((0, ω))",
-             f"Ω = {big_omega}", big_omega == quaternion_to_rotor(hamilton.pure(w))),
-        step("φ⁻¹(½ R Ω) = ½ q ⊗ (0, ω), component by component",
-             "\n".join(f"{n}: {show(c)}" for n, c in zip("wxyz", quat_rate, strict=True)),
-             hamilton.is_equal(rotor_to_quaternion(rotor_rate), quat_rate)),
-        step("½(Ω v - v Ω) = ω × v: the bivector Ω acts on vectors as the cross product by ω",
-             f"½(Ωv - vΩ) = {commutator}",
-             all(sympy.expand(a - b) == 0
-                 for a, b in zip(vector_part(commutator), cross, strict=True))
-             and commutator.grades <= {1}),
-        step("so a body-fixed v moves as d/dt(R v R̃) = (R ω R̃) × (R v R̃): ω is the body "
-             "angular velocity", "|q|² d/dt(R v R̃) = (R ω R̃) × (R v R̃), expanded exactly "
-             "(for unit q the factor is 1)",
-             velocity.grades <= {1}
-             and all(sympy.expand(a * hamilton.norm2(q) - b) == 0
-                     for a, b in zip(vector_part(velocity), cross_space, strict=True))),
-        step("the space-frame form: q̇ = ½ (0, ω_s) ⊗ q with ω_s = q ω q* / |q|²",
-             "q ⊗ (0, ω) = (0, q ω q*/|q|²) ⊗ q",
-             hamilton.is_equal(
-                 hamilton.scale(hamilton.norm2(q), hamilton.mul(q, hamilton.pure(w))),
-                 hamilton.mul(hamilton.pure(vector_part(space_w)), q))),
-    )  # fmt: skip
+        step(
+            "Ω = -I ω = -(ω1 e23 + ω2 e31 + ω3 e12) = φ((0, ω))",
+            f"Ω = {big_omega}",
+            big_omega == quaternion_to_rotor(hamilton.pure(w)),
+        ),
+        step(
+            "φ⁻¹(½ R Ω) = ½ q ⊗ (0, ω), component by component",
+            "\n".join(f"{n}: {show(c)}" for n, c in zip("wxyz", quat_rate, strict=True)),
+            hamilton.is_equal(rotor_to_quaternion(rotor_rate), quat_rate),
+        ),
+        step(
+            "½(Ω v - v Ω) = ω × v: the bivector Ω acts on vectors as the cross product by ω",
+            f"½(Ωv - vΩ) = {commutator}",
+            all(
+                sympy.expand(a - b) == 0
+                for a, b in zip(vector_part(commutator), cross, strict=True)
+            )
+            and commutator.grades <= {1},
+        ),
+        step(
+            "so a body-fixed v moves as d/dt(R v R̃) = (R ω R̃) × (R v R̃): ω is the body "
+            "angular velocity",
+            "|q|² d/dt(R v R̃) = (R ω R̃) × (R v R̃), expanded exactly (for unit q the factor is 1)",
+            velocity.grades <= {1}
+            and all(
+                sympy.expand(a * hamilton.norm2(q) - b) == 0
+                for a, b in zip(vector_part(velocity), cross_space, strict=True)
+            ),
+        ),
+        step(
+            "the space-frame form: q̇ = ½ (0, ω_s) ⊗ q with ω_s = q ω q* / |q|²",
+            "q ⊗ (0, ω) = (0, q ω q*/|q|²) ⊗ q",
+            hamilton.is_equal(
+                hamilton.scale(hamilton.norm2(q), hamilton.mul(q, hamilton.pure(w))),
+                hamilton.mul(hamilton.pure(vector_part(space_w)), q),
+            ),
+        ),
+    )
     return Kinematics(
         "Rotor kinematics Ṙ = ½ R Ω  ⟺  q̇ = ½ q ⊗ (0, ω)",
         "Because φ is an injective algebra map with φ((0, ω)) = Ω = -Iω, the rotor equation "

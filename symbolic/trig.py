@@ -24,14 +24,14 @@ False
 from __future__ import annotations
 
 from collections.abc import Sequence
-from functools import lru_cache
+from functools import cache
 
 import sympy
 from sympy.polys.domains import EX, QQ
 from sympy.polys.rings import ring
 
 
-@lru_cache(maxsize=None)
+@cache
 def _circle_symbols(angle: sympy.Expr) -> tuple[sympy.Symbol, sympy.Symbol]:
     return sympy.Dummy(f"C_{angle}"), sympy.Dummy(f"S_{angle}")
 
@@ -39,8 +39,12 @@ def _circle_symbols(angle: sympy.Expr) -> tuple[sympy.Symbol, sympy.Symbol]:
 def _de_moivre(m: int, c: sympy.Symbol, s: sympy.Symbol) -> tuple[sympy.Expr, sympy.Expr]:
     """(cos(m h), sin(m h)) as polynomials in c = cos h, s = sin h: parts of (c + i s)^m."""
     n = abs(m)
-    re = sum(sympy.binomial(n, k) * (-1) ** (k // 2) * c ** (n - k) * s**k for k in range(0, n + 1, 2))
-    im = sum(sympy.binomial(n, k) * (-1) ** (k // 2) * c ** (n - k) * s**k for k in range(1, n + 1, 2))
+    re = sum(
+        sympy.binomial(n, k) * (-1) ** (k // 2) * c ** (n - k) * s**k for k in range(0, n + 1, 2)
+    )
+    im = sum(
+        sympy.binomial(n, k) * (-1) ** (k // 2) * c ** (n - k) * s**k for k in range(1, n + 1, 2)
+    )
     return sympy.sympify(re), sympy.sympify(im if m >= 0 else -im)
 
 

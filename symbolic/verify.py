@@ -29,15 +29,27 @@ from pathlib import Path
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument(
-        "--details", nargs="+", metavar="LABEL", default=[],
+        "--details",
+        nargs="+",
+        metavar="LABEL",
+        default=[],
         help="print the full account of these equations: 12 or '(12)', N9, '(19) singular set'",
-    )  # fmt: skip
-    parser.add_argument("--derivations", action="store_true",
-                        help="print the report of every derivation")  # fmt: skip
-    parser.add_argument("--write", metavar="PATH", type=Path,
-                        help="write the audit as Markdown (the project's docs/audit.md)")  # fmt: skip
-    parser.add_argument("--check", metavar="PATH", type=Path,
-                        help="exit 1 if PATH differs from the Markdown the audit generates")  # fmt: skip
+    )
+    parser.add_argument(
+        "--derivations", action="store_true", help="print the report of every derivation"
+    )
+    parser.add_argument(
+        "--write",
+        metavar="PATH",
+        type=Path,
+        help="write the audit as Markdown (the project's docs/audit.md)",
+    )
+    parser.add_argument(
+        "--check",
+        metavar="PATH",
+        type=Path,
+        help="exit 1 if PATH differs from the Markdown the audit generates",
+    )
 
 
 def _write_atomic(path: Path, text: str) -> None:
@@ -73,7 +85,9 @@ def run(args: argparse.Namespace) -> int:
             finding = audit.find(label)
         except KeyError:
             known = ", ".join(f.label for f in audit.findings)
-            raise InputError(f"--details {label!r}: no such equation; known labels: {known}") from None
+            raise InputError(
+                f"--details {label!r}: no such equation; known labels: {known}"
+            ) from None
         print(finding.report())
         print()
     if args.derivations:
@@ -86,17 +100,24 @@ def run(args: argparse.Namespace) -> int:
 
     status = 0
     if not audit.ok:
-        print("ga-rotors verify: a derivation the numeric package depends on FAILED", file=sys.stderr)
+        print(
+            "ga-rotors verify: a derivation the numeric package depends on FAILED", file=sys.stderr
+        )
         status = 1
     elif audit.failed_checks():
-        print("ga-rotors verify: warning: a derivation failed (not one the numeric package uses)",
-              file=sys.stderr)  # fmt: skip
+        print(
+            "ga-rotors verify: warning: a derivation failed (not one the numeric package uses)",
+            file=sys.stderr,
+        )
     if args.write is not None:
         _write_atomic(args.write, audit.markdown())
         print(f"wrote {args.write}")
     if args.check is not None:
         if args.check.read_text(encoding="utf-8") != audit.markdown():
-            print(f"ga-rotors verify: {args.check} is out of date; regenerate it with "
-                  f"'ga-rotors verify --write {args.check}'", file=sys.stderr)  # fmt: skip
+            print(
+                f"ga-rotors verify: {args.check} is out of date; regenerate it with "
+                f"'ga-rotors verify --write {args.check}'",
+                file=sys.stderr,
+            )
             status = 1
     return status

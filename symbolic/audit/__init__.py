@@ -60,7 +60,11 @@ class Audit:
 
     def failed_checks(self) -> list[tuple[str, Step, bool]]:
         """(where, step, critical) for every step of our own derivations that failed."""
-        out = [(f"{f.source} {f.label}", s, f.critical) for f in self.findings for s in f.failed_checks()]
+        out = [
+            (f"{f.source} {f.label}", s, f.critical)
+            for f in self.findings
+            for s in f.failed_checks()
+        ]
         out += [(d.title, s, d.critical) for d in self.derivations for s in d.failures()]
         return out
 
@@ -98,7 +102,9 @@ class Audit:
             state = "ok" if d.ok else "FAILED"
             lines.append(f"  [{state}] {d.title}{'  (critical)' if d.critical else ''}")
         failures = self.failed_checks()
-        checks = sum(len(f.checks) for f in self.findings) + sum(len(d.steps) for d in self.derivations)
+        checks = sum(len(f.checks) for f in self.findings) + sum(
+            len(d.steps) for d in self.derivations
+        )
         lines.append(f"  {checks - len(failures)} of {checks} checked steps hold")
         for where, s, critical in failures:
             lines.append(f"  FAILED{' (critical)' if critical else ''}: {where}: {s.claim}")
@@ -108,8 +114,10 @@ class Audit:
         parts = []
         for source in SOURCES:
             c = self.counts(source)
-            parts.append(f"{source}: {c[Verdict.CORRECT]} correct, {c[Verdict.CONVENTION]} correct "
-                         f"under a stated convention, {c[Verdict.WRONG]} wrong")  # fmt: skip
+            parts.append(
+                f"{source}: {c[Verdict.CORRECT]} correct, {c[Verdict.CONVENTION]} correct "
+                f"under a stated convention, {c[Verdict.WRONG]} wrong"
+            )
         return "; ".join(parts)
 
     def markdown(self) -> str:

@@ -7,8 +7,8 @@ only once per process.
 
 from __future__ import annotations
 
-from collections.abc import Callable, Sequence
-from functools import lru_cache
+from collections.abc import Sequence
+from functools import cache
 
 import sympy
 
@@ -44,19 +44,19 @@ def s2(a):
     return sympy.sin(a / 2)
 
 
-@lru_cache(maxsize=None)
+@cache
 def zyz_quaternion() -> hamilton.Quat:
     """q_z(ψ) q_y(θ) q_z(φ): intrinsic z-y'-z'', body to space."""
     return rotations.euler_quaternion("ZYZ", ANGLES)
 
 
-@lru_cache(maxsize=None)
+@cache
 def zyz_matrix() -> sympy.Matrix:
     """Rz(ψ) Ry(θ) Rz(φ): the same rotation as a matrix, body to space (active)."""
     return rotations.euler_matrix("ZYZ", ANGLES)
 
 
-@lru_cache(maxsize=None)
+@cache
 def zyz_consistent() -> Step:
     """Our own check: the quaternion and matrix constructions of z-y'-z'' agree."""
     return step(
@@ -66,7 +66,7 @@ def zyz_consistent() -> Step:
     )
 
 
-@lru_cache(maxsize=None)
+@cache
 def zyz_body_rates() -> tuple[tuple[sympy.Expr, ...], Step]:
     """ω in the body frame from the Euler rates, derived three ways that must agree:
     the axis-by-axis closed form, [ω]× = Rᵀ Ṙ, and (0, ω) = 2 q* q̇."""
@@ -82,22 +82,8 @@ def zyz_body_rates() -> tuple[tuple[sympy.Expr, ...], Step]:
     return omega, check
 
 
-def first_difference(a: Sequence, b: Sequence, point: dict) -> str:
-    """'entry k: a = x, b = y' at the first entry where a and b differ at ``point``."""
-    for k, (x, y) in enumerate(zip(a, b, strict=True)):
-        xv = sympy.nsimplify(sympy.sympify(x).subs(point))
-        yv = sympy.nsimplify(sympy.sympify(y).subs(point))
-        if sympy.simplify(xv - yv) != 0:
-            return f"entry {k}: {sympy.sstr(sympy.N(xv, 6))} vs {sympy.sstr(sympy.N(yv, 6))}"
-    return "no difference at this point"
-
-
 def numeric(expr, point: dict, digits: int = 6) -> str:
     return sympy.sstr(sympy.N(sympy.sympify(expr).subs(point), digits))
-
-
-def all_zero(exprs: Sequence) -> bool:
-    return all(sympy.expand(e) == 0 for e in exprs)
 
 
 def polys_equal(a: Sequence, b: Sequence) -> bool:
@@ -105,17 +91,8 @@ def polys_equal(a: Sequence, b: Sequence) -> bool:
     return all(sympy.expand(x - y) == 0 for x, y in zip(a, b, strict=True))
 
 
-def trig_equal(a: Sequence, b: Sequence) -> bool:
-    """Exact trigonometric identity, entry by entry."""
-    return all(trig.is_identity(x, y) for x, y in zip(a, b, strict=True))
-
-
 def matrix_str(m: sympy.Matrix) -> str:
     return "[" + "; ".join(", ".join(show(x) for x in m.row(r)) for r in range(m.rows)) + "]"
-
-
-def evaluate(f: Callable, point: dict):
-    return sympy.sympify(f).subs(point)
 
 
 def on_unit_sphere(expr, q=Q) -> sympy.Expr:

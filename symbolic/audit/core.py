@@ -23,21 +23,24 @@ derivation is broken, and ``ga-rotors verify`` exits non-zero.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
-from enum import Enum
+from dataclasses import dataclass
+from enum import StrEnum
 
 from ..derivation import Step
 
 
-class Verdict(str, Enum):
+class Verdict(StrEnum):
     CORRECT = "correct"
     CONVENTION = "correct under a stated convention"
     WRONG = "wrong"
 
     @property
     def short(self) -> str:
-        return {"correct": "correct", "correct under a stated convention": "convention",
-                "wrong": "WRONG"}[self.value]  # fmt: skip
+        return {
+            "correct": "correct",
+            "correct under a stated convention": "convention",
+            "wrong": "WRONG",
+        }[self.value]
 
 
 def verdict_of(holds_as_printed: bool, holds_under_convention: bool = False) -> Verdict:
@@ -96,8 +99,10 @@ class Finding:
             lines.append(f"  reading ({mark}): {r.text}\n      -> {r.outcome}")
         lines.append(f"  verdict: {self.verdict.value}")
         if self.corrected:
-            lines.append(f"  {'corrected form' if self.verdict is Verdict.WRONG else 'convention'}: "
-                         f"{self.corrected}")  # fmt: skip
+            lines.append(
+                f"  {'corrected form' if self.verdict is Verdict.WRONG else 'convention'}: "
+                f"{self.corrected}"
+            )
         lines.append(f"  evidence: {self.evidence}")
         if self.notes:
             lines.append(f"  note: {self.notes}")
@@ -105,12 +110,3 @@ class Finding:
             lines.append(f"  [{'ok' if s.holds else 'FAILED'}] {s.claim}")
             lines.extend(f"       {line}" for line in s.shown.splitlines())
         return "\n".join(lines)
-
-
-@dataclass(frozen=True)
-class Entry:
-    """A registered audit entry: label and the function that computes its finding."""
-
-    source: str
-    label: str
-    compute: object = field(repr=False)

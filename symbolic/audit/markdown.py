@@ -78,17 +78,20 @@ def render(audit) -> str:
     lines = [HEADER, "## Summary", ""]
     for source, title in SOURCES.items():
         c = audit.counts(source)
-        lines.append(f"- **{source}** ({title}): {c[Verdict.CORRECT]} correct, "
-                     f"{c[Verdict.CONVENTION]} correct under a stated convention, "
-                     f"{c[Verdict.WRONG]} wrong.")  # fmt: skip
+        lines.append(
+            f"- **{source}** ({title}): {c[Verdict.CORRECT]} correct, "
+            f"{c[Verdict.CONVENTION]} correct under a stated convention, "
+            f"{c[Verdict.WRONG]} wrong."
+        )
     lines.append("")
     lines.append("| source | equation | topic | verdict | corrected form / convention |")
     lines.append("|---|---|---|---|---|")
     for f in audit.findings:
         label = f"[{f.label}](#{_anchor(f)})"
         fix = f.corrected if f.verdict is not Verdict.CORRECT else ""
-        lines.append(f"| {f.source} | {_cell(label)} | {_cell(f.topic)} | {f.verdict.value} | "
-                     f"{_cell(fix)} |")  # fmt: skip
+        lines.append(
+            f"| {f.source} | {_cell(label)} | {_cell(f.topic)} | {f.verdict.value} | {_cell(fix)} |"
+        )
     lines.append("")
     for source in SOURCES:
         lines.append(f"## {source.capitalize()}")
@@ -98,9 +101,11 @@ def render(audit) -> str:
                 lines.extend(_finding(f))
     lines.append("## Derivations the audit rests on")
     lines.append("")
-    lines.append("Each is also available as a function returning a dataclass (see "
-                 "[isomorphisms.md](isomorphisms.md)); 'critical' marks the ones the numeric "
-                 "package depends on.")  # fmt: skip
+    lines.append(
+        "Each is also available as a function returning a dataclass (see "
+        "[isomorphisms.md](isomorphisms.md)); 'critical' marks the ones the numeric "
+        "package depends on."
+    )
     lines.append("")
     for d in audit.derivations:
         lines.append(f"### {d.title}{' (critical)' if d.critical else ''}")

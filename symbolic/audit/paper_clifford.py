@@ -8,8 +8,6 @@ from __future__ import annotations
 
 from itertools import combinations, combinations_with_replacement, product
 
-import sympy
-
 from .. import isomorphisms
 from ..algebra import CliffordAlgebra, blade_product
 from ..derivation import step
@@ -28,18 +26,25 @@ def eq41() -> Finding:
     cl02 = isomorphisms.quaternions_from_cl02()
     quaternion_with_41 = (CliffordAlgebra(2, 0).basis_vectors()[0] ** 2) == -1
     return Finding(
-        SOURCE, "(41)", "defining relations of the basis vectors",
+        SOURCE,
+        "(41)",
+        "defining relations of the basis vectors",
         printed="e i 2 = 1 e i e j = e j e i para i j",
         reading="e_i² = 1,  e_i e_j = −e_j e_i for i ≠ j",
         reconstruction="the minus of −e_j e_i and the ≠ of i ≠ j were lost; '= 1' is kept "
         "because the text says these are relations of the Euclidean space V.",
         readings=(
-            Reading("e_i² = +1 (Euclidean, as printed)",
-                    f"defines Cl(n,0) (relations hold: {squares and anti}); with i = e1, j = e2 "
-                    f"it gives Cl(2,0) ≅ M₂(ℝ) (i² = +1), not ℍ", tested=True),
-            Reading("e_i² = −1 (a lost minus)",
-                    f"defines Cl(0,n): then C₀,₁ ≅ ℂ and C₀,₂ ≅ ℍ hold ({cl02.ok}), but the text "
-                    "calls V Euclidean"),
+            Reading(
+                "e_i² = +1 (Euclidean, as printed)",
+                f"defines Cl(n,0) (relations hold: {squares and anti}); with i = e1, j = e2 "
+                f"it gives Cl(2,0) ≅ M₂(ℝ) (i² = +1), not ℍ",
+                tested=True,
+            ),
+            Reading(
+                "e_i² = −1 (a lost minus)",
+                f"defines Cl(0,n): then C₀,₁ ≅ ℂ and C₀,₂ ≅ ℍ hold ({cl02.ok}), but the text "
+                "calls V Euclidean",
+            ),
         ),
         verdict=verdict_of(quaternion_with_41, squares and anti and cl20.ok and cl02.ok),
         corrected="(41) is the Euclidean convention, Cl(n,0); the quaternions of (47) live in "
@@ -48,8 +53,11 @@ def eq41() -> Finding:
         evidence="in Cl(3,0) e_i² = 1 and e_i e_j = −e_j e_i (exact); in Cl(2,0) e1² = +1 while "
         "i² = −1, and Cl(2,0) has the zero divisor (1 + e1)(1 − e1) = 0; in Cl(0,2) everything "
         "matches ℍ (see the isomorphism derivations).",
-        checks=(step("Cl(3,0): e_i² = 1, e_i e_j = −e_j e_i", "exact", squares and anti),
-                *cl20.steps[-2:], cl02.steps[0]),  # fmt: skip
+        checks=(
+            step("Cl(3,0): e_i² = 1, e_i e_j = −e_j e_i", "exact", squares and anti),
+            *cl20.steps[-2:],
+            cl02.steps[0],
+        ),
     )
 
 
@@ -61,7 +69,9 @@ def eq42() -> Finding:
         form = sum(s * x[(i + 1,)] ** 2 for i, s in enumerate(algebra.signature))
         ok = ok and x * x == form
     return Finding(
-        SOURCE, "(42)", "fundamental relation x² = B(x, x)",
+        SOURCE,
+        "(42)",
+        "fundamental relation x² = B(x, x)",
         printed="x 2 = B ( x , x )",
         reading="x² = B(x, x) for every x in V",
         reconstruction="nothing lost.",
@@ -84,17 +94,24 @@ def eq43() -> Finding:
     e = algebra.basis_vectors()
     convention_ok = [(v * v)[()] for v in e] == [1, -1] and e[0] * e[1] == -(e[1] * e[0])
     return Finding(
-        SOURCE, "(43)", "signature of the bilinear form",
+        SOURCE,
+        "(43)",
+        "signature of the bilinear form",
         printed="B ( e i , e i ) = 1, i = 1, 2, …, p − 1, i = 1, 2, …, q",
         reading="B(e_i, e_i) = 1 for i = 1, …, p;  B(e_i, e_i) = −1 for i = 1, …, q",
         reconstruction="nothing lost: '− 1' survived; the two lists are read as printed.",
         readings=(
-            Reading("both index lists start at 1, as printed",
-                    f"for p = q = 1 the vector e1 gets B = {sorted(literal[1])}: contradictory "
-                    f"({contradictory})", tested=True),
-            Reading("the q negative vectors numbered after the positive ones, i = p+1, …, p+q, "
-                    "with B(e_i, e_j) = 0 for i ≠ j",
-                    f"the standard Cl(p,q) (Cl(1,1): e1² = 1, e2² = −1: {convention_ok})"),
+            Reading(
+                "both index lists start at 1, as printed",
+                f"for p = q = 1 the vector e1 gets B = {sorted(literal[1])}: contradictory "
+                f"({contradictory})",
+                tested=True,
+            ),
+            Reading(
+                "the q negative vectors numbered after the positive ones, i = p+1, …, p+q, "
+                "with B(e_i, e_j) = 0 for i ≠ j",
+                f"the standard Cl(p,q) (Cl(1,1): e1² = 1, e2² = −1: {convention_ok})",
+            ),
         ),
         verdict=verdict_of(not contradictory, convention_ok),
         corrected="B(e_i, e_i) = +1 for i = 1, …, p and −1 for i = p+1, …, p+q, B(e_i, e_j) = 0 "
@@ -118,7 +135,9 @@ def eq44() -> Finding:
             closed = closed and blade in algebra.blades and sign in (1, -1)
     dimension = len(algebra.blades) == 2**n
     return Finding(
-        SOURCE, "(44)", "general element as a sum over basis blades",
+        SOURCE,
+        "(44)",
+        "general element as a sum over basis blades",
         printed="x = A x A e A",
         reading="x = Σ_A x_A e_A, x_A real, over the 2ⁿ index sets A",
         reconstruction="the summation sign was lost (and, in the text above, the exponent of "
@@ -127,8 +146,13 @@ def eq44() -> Finding:
         evidence="every product of basis vectors reduces to ± one blade e_A with A strictly "
         f"increasing (all words of length ≤ 4 in Cl(3,0) checked), and there are 2ⁿ = "
         f"{2**n} of them for n = 3.",
-        checks=(step("products of basis vectors are ± blades; 2ⁿ blades", "exhaustive, n = 3",
-                     closed and dimension),),  # fmt: skip
+        checks=(
+            step(
+                "products of basis vectors are ± blades; 2ⁿ blades",
+                "exhaustive, n = 3",
+                closed and dimension,
+            ),
+        ),
     )
 
 
@@ -154,18 +178,25 @@ def eq45() -> Finding:
     sign, reduced = blade_product((), repeated, algebra.signature)
     strict_is_basis = sorted(strict) == sorted(algebra.blades) and len(strict) == 2**n
     return Finding(
-        SOURCE, "(45)", "index sets of the basis blades",
+        SOURCE,
+        "(45)",
+        "index sets of the basis blades",
         printed="A = i 1 , i 2 ,⋯ , i k | 1 ≤ i 1 i 2 ≤⋯ ≤ i k ≤ n",
         reading="A = {(i1, …, ik) | 1 ≤ i1 < i2 ≤ ⋯ ≤ ik ≤ n}",
         reconstruction="the braces and one relation sign (between i1 and i2, read as <) were "
         "lost; the other relations print as ≤.",
         readings=(
-            Reading("≤ after i2, as printed",
-                    f"{len(printed)} index sets for n = {n}, more than 2ⁿ = {2**n}; e.g. "
-                    f"e_{''.join(map(str, repeated))} = {sign:+d}·e_{''.join(map(str, reduced))} "
-                    "repeats a lower blade: not a basis", tested=True),
-            Reading("all strict, 1 ≤ i1 < i2 < ⋯ < ik ≤ n",
-                    f"exactly the {len(strict)} = 2ⁿ blades ({strict_is_basis})"),
+            Reading(
+                "≤ after i2, as printed",
+                f"{len(printed)} index sets for n = {n}, more than 2ⁿ = {2**n}; e.g. "
+                f"e_{''.join(map(str, repeated))} = {sign:+d}·e_{''.join(map(str, reduced))} "
+                "repeats a lower blade: not a basis",
+                tested=True,
+            ),
+            Reading(
+                "all strict, 1 ≤ i1 < i2 < ⋯ < ik ≤ n",
+                f"exactly the {len(strict)} = 2ⁿ blades ({strict_is_basis})",
+            ),
         ),
         verdict=verdict_of(len(printed) == 2**n),
         corrected="A = {(i1, …, ik) | 1 ≤ i1 < i2 < ⋯ < ik ≤ n}, as the text itself says before "
@@ -173,8 +204,13 @@ def eq45() -> Finding:
         evidence=f"with ≤ the sets include repeated indices, and e_i e_i = B(e_i, e_i) makes "
         f"those blades multiples of lower ones: {len(printed)} sets for a {2**n}-dimensional "
         "algebra.",
-        checks=(step("strictly increasing index sets are exactly the basis blades",
-                     f"{len(strict)} sets", strict_is_basis),),  # fmt: skip
+        checks=(
+            step(
+                "strictly increasing index sets are exactly the basis blades",
+                f"{len(strict)} sets",
+                strict_is_basis,
+            ),
+        ),
     )
 
 
@@ -186,7 +222,9 @@ def eq46() -> Finding:
             for a in combinations(range(1, algebra.n + 1), k):
                 ok = ok and algebra.blade(*a) == algebra.multivector({a: 1})
     return Finding(
-        SOURCE, "(46)", "basis blade as a product of basis vectors",
+        SOURCE,
+        "(46)",
+        "basis blade as a product of basis vectors",
         printed="e A = e 1 e 2 e i k , e = e 0 = 1",
         reading="e_A = e_{i1} e_{i2} ⋯ e_{ik},  e_∅ = e_0 = 1",
         reconstruction="the subscripts i1, i2 were flattened, and the ⋯ and ∅ lost.",
@@ -200,7 +238,9 @@ def eq46() -> Finding:
 def eq47() -> Finding:
     d = isomorphisms.quaternions_from_cl02()
     return Finding(
-        SOURCE, "(47)", "general element of C₀,₂ as a quaternion",
+        SOURCE,
+        "(47)",
+        "general element of C₀,₂ as a quaternion",
         printed="q ^ = q 0 + q 1 e 1 + q 2 e 2 + q 3 e 1 e 2",
         reading="q̂ = q0 + q1 e1 + q2 e2 + q3 e1e2 in C₀,₂",
         reconstruction="nothing lost.",
@@ -218,7 +258,9 @@ def ijk_text() -> Finding:
     holds = all(v == -1 for v in values)
     literal = all(v == 1 for v in values)
     return Finding(
-        SOURCE, "§5 ijk", "i = e1, j = e2, k = e1e2 satisfy Hamilton's relation",
+        SOURCE,
+        "§5 ijk",
+        "i = e1, j = e2, k = e1e2 satisfy Hamilton's relation",
         printed="se for tomado i=e1, j=e2 e k=e1e2, tem-se a relação fundamental da álgebra dos "
         "quatérnions i2=j2=k2=ijk=1",
         reading="i² = j² = k² = ijk = −1",
@@ -235,10 +277,15 @@ def ijk_text() -> Finding:
 
 
 def low_dimensions_text() -> Finding:
-    ds = (isomorphisms.reals_from_cl00(), isomorphisms.complex_from_cl01(),
-          isomorphisms.quaternions_from_cl02())  # fmt: skip
+    ds = (
+        isomorphisms.reals_from_cl00(),
+        isomorphisms.complex_from_cl01(),
+        isomorphisms.quaternions_from_cl02(),
+    )
     return Finding(
-        SOURCE, "§5 C₀,ₙ", "C₀,₀ ≅ ℝ, C₀,₁ ≅ ℂ, C₀,₂ ≅ ℍ",
+        SOURCE,
+        "§5 C₀,ₙ",
+        "C₀,₀ ≅ ℝ, C₀,₁ ≅ ℂ, C₀,₂ ≅ ℍ",
         printed="a álgebra dos reais quando n=0 é uma álgebra de Clifford C0,0≃ ℝ; já quando "
         "n=1, C0,1≃ ℂ e quando n=2, C0,2≃ ℍ",
         reading="C₀,₀ ≅ ℝ, C₀,₁ ≅ ℂ, C₀,₂ ≅ ℍ",

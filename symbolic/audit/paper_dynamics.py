@@ -10,7 +10,7 @@ body-to-space (active) matrix; its transpose is the passive one.
 
 from __future__ import annotations
 
-from functools import lru_cache
+from functools import cache
 
 import sympy
 from sympy import cos, sin
@@ -38,9 +38,9 @@ PSID, THETAD, PHID = RATES
 WX, WY, WZ = OMEGA
 
 
-@lru_cache(maxsize=None)
+@cache
 def disk_moments():
-    """Moments of a uniform disk (mass m, radius R) about its axis and a diameter, by integration."""
+    """Moments of a uniform disk (mass m, radius R) about its axis and a diameter (integrated)."""
     m, radius, r, t = sympy.symbols("m R r t", positive=True)
     sigma = m / (sympy.pi * radius**2)
     axial = sympy.integrate(sympy.integrate(sigma * r**2 * r, (r, 0, radius)), (t, 0, 2 * sympy.pi))
@@ -57,7 +57,9 @@ def eq13() -> Finding:
     printed = (sympy.Rational(56, 10000), sympy.Rational(28, 10000))
     exact_match = (ix, iy) == printed
     rounded = tuple(sympy.Float(x).round(4) for x in (ix, iy))
-    rounds = all(abs(r - p) < sympy.Rational(1, 10**8) for r, p in zip(rounded, printed, strict=True))
+    rounds = all(
+        abs(r - p) < sympy.Rational(1, 10**8) for r, p in zip(rounded, printed, strict=True)
+    )
     # Torque-free Euler equations depend on the moments only through the ratios
     # (I_y - I_z)/I_x, (I_z - I_x)/I_y, (I_x - I_y)/I_z: compare them.
     ratios_exact = ((iy - iy) / ix, (iy - ix) / iy, (ix - iy) / iy)
@@ -67,18 +69,27 @@ def eq13() -> Finding:
         (printed[0] - printed[1]) / printed[1],
     )
     return Finding(
-        SOURCE, "(13)", "inertia tensor of the disk, numbers",
+        SOURCE,
+        "(13)",
+        "inertia tensor of the disk, numbers",
         printed="B 3 I O = 0.0056 0 0 0 0.0028 0 0 0 0.0028 unidade: [kg.m 2 ]",
         reading="I = diag(0.0056, 0.0028, 0.0028) kg·m², from I_x3 = ½ m R², "
         "I_y3 = I_z3 = ¼ m R² with m = 2 kg, R = 0.075 m",
         reconstruction="matrix brackets and the superscript of m² lost; the fractions ½ and ¼ "
         "of the preceding formula lost their bars ('1 2 m R 2', '1 4 m R 2').",
         readings=(
-            Reading("exact values", f"½mR² = {ix} = {float(ix)}, ¼mR² = {iy} = {float(iy)}: "
-                    f"printed values equal? {exact_match}", tested=True),
-            Reading("rounded to 4 decimals", f"{float(ix)} -> {rounded[0]}, {float(iy)} -> "
-                    f"{rounded[1]}: matches the print ({rounds})"),
-        ),  # fmt: skip
+            Reading(
+                "exact values",
+                f"½mR² = {ix} = {float(ix)}, ¼mR² = {iy} = {float(iy)}: "
+                f"printed values equal? {exact_match}",
+                tested=True,
+            ),
+            Reading(
+                "rounded to 4 decimals",
+                f"{float(ix)} -> {rounded[0]}, {float(iy)} -> "
+                f"{rounded[1]}: matches the print ({rounds})",
+            ),
+        ),
         verdict=verdict_of(exact_match, rounds),
         corrected=f"the printed numbers are ½mR² = {float(ix)} and ¼mR² = {float(iy)} kg·m² "
         "rounded to 4 decimals (0.44 % low); use the exact values. The torque-free motion is "
@@ -87,18 +98,23 @@ def eq13() -> Finding:
         evidence=f"∫ σ r² dA over the disk = {axial}, ∫ σ y² dA = {diametral} (SymPy "
         f"integration); ratios exact {ratios_exact}, printed {ratios_printed}.",
         checks=(
-            step("disk moments by integration: axial ½mR², diametral ¼mR²",
-                 f"axial = {axial}, diametral = {diametral}",
-                 sympy.simplify(axial - m * radius**2 / 2) == 0
-                 and sympy.simplify(diametral - m * radius**2 / 4) == 0),
-            step("the Euler-equation ratios are the same for printed and exact moments",
-                 f"{ratios_printed} = {ratios_exact}", ratios_exact == ratios_printed),
-        ),  # fmt: skip
+            step(
+                "disk moments by integration: axial ½mR², diametral ¼mR²",
+                f"axial = {axial}, diametral = {diametral}",
+                sympy.simplify(axial - m * radius**2 / 2) == 0
+                and sympy.simplify(diametral - m * radius**2 / 4) == 0,
+            ),
+            step(
+                "the Euler-equation ratios are the same for printed and exact moments",
+                f"{ratios_printed} = {ratios_exact}",
+                ratios_exact == ratios_printed,
+            ),
+        ),
     )
 
 
 def eq13_axis() -> Finding:
-    m, radius, axial, diametral = disk_moments()
+    _, _, axial, diametral = disk_moments()
     moments = (axial, diametral, diametral)  # as printed: x3 axial, y3 and z3 diametral
     symmetry_axis = next(k for k in range(3) if moments.count(moments[k]) == 1)
     omega, rates_check = zyz_body_rates()
@@ -107,7 +123,9 @@ def eq13_axis() -> Finding:
     consistent = symmetry_axis == spin_axis
     names = "xyz"
     return Finding(
-        SOURCE, "(13) axes", "which body axis is the disk's symmetry axis",
+        SOURCE,
+        "(13) axes",
+        "which body axis is the disk's symmetry axis",
         printed="I x 3 = 1 2 m R 2 I y 3 = I z 3 = 1 4 m R 2",
         reading="I_x3 = ½ m R², I_y3 = I_z3 = ¼ m R² (x3 is the disk's symmetry axis)",
         reconstruction="fraction bars and the superscript of R² lost.",
@@ -116,7 +134,8 @@ def eq13_axis() -> Finding:
         "spin rate φ̇ along z3, so the symmetry axis must be z3: I = diag(¼, ¼, ½) m R² = "
         "diag(0.0028125, 0.0028125, 0.005625) kg·m². As printed, the paper's gyroscope spins "
         "about a diameter of the disk.",
-        evidence=f"the unique principal moment (the symmetry axis) is along {names[symmetry_axis]}3; "
+        evidence=f"the unique principal moment (the symmetry axis) is along "
+        f"{names[symmetry_axis]}3; "
         f"∂ω/∂φ̇ from eq. (15) is {show(spin_direction)}: the spin is along "
         f"{names[spin_axis]}3.",
         checks=(rates_check,),
@@ -128,14 +147,22 @@ def eq13_axis() -> Finding:
 
 def _printed14(plus_entry_21: bool) -> sympy.Matrix:
     c, s = cos, sin
-    e21 = (-c(PSI) * c(THETA) * s(PHI) + s(PSI) * c(PHI) if plus_entry_21
-           else -c(PSI) * c(THETA) * s(PHI) - s(PSI) * c(PHI))  # fmt: skip
-    return sympy.Matrix([
-        [c(PSI) * c(THETA) * c(PHI) - s(PSI) * s(PHI), c(PSI) * s(PHI) + s(PSI) * c(THETA) * c(PHI),
-         -s(THETA) * c(PHI)],
-        [e21, c(PSI) * c(PHI) - s(PSI) * c(THETA) * s(PHI), s(THETA) * s(PHI)],
-        [c(PSI) * s(THETA), s(PSI) * s(THETA), c(THETA)],
-    ])  # fmt: skip
+    e21 = (
+        -c(PSI) * c(THETA) * s(PHI) + s(PSI) * c(PHI)
+        if plus_entry_21
+        else -c(PSI) * c(THETA) * s(PHI) - s(PSI) * c(PHI)
+    )
+    return sympy.Matrix(
+        [
+            [
+                c(PSI) * c(THETA) * c(PHI) - s(PSI) * s(PHI),
+                c(PSI) * s(PHI) + s(PSI) * c(THETA) * c(PHI),
+                -s(THETA) * c(PHI),
+            ],
+            [e21, c(PSI) * c(PHI) - s(PSI) * c(THETA) * s(PHI), s(THETA) * s(PHI)],
+            [c(PSI) * s(THETA), s(PSI) * s(THETA), c(THETA)],
+        ]
+    )
 
 
 def eq14() -> Finding:
@@ -148,7 +175,9 @@ def eq14() -> Finding:
     gram = (printed * printed.T).subs(ANGLE_SAMPLE)
     off = numeric(gram[0, 1], {})
     return Finding(
-        SOURCE, "(14)", "z-y-z rotation matrix R(ψ, θ, φ)",
+        SOURCE,
+        "(14)",
+        "z-y-z rotation matrix R(ψ, θ, φ)",
         printed="R ψ , θ , ϕ = cos ψ cos θ cos ϕ sen ψ sen ϕ cos ψ sen ϕ + sen ψ cos θ cos ϕ "
         "- sen θ cos ϕ - cos ψ cos θ sen ϕ + sen ψ cos ϕ cos ψ cos ϕ sen ψ cos θ sen ϕ "
         "sen θ sen ϕ cos ψ sen θ sen ψ sen θ cos θ",
@@ -157,13 +186,16 @@ def eq14() -> Finding:
         reconstruction="a minus restored in entries (1,1) and (2,2), which print two products "
         "with no operator; every other sign is as printed, including the '+' of entry (2,1).",
         readings=(
-            Reading("as printed, entry (2,1) = −cψcθsφ + sψcφ",
-                    f"not orthogonal: row 1 · row 2 = {off} at (ψ, θ, φ) = (0.3, 0.5, 0.7); "
-                    f"equals Rz(ψ)Ry(θ)Rz(φ)? {is_active}; its transpose? {is_passive}",
-                    tested=True),
-            Reading("entry (2,1) = −cψcθsφ − sψcφ",
-                    f"exactly [Rz(ψ) Ry(θ) Rz(φ)]ᵀ ({fixed_passive}): the passive matrix, "
-                    "v_B3 = R v_I"),
+            Reading(
+                "as printed, entry (2,1) = −cψcθsφ + sψcφ",
+                f"not orthogonal: row 1 · row 2 = {off} at (ψ, θ, φ) = (0.3, 0.5, 0.7); "
+                f"equals Rz(ψ)Ry(θ)Rz(φ)? {is_active}; its transpose? {is_passive}",
+                tested=True,
+            ),
+            Reading(
+                "entry (2,1) = −cψcθsφ − sψcφ",
+                f"exactly [Rz(ψ) Ry(θ) Rz(φ)]ᵀ ({fixed_passive}): the passive matrix, v_B3 = R v_I",
+            ),
         ),
         verdict=verdict_of(is_active or is_passive),
         corrected="entry (2,1) = −cos ψ cos θ sin φ − sin ψ cos φ; the matrix is then "
@@ -175,8 +207,11 @@ def eq14() -> Finding:
         f"Rz(ψ)Ry(θ)Rz(φ) = {matrix_str(r)}.",
         checks=(
             zyz_consistent(),
-            step("with entry (2,1) corrected the matrix is the transpose of Rz(ψ)Ry(θ)Rz(φ)",
-                 "entry-wise trigonometric identity", fixed_passive),
+            step(
+                "with entry (2,1) corrected the matrix is the transpose of Rz(ψ)Ry(θ)Rz(φ)",
+                "entry-wise trigonometric identity",
+                fixed_passive,
+            ),
         ),
         critical=True,
     )
@@ -196,7 +231,9 @@ def eq15() -> Finding:
     holds = all(trig.is_identity(a, b) for a, b in zip(printed, omega, strict=True))
     space = tuple(zyz_matrix() * sympy.Matrix(omega))
     return Finding(
-        SOURCE, "(15)", "body angular velocity from Euler rates",
+        SOURCE,
+        "(15)",
+        "body angular velocity from Euler rates",
         printed="B 3 ω = ω x 3 ω y 3 ω z 3 = - ψ sen θ cos ϕ + θ sen ϕ ψ sen θ sen ϕ + θ cos ϕ "
         "ψ cos θ + ϕ",
         reading="ω_B3 = (−ψ̇ sθ cφ + θ̇ sφ,  ψ̇ sθ sφ + θ̇ cφ,  ψ̇ cθ + φ̇)",
@@ -217,7 +254,9 @@ def eq16() -> Finding:
     inertia = r.dot(r) * sympy.eye(3) - r * r.T
     holds = ((r.cross(w.cross(r))) - inertia * w).applyfunc(sympy.expand).is_zero_matrix
     return Finding(
-        SOURCE, "(16)", "angular momentum H = I ω",
+        SOURCE,
+        "(16)",
+        "angular momentum H = I ω",
         printed="B 3 H = B 3 I O B 3 ω",
         reading="H_B3 = I_O ω_B3 (all in the body frame B3)",
         reconstruction="nothing lost (superscript frame labels flattened).",
@@ -228,7 +267,7 @@ def eq16() -> Finding:
     )
 
 
-@lru_cache(maxsize=None)
+@cache
 def transport_theorem() -> bool:
     """Rᵀ d/dt (R h) = ḣ + ω × h for R = Rz(ψ)Ry(θ)Rz(φ), h and the angles depending on t."""
     h = sympy.Matrix(sympy.symbols("h1:4", real=True))
@@ -243,7 +282,9 @@ def transport_theorem() -> bool:
 def eq17() -> Finding:
     holds = transport_theorem()
     return Finding(
-        SOURCE, "(17)", "torque = rate of change of H in the rotating frame",
+        SOURCE,
+        "(17)",
+        "torque = rate of change of H in the rotating frame",
         printed="B 3 M = M x 3 M y 3 M z 3 = d d t ( B 3 H )+ B 3 Ω × B 3 H",
         reading="M_B3 = d/dt(H_B3) + Ω × H_B3, with Ω = ω_B3",
         reconstruction="nothing lost (the column brackets were flattened).",
@@ -264,8 +305,9 @@ def eq18() -> Finding:
     # (17) with H = I ω and a diagonal (principal) I: M = I ω̇ + ω × (I ω).
     solved = sympy.solve(
         list(inertia * sympy.Matrix(wd) + w.cross(inertia * w) - sympy.Matrix((mx, my, mz))),
-        wd, dict=True,
-    )[0]  # fmt: skip
+        wd,
+        dict=True,
+    )[0]
     printed = (
         (iy - iz) / ix * WY * WZ + mx / ix,
         (iz - ix) / iy * WZ * WX + my / iy,
@@ -273,11 +315,14 @@ def eq18() -> Finding:
     )
     holds = all(sympy.simplify(solved[d] - p) == 0 for d, p in zip(wd, printed, strict=True))
     # The numeric package's form: I ω̇ = (I ω) × ω + τ.
-    numeric_form = inertia.inv() * (( inertia * w).cross(w) + sympy.Matrix((mx, my, mz)))
+    numeric_form = inertia.inv() * ((inertia * w).cross(w) + sympy.Matrix((mx, my, mz)))
     same = all(sympy.simplify(solved[d] - n) == 0 for d, n in zip(wd, numeric_form, strict=True))
     return Finding(
-        SOURCE, "(18)", "Euler's equations",
-        printed="ω x 3 = ( I y 3 - I z 3 ) I x 3 ω y 3 ω z 3 + M x 3 I x 3 ω y 3 = ( I z 3 - I x 3 ) "
+        SOURCE,
+        "(18)",
+        "Euler's equations",
+        printed="ω x 3 = ( I y 3 - I z 3 ) I x 3 ω y 3 ω z 3 + M x 3 I x 3 ω y 3 = ( I z 3 - "
+        "I x 3 ) "
         "I y 3 ω z 3 ω x 3 + M y 3 I y 3 ω z 3 = ( I x 3 - I y 3 ) I z 3 ω x 3 ω y 3 + M z 3 I z 3",
         reading="ω̇x3 = (Iy3 − Iz3)/Ix3 ωy3 ωz3 + Mx3/Ix3, and cyclically",
         reconstruction="the overdots of ω̇ and the fraction bars were lost; the minus signs of "
@@ -285,8 +330,13 @@ def eq18() -> Finding:
         verdict=verdict_of(holds),
         evidence="solving (17) with H = diag(Ix, Iy, Iz) ω for ω̇ gives the printed form exactly; "
         "it is I ω̇ = (I ω) × ω + M, the form the numeric package uses.",
-        checks=(step("(17) with a principal inertia solved for ω̇ = I⁻¹((Iω) × ω + M)",
-                     show(tuple(solved[d] for d in wd)), same),),  # fmt: skip
+        checks=(
+            step(
+                "(17) with a principal inertia solved for ω̇ = I⁻¹((Iω) × ω + M)",
+                show(tuple(solved[d] for d in wd)),
+                same,
+            ),
+        ),
         critical=True,
     )
 
@@ -314,7 +364,9 @@ def eq19() -> Finding:
     holds = _recovers(printed19(minus=True))
     plus_holds = _recovers(printed19(minus=False))
     return Finding(
-        SOURCE, "(19)", "Euler rates from body angular velocity (inverse of 15)",
+        SOURCE,
+        "(19)",
+        "Euler rates from body angular velocity (inverse of 15)",
         printed="ψ = 1 sen θ ω y 3 sen ϕ ω x 3 cos ϕ θ = ω x 3 sen ϕ + ω y 3 cos ϕ "
         "ϕ = ω z 3 - ψ cos θ",
         reading="ψ̇ = (ωy3 sφ − ωx3 cφ)/sθ,  θ̇ = ωx3 sφ + ωy3 cφ,  φ̇ = ωz3 − ψ̇ cθ",
@@ -328,8 +380,10 @@ def eq19() -> Finding:
         evidence="substituting (15) into the printed right-hand sides returns (ψ̇, θ̇, φ̇) "
         f"identically; the Jacobian of (15) has determinant {show(det)} = −sin θ, so the "
         "inverse exists exactly where sin θ ≠ 0.",
-        checks=(check,
-                step("det ∂ω/∂(ψ̇, θ̇, φ̇) = −sin θ", "trigonometric identity", det_is_minus_sin)),
+        checks=(
+            check,
+            step("det ∂ω/∂(ψ̇, θ̇, φ̇) = −sin θ", "trigonometric identity", det_is_minus_sin),
+        ),
         critical=True,
     )
 
@@ -341,7 +395,9 @@ def eq19_singular() -> Finding:
     every_integer = all(sympy.simplify(v) == 0 for v in at.values())
     odd_missed = sympy.simplify(at[1]) == 0  # n = 1 is not in the printed list
     return Finding(
-        SOURCE, "(19) singular set", "where the Euler-angle kinematics is singular",
+        SOURCE,
+        "(19) singular set",
+        "where the Euler-angle kinematics is singular",
         printed="para θ=nπ, com n= 0,2,4,6… tem-se que senθ0",
         reading="sin θ = 0 for θ = nπ with n = 0, 2, 4, 6, …",
         reconstruction="the '=' of 'sin θ = 0' was lost.",
@@ -355,7 +411,7 @@ def eq19_singular() -> Finding:
     )
 
 
-@lru_cache(maxsize=None)
+@cache
 def sequence_determinants() -> dict[str, sympy.Expr]:
     """det ∂ω_body/∂(rates) for each of the 12 intrinsic sequences, as ±sin b or ±cos b."""
     a, b, c = sympy.symbols("a b c", real=True)
@@ -379,7 +435,9 @@ def other_sequences() -> Finding:
     proper_sin = all(dets[s] in (sin(b), -sin(b)) for s in proper)
     every_other_cos = all(dets[s] in (cos(b), -cos(b)) for s in dets if s != "zyz")
     return Finding(
-        SOURCE, "§4 other sequences", "singularity of other rotation sequences",
+        SOURCE,
+        "§4 other sequences",
+        "singularity of other rotation sequences",
         printed="com uma singularidade em cosθ0, ou seja, para θ=nπ2, com n= 1,3,5…",
         reading="another sequence would be singular where cos θ = 0, θ = nπ/2 with n = 1, 3, 5, …",
         reconstruction="the '=' of 'cos θ = 0' and the fraction bar of nπ/2 were lost.",
@@ -390,8 +448,13 @@ def other_sequences() -> Finding:
         "singular at sin θ = 0 like z-y-z.",
         evidence="det ∂ω/∂(rates) per intrinsic sequence (b the middle angle): "
         + ", ".join(f"{s.upper()}: {show(dets[s])}" for s in dets),
-        checks=(step("Tait-Bryan determinants ∝ cos b, proper Euler ∝ sin b",
-                     f"Tait-Bryan {tait_bryan}, proper {proper}", tb_cos and proper_sin),),
+        checks=(
+            step(
+                "Tait-Bryan determinants ∝ cos b, proper Euler ∝ sin b",
+                f"Tait-Bryan {tait_bryan}, proper {proper}",
+                tb_cos and proper_sin,
+            ),
+        ),
     )
 
 

@@ -1,0 +1,246 @@
+"""The audit: our own derivations hold, each verdict is pinned, the page is current, the
+quoted text is verbatim, and `ga-rotors verify` behaves (exit status, errors, files).
+
+The audit is computed once per test session (symbolic.audit.run_audit is cached).
+"""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+from dataclasses import replace
+from pathlib import Path
+
+import pytest
+
+from ga_rotors.cli import main
+from symbolic.audit import Verdict, run_audit
+from symbolic.derivation import Step
+
+ROOT = Path(__file__).resolve().parent.parent
+
+# Pinned verdicts: a change here is a change in what the audit concludes, and must be
+# argued in the commit that makes it. C = correct, V = correct under a stated convention,
+# W = wrong.
+EXPECTED = {
+    "(1)": "C",
+    "(2)": "C",
+    "(3)": "C",
+    "(4)": "C",
+    "(5)": "C",
+    "(6)": "C",
+    "(7)": "C",
+    "(8)": "C",
+    "(9)": "C",
+    "(10)": "C",
+    "(11)": "C",
+    "(12)": "W",
+    "(13)": "V",
+    "(13) axes": "W",
+    "(14)": "W",
+    "(15)": "C",
+    "(16)": "C",
+    "(17)": "C",
+    "(18)": "C",
+    "(19)": "C",
+    "(19) singular set": "W",
+    "(20)": "C",
+    "(21)": "C",
+    "(22)": "C",
+    "(23)": "W",
+    "(24)": "C",
+    "(25)": "C",
+    "(26)": "C",
+    "(27)": "C",
+    "(28)": "C",
+    "(29)": "W",
+    "(30)": "C",
+    "(31)": "C",
+    "(32)": "C",
+    "(33)": "C",
+    "(34)": "C",
+    "(35)": "W",
+    "(36)": "W",
+    "(37)": "C",
+    "(38)": "V",
+    "(39)": "W",
+    "(40)": "V",
+    "Δt (§4)": "C",
+    "Fig. 5 text": "V",
+    "§4 other sequences": "V",
+    "(41)": "V",
+    "(42)": "C",
+    "(43)": "V",
+    "(44)": "C",
+    "(45)": "W",
+    "(46)": "C",
+    "(47)": "C",
+    "§5 ijk": "C",
+    "§5 C₀,ₙ": "C",
+    "N1": "C",
+    "N2": "C",
+    "N3": "C",
+    "N4": "C",
+    "N5": "C",
+    "N6": "C",
+    "N7": "C",
+    "N8": "C",
+    "N9": "W",
+    "N10": "C",
+    "N11": "C",
+    "N12": "C",
+    "N13": "C",
+    "N14": "C",
+    "N15": "W",
+    "N16": "V",
+    "N17": "W",
+    "N18": "C",
+    "N19": "C",
+    "N20": "V",
+}
+CODES = {"C": Verdict.CORRECT, "V": Verdict.CONVENTION, "W": Verdict.WRONG}
+
+
+@pytest.fixture(scope="module")
+def audit():
+    return run_audit()
+
+
+def test_every_step_of_our_own_derivations_holds(audit):
+    assert audit.failed_checks() == []
+    assert audit.ok
+
+
+def test_every_numbered_paper_equation_is_audited(audit):
+    labels = {f.label for f in audit.findings if f.source == "paper"}
+    assert {f"({n})" for n in range(1, 48)} <= labels
+
+
+def test_verdicts_are_the_pinned_ones(audit):
+    got = {f.label: f.verdict for f in audit.findings}
+    assert got == {label: CODES[c] for label, c in EXPECTED.items()}
+
+
+def test_wrong_and_conventional_findings_state_the_fix(audit):
+    for f in audit.findings:
+        if f.verdict is not Verdict.CORRECT:
+            assert f.corrected, f.label
+        assert f.evidence and f.reading and f.reconstruction, f.label
+
+
+def test_tested_reading_is_marked_once_where_readings_are_listed(audit):
+    for f in audit.findings:
+        if f.readings:
+            assert sum(r.tested for r in f.readings) == 1, f.label
+
+
+def _seeds() -> Path | None:
+    for parent in ROOT.parents:
+        candidate = parent / "shared" / "seeds"
+        if candidate.is_dir():
+            return candidate
+    return None
+
+
+def test_printed_text_is_quoted_verbatim_from_the_sources(audit):
+    seeds = _seeds()
+    if seeds is None:
+        pytest.skip("the source documents (shared/seeds beside the repository) are not here")
+    paper = next(seeds.glob("000_*.txt")).read_text(encoding="utf-8")
+    notes = next(seeds.glob("003_*.txt")).read_text(encoding="utf-8")
+    for f in audit.findings:
+        text = paper if f.source == "paper" else notes
+        assert f.printed in text, f"{f.source} {f.label}: printed text not found verbatim"
+
+
+def test_docs_audit_page_is_the_generator_output(audit):
+    page = ROOT / "docs" / "audit.md"
+    assert page.read_text(encoding="utf-8") == audit.markdown(), (
+        "docs/audit.md is stale: run `python -m ga_rotors verify --write docs/audit.md`"
+    )
+
+
+def test_verify_prints_the_table_and_exits_zero(capsys):
+    assert main(["verify"]) == 0
+    out = capsys.readouterr().out
+    assert "  (36)" in out and "WRONG" in out
+    assert "wrong, with corrected forms:" in out
+    assert "checked steps hold" in out and "FAILED" not in out
+
+
+def test_verify_details_accepts_bare_numbers(capsys):
+    assert main(["verify", "--details", "39", "n9"]) == 0
+    out = capsys.readouterr().out
+    assert "arcsin" in out and "q*/|q|²" in out
+
+
+def test_verify_unknown_label_is_a_clean_error(capsys):
+    assert main(["verify", "--details", "(99)"]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith("ga-rotors: error: --details '(99)': no such equation")
+
+
+def test_verify_write_and_check(tmp_path, capsys):
+    target = tmp_path / "audit.md"
+    assert main(["verify", "--write", str(target)]) == 0
+    assert main(["verify", "--check", str(target)]) == 0
+    target.write_text(target.read_text(encoding="utf-8") + "edited\n", encoding="utf-8")
+    assert main(["verify", "--check", str(target)]) == 1
+    assert "out of date" in capsys.readouterr().err
+    assert [p.name for p in tmp_path.iterdir()] == ["audit.md"]  # no temp file left behind
+
+
+def test_verify_write_into_missing_directory_is_a_clean_error(tmp_path, capsys):
+    assert main(["verify", "--write", str(tmp_path / "nope" / "audit.md")]) == 2
+    assert "expected a path in an existing directory" in capsys.readouterr().err
+
+
+def test_verify_exits_nonzero_when_a_critical_derivation_fails(monkeypatch, capsys, audit):
+    import symbolic.audit as audit_module
+
+    broken = replace(
+        audit.findings[0], checks=(Step("broken on purpose", "", False),), critical=True
+    )
+    monkeypatch.setattr(audit_module, "run_audit", lambda: replace(audit, findings=(broken,)))
+    assert main(["verify"]) == 1
+    assert "depends on FAILED" in capsys.readouterr().err
+
+
+def test_verify_only_warns_when_a_noncritical_derivation_fails(monkeypatch, capsys, audit):
+    import symbolic.audit as audit_module
+
+    broken = replace(
+        audit.findings[1], checks=(Step("broken on purpose", "", False),), critical=False
+    )
+    monkeypatch.setattr(audit_module, "run_audit", lambda: replace(audit, findings=(broken,)))
+    assert main(["verify"]) == 0
+    assert "warning" in capsys.readouterr().err
+
+
+def test_wrong_source_equations_do_not_fail_verify(audit):
+    assert audit.wrong() and audit.ok
+
+
+def test_command_module_imports_only_the_standard_library():
+    code = (
+        "import sys, symbolic.verify\n"
+        "heavy = [m for m in ('sympy', 'numpy', 'clifford', 'scipy', 'ga_rotors') if m in "
+        "sys.modules]\n"
+        "print(heavy)"
+    )
+    out = subprocess.run(
+        [sys.executable, "-c", code], cwd=ROOT, capture_output=True, text=True, check=True
+    ).stdout.strip()
+    assert out == "[]"
+
+
+def test_symbolic_is_independent_of_the_numeric_package():
+    code = (
+        "import sys\n"
+        "import symbolic.audit, symbolic.isomorphisms, symbolic.rotors\n"
+        "print('ga_rotors' in sys.modules)"
+    )
+    out = subprocess.run(
+        [sys.executable, "-c", code], cwd=ROOT, capture_output=True, text=True, check=True
+    ).stdout.strip()
+    assert out == "False"
