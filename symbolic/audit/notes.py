@@ -435,7 +435,12 @@ def n16_matrix_to_quaternion() -> Finding:
         on_unit_sphere(m[a, b] - m[c, d] - 4 * Q0 * Q[k]) == 0 for k, (a, b, c, d) in pairs.items()
     )
     # Largest-diagonal branches (what the numeric package does): 4 q_k² = 1 + 2 m_kk − tr.
-    diag_ok = all(
+    sums_ok = all(
+        on_unit_sphere(m[i, j] + m[j, i] - 4 * Q[i + 1] * Q[j + 1]) == 0
+        for i in range(3)
+        for j in range(i + 1, 3)
+    )
+    diag_ok = sums_ok and all(
         on_unit_sphere(1 + 2 * m[k - 1, k - 1] - tr - 4 * Q[k] ** 2) == 0 for k in (1, 2, 3)
     )
     # At a rotation by π (q0 = 0) the formula divides by zero; near π it loses accuracy.
@@ -479,7 +484,9 @@ def n16_matrix_to_quaternion() -> Finding:
                 q0_ok and off_ok,
             ),
             step(
-                "largest-diagonal branches: 4q_k² = 1 + 2m_kk − trace", "exact on |q| = 1", diag_ok
+                "largest-diagonal branches: 4q_k² = 1 + 2m_kk − trace, m_ij + m_ji = 4q_i q_j",
+                "exact on |q| = 1",
+                diag_ok,
             ),
         ),
         critical=True,
