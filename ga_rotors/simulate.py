@@ -93,7 +93,10 @@ def simulate(
     Parameters
     ----------
     body : RigidBody or array_like (3,) or None
-        Principal moments (principal body frame). ``None`` with a prescribed ω(t).
+        Principal moments, or a :class:`RigidBody` (for one built from a full tensor,
+        ``orientation``, ``angular_velocity`` and the results refer to the tensor's frame;
+        the integration runs in the principal frame, where torque kernels act).
+        ``None`` with a prescribed ω(t).
     orientation : array_like (4,)
         Initial body->space unit quaternion (w, x, y, z).
     angular_velocity : array_like (3,) or PrescribedOmega
@@ -170,6 +173,22 @@ def simulate(
     for p in requested:
         method.check(problem, p)
 
+    # A body given by a full tensor integrates in its principal frame: q_P = q ⊗ P and
+    # ω_P = P* ω P going in, q = q_P ⊗ P* and ω = P ω_P P* coming out.
+    principal = None
+    if rigid is not None and rigid.principal_rotation != (1.0, 0.0, 0.0, 0.0):
+        from . import quaternion as _q
+
+        principal = np.array(rigid.principal_rotation)
+        if "euler" in requested:
+            raise InputError(
+                "paths: the Euler-angle path integrates the angles of the principal frame, "
+                "which differ from those of this body's frame; give the body by its "
+                "principal moments to use it"
+            )
+        q0 = _q.multiply(q0, principal)
+        w0 = _q.rotate(_q.conjugate(principal), w0)
+
     starts = {}
     for p in requested:
         module = _paths.get(p).load()
@@ -220,8 +239,19 @@ def simulate(
         if "angles" in outputs:
             from . import euler
 
-            arrays["angles"] = euler.from_quaternion(q, "ZYZ")
+            q_user = q if principal is None else _q.multiply(q, _q.conjugate(principal))
+            arrays["angles"] = euler.from_quaternion(q_user, "ZYZ")
             components["angles"] = ("psi", "theta", "phi")
+    if principal is not None:
+        back = _q.conjugate(principal)
+        arrays["w"] = _q.rotate(principal, arrays["w"])
+        if "L" in arrays:
+            arrays["L"] = _q.rotate(principal, arrays["L"])
+        for p in requested:
+            spec = _paths.get(p)
+            module = spec.load()
+            q_user = _q.multiply(module.quaternions(arrays[spec.array]), back)
+            arrays[spec.array] = module.initial_state(q_user)
 
     meta = {
         "integrator": method.name,

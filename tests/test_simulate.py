@@ -66,3 +66,33 @@ def test_bad_arguments_name_themselves(kwargs, message):
 def test_step_that_divides_up_to_representation_is_accepted():
     tr = simulate(DISK, Q0, [0.0, 0.0, 1.0], duration=0.3, step=0.1)
     assert tr.meta["steps"] == 3
+
+
+def test_body_from_a_rotated_tensor_moves_like_its_principal_body():
+    # The same physical body, described in a frame turned by P from its principal axes:
+    # space-frame motion (a material vector, L_space, energy) must be identical.
+    from ga_rotors import quaternion as Q
+    from ga_rotors.body import RigidBody
+
+    P = Q.from_axis_angle([1.0, 2.0, -0.5], 0.7)
+    moments = np.array([1.0, 2.0, 2.5])
+    m = Q.to_matrix(P)
+    rotated = RigidBody.from_tensor(m @ np.diag(moments) @ m.T)
+    P_found = np.array(rotated.principal_rotation)
+    q_user = Q.from_axis_angle([0.3, -0.2, 1.0], 0.4)
+    w_user = np.array([0.5, -1.0, 2.0])
+    tr = simulate(rotated, q_user, w_user, duration=2.0, step=1e-3,
+                  paths=("rotor", "quaternion"), outputs=("energy", "L_space"))  # fmt: skip
+    # reference: the principal body, started from the same physical state
+    ref = simulate(RigidBody(tuple(rotated.moments)), Q.multiply(q_user, P_found),
+                   Q.rotate(Q.conjugate(P_found), w_user), duration=2.0, step=1e-3,
+                   paths=("quaternion",), outputs=("energy", "L_space"))  # fmt: skip
+    v_user = np.array([0.2, 0.7, -0.4])  # a material vector in the user's frame
+    got = Q.rotate(tr.q, v_user)
+    expected = Q.rotate(ref.q, Q.rotate(Q.conjugate(P_found), v_user))
+    assert np.allclose(got, expected, rtol=0, atol=1e-13)
+    assert np.allclose(tr.L_space, ref.L_space, rtol=0, atol=1e-13)
+    assert np.allclose(tr.energy, ref.energy, rtol=1e-14)
+    assert np.allclose(tr.q[0], q_user, atol=1e-15) and np.allclose(tr.w[0], w_user, atol=1e-14)
+    with pytest.raises(InputError, match="Euler-angle path integrates the angles of the principal"):
+        simulate(rotated, q_user, w_user, duration=0.1, step=1e-3, paths=("euler",))
