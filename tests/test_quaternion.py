@@ -190,6 +190,21 @@ def test_bad_input_raises_input_error_naming_the_argument(call, message):
     assert issubclass(InputError, ValueError)
 
 
+@pytest.mark.parametrize("bad", [np.nan, np.inf, -np.inf])
+def test_non_finite_deep_in_a_large_batch_is_found_and_located(bad):
+    # the loops check in-loop without an early exit; the slow path must still name the
+    # argument and the exact index
+    q = random_unit(23, 3000).reshape(3, 1000, 4)
+    v = np.random.default_rng(24).normal(size=(3, 1000, 3))
+    v[2, 777, 1] = bad
+    with pytest.raises(InputError, match=r"v: contains .*inf|v: contains nan") as err:
+        Q.rotate(q, v)
+    assert "(2, 777, 1)" in str(err.value)
+    q[1, 5, 0] = 1.5
+    with pytest.raises(InputError, match=r"q: expected unit .* at index \(1, 5\)"):
+        Q.rotate(q, np.ones(3))
+
+
 # --- angle, axis, latitude and longitude ---------------------------------------------------
 
 
