@@ -22,6 +22,7 @@ COMMANDS: dict[str, str] = {
     "paper": "ga_rotors.paper",
     "demo": "ga_rotors.demo",
     "verify": "symbolic.verify",
+    "bench": "ga_rotors.bench",
 }
 
 

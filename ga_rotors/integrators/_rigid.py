@@ -6,8 +6,10 @@ import them as they are.
 
 from __future__ import annotations
 
+from math import cos, sin
+
 from .._jit import jit
-from .._kernels import qconj, qmul, qrotate, quat_from_rotvec
+from .._kernels import qmul, quat_from_rotvec
 
 
 @jit
@@ -30,14 +32,31 @@ def rates(L, inertia):
 
 @jit
 def rotate_about(q, L, axis, angle):
-    """Exact flow about body axis ``axis`` by ``angle``: q ⊗ r and the body vector r* L r."""
+    """Exact flow about body axis ``axis`` (0, 1, 2) by ``angle``: q ⊗ r and r* L r.
+
+    r = (cos ½φ, sin ½φ e_axis). Written out per axis: one sin and one cos of the half
+    angle, the full-angle cos φ = c² − s², sin φ = 2cs for L, and the 8 products of q ⊗ r
+    instead of 16 (a splitting step is dominated by these rotations).
+    """
+    c = cos(0.5 * angle)
+    s = sin(0.5 * angle)
+    cf = c * c - s * s
+    sf = 2.0 * c * s
+    q0, q1, q2, q3 = q
     if axis == 0:
-        r = quat_from_rotvec((angle, 0.0, 0.0))
-    elif axis == 1:
-        r = quat_from_rotvec((0.0, angle, 0.0))
-    else:
-        r = quat_from_rotvec((0.0, 0.0, angle))
-    return qmul(q, r), qrotate(qconj(r), L)
+        return (
+            (q0 * c - q1 * s, q0 * s + q1 * c, q2 * c + q3 * s, q3 * c - q2 * s),
+            (L[0], L[1] * cf + L[2] * sf, L[2] * cf - L[1] * sf),
+        )
+    if axis == 1:
+        return (
+            (q0 * c - q2 * s, q1 * c - q3 * s, q0 * s + q2 * c, q1 * s + q3 * c),
+            (L[0] * cf - L[2] * sf, L[1], L[0] * sf + L[2] * cf),
+        )
+    return (
+        (q0 * c - q3 * s, q1 * c + q2 * s, q2 * c - q1 * s, q0 * s + q3 * c),
+        (L[0] * cf + L[1] * sf, L[1] * cf - L[0] * sf, L[2]),
+    )
 
 
 @jit

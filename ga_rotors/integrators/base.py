@@ -137,6 +137,7 @@ BUILTIN_MODULES = (
     "ga_rotors.integrators.splitting",
     "ga_rotors.integrators.variational",
     "ga_rotors.integrators.implicit",
+    "ga_rotors.integrators.dop853",
 )
 
 
