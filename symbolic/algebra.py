@@ -78,7 +78,15 @@ def blade_product(a: Blade, b: Blade, signature: tuple[int, ...]) -> tuple[int, 
 
 
 def blade_name(blade: Blade) -> str:
-    """'1' for the scalar blade, else 'e' followed by the indices ('e13', 'e1_10' when n > 9)."""
+    """'1' for the scalar blade, else 'e' followed by the indices ('e13', 'e1_10' when n > 9).
+
+    Examples
+    --------
+    >>> blade_name((1, 3))
+    'e13'
+    >>> blade_name(())
+    '1'
+    """
     if not blade:
         return "1"
     if max(blade) > 9:
@@ -130,11 +138,23 @@ class CliffordAlgebra:
         }
 
     def product_of_blades(self, a: Blade, b: Blade) -> tuple[int, Blade]:
-        """(sign, blade) with e_a e_b = sign e_blade (table lookup)."""
+        """(sign, blade) with e_a e_b = sign e_blade (table lookup).
+
+        Examples
+        --------
+        >>> CliffordAlgebra(3, 0).product_of_blades((1, 2), (2, 3))
+        (1, (1, 3))
+        """
         return self._table[(a, b)]
 
     def multivector(self, terms: Mapping[Blade, object] | None = None) -> Multivector:
-        """A multivector from {blade: coefficient}; blades given unsorted are reordered."""
+        """A multivector from {blade: coefficient}; blades given unsorted are reordered.
+
+        Examples
+        --------
+        >>> CliffordAlgebra(3, 0).multivector({(): 2, (3, 1): 5})
+        2 - 5*e13
+        """
         out: dict[Blade, sympy.Expr] = {}
         for blade, coeff in (terms or {}).items():
             sign, canonical = blade_product((), tuple(blade), self.signature)
@@ -144,11 +164,23 @@ class CliffordAlgebra:
         return Multivector(self, out)
 
     def scalar(self, value) -> Multivector:
-        """The scalar ``value`` as a multivector."""
+        """The scalar ``value`` as a multivector.
+
+        Examples
+        --------
+        >>> CliffordAlgebra(2, 0).scalar(7)
+        7
+        """
         return self.multivector({(): value})
 
     def blade(self, *indices: int) -> Multivector:
-        """The product e_i e_j ... of the given basis vectors, e.g. ``blade(3, 1)`` = -e13."""
+        """The product e_i e_j ... of the given basis vectors, e.g. ``blade(3, 1)`` = -e13.
+
+        Examples
+        --------
+        >>> CliffordAlgebra(3, 0).blade(2, 1, 3)
+        -e123
+        """
         result = self.scalar(1)
         for i in indices:
             if not 1 <= i <= self.n:
@@ -157,11 +189,24 @@ class CliffordAlgebra:
         return result
 
     def basis_vectors(self) -> tuple[Multivector, ...]:
-        """(e1, ..., en)."""
+        """(e1, ..., en).
+
+        Examples
+        --------
+        >>> CliffordAlgebra(1, 3).basis_vectors()
+        (e1, e2, e3, e4)
+        """
         return tuple(self.multivector({(i,): 1}) for i in range(1, self.n + 1))
 
     def pseudoscalar(self) -> Multivector:
-        """I = e1 e2 ... en."""
+        """I = e1 e2 ... en.
+
+        Examples
+        --------
+        >>> cl = CliffordAlgebra(3, 0)
+        >>> cl.pseudoscalar() * cl.pseudoscalar()
+        -1
+        """
         return self.blade(*range(1, self.n + 1))
 
     def general(self, name: str, grades: Iterable[int] | None = None, **assumptions) -> Multivector:
@@ -187,6 +232,13 @@ class Multivector:
 
     Zero coefficients are dropped after expansion, so two multivectors are equal
     exactly when their expanded coefficients agree.
+
+    Examples
+    --------
+    >>> cl = CliffordAlgebra(2, 0)
+    >>> x = cl.multivector({(): 1, (1, 2): 3})
+    >>> x[(1, 2)], x.grades
+    (3, {0, 2})
     """
 
     __slots__ = ("algebra", "terms")
@@ -205,7 +257,13 @@ class Multivector:
         return self.terms.get(tuple(blade), sympy.S.Zero)
 
     def coefficients(self) -> tuple[sympy.Expr, ...]:
-        """Coefficients in the algebra's blade order (the order ``clifford`` uses)."""
+        """Coefficients in the algebra's blade order (the order ``clifford`` uses).
+
+        Examples
+        --------
+        >>> CliffordAlgebra(2, 0).blade(1).coefficients()
+        (0, 1, 0, 0)
+        """
         return tuple(self[b] for b in self.algebra.blades)
 
     @property
@@ -214,6 +272,14 @@ class Multivector:
         return {len(b) for b in self.terms}
 
     def is_zero(self) -> bool:
+        """True when every coefficient expands to zero.
+
+        Examples
+        --------
+        >>> e1 = CliffordAlgebra(1, 0).blade(1)
+        >>> ((1 + e1) * (1 - e1)).is_zero()
+        True
+        """
         return not self.terms
 
     # -- linear structure ---------------------------------------------------------------
@@ -294,11 +360,27 @@ class Multivector:
         return self._coerce(other) ^ self
 
     def lc(self, other) -> Multivector:
-        """Left contraction A ⌋ B: grade s - r part of A_r B_s."""
+        """Left contraction A ⌋ B: grade s - r part of A_r B_s.
+
+        Examples
+        --------
+        >>> cl = CliffordAlgebra(3, 0)
+        >>> cl.blade(1).lc(cl.blade(1, 2))
+        e2
+        >>> cl.blade(1, 2).lc(cl.blade(1))
+        0
+        """
         return self._graded(other, lambda r, s, g: g == s - r)
 
     def rc(self, other) -> Multivector:
-        """Right contraction A ⌊ B: grade r - s part of A_r B_s."""
+        """Right contraction A ⌊ B: grade r - s part of A_r B_s.
+
+        Examples
+        --------
+        >>> cl = CliffordAlgebra(3, 0)
+        >>> cl.blade(1, 2).rc(cl.blade(2))
+        e1
+        """
         return self._graded(other, lambda r, s, g: g == r - s)
 
     def __or__(self, other) -> Multivector:
@@ -309,11 +391,25 @@ class Multivector:
         return self._coerce(other) | self
 
     def scalar_product(self, other) -> sympy.Expr:
-        """⟨A B⟩₀."""
+        """⟨A B⟩₀.
+
+        Examples
+        --------
+        >>> cl = CliffordAlgebra(0, 2)
+        >>> cl.blade(1, 2).scalar_product(cl.blade(1, 2))
+        -1
+        """
         return (self * other)[()]
 
     def commutator(self, other) -> Multivector:
-        """½(AB - BA)."""
+        """½(AB - BA).
+
+        Examples
+        --------
+        >>> cl = CliffordAlgebra(3, 0)
+        >>> cl.blade(1, 2).commutator(cl.blade(1))
+        -e2
+        """
         other = self._coerce(other)
         return (self * other - other * self) / 2
 
@@ -324,33 +420,80 @@ class Multivector:
         )
 
     def reverse(self) -> Multivector:
-        """Ã: each blade of grade r gets the sign (-1)^(r(r-1)/2)."""
+        """Ã: each blade of grade r gets the sign (-1)^(r(r-1)/2).
+
+        Examples
+        --------
+        >>> CliffordAlgebra(3, 0).multivector({(1, 2): 1, (1, 2, 3): 1}).reverse()
+        -e12 - e123
+        """
         return self._signed(lambda r: -1 if (r * (r - 1) // 2) % 2 else 1)
 
     __invert__ = reverse
 
     def grade_involution(self) -> Multivector:
-        """Â: each blade of grade r gets the sign (-1)^r."""
+        """Â: each blade of grade r gets the sign (-1)^r.
+
+        Examples
+        --------
+        >>> CliffordAlgebra(3, 0).multivector({(): 1, (1,): 1, (1, 2): 1}).grade_involution()
+        1 - e1 + e12
+        """
         return self._signed(lambda r: -1 if r % 2 else 1)
 
     def conjugate(self) -> Multivector:
-        """Clifford conjugate: reverse and grade involution together."""
+        """Clifford conjugate: reverse and grade involution together.
+
+        Examples
+        --------
+        >>> CliffordAlgebra(3, 0).multivector({(1,): 1, (1, 2): 1}).conjugate()
+        -e1 - e12
+        """
         return self.reverse().grade_involution()
 
     def grade(self, k: int) -> Multivector:
-        """⟨A⟩_k: the grade-k part."""
+        """⟨A⟩_k: the grade-k part.
+
+        Examples
+        --------
+        >>> CliffordAlgebra(2, 0).multivector({(): 4, (1,): 2, (1, 2): 1}).grade(1)
+        2*e1
+        """
         return Multivector(self.algebra, {b: c for b, c in self.terms.items() if len(b) == k})
 
     def even(self) -> Multivector:
+        """The even-grade part (grades 0, 2, ...).
+
+        Examples
+        --------
+        >>> CliffordAlgebra(2, 0).multivector({(): 4, (1,): 2, (1, 2): 1}).even()
+        4 + e12
+        """
         return Multivector(self.algebra, {b: c for b, c in self.terms.items() if len(b) % 2 == 0})
 
     def subs(self, *args, **kwargs) -> Multivector:
-        """Substitute in every coefficient (``sympy.Expr.subs`` arguments)."""
+        """Substitute in every coefficient (``sympy.Expr.subs`` arguments).
+
+        Examples
+        --------
+        >>> a = CliffordAlgebra(1, 0).general("a")
+        >>> a.subs({"a_1": 2, "a_e1": 3})
+        2 + 3*e1
+        """
         return Multivector(
             self.algebra, {b: c.subs(*args, **kwargs) for b, c in self.terms.items()}
         )
 
     def applyfunc(self, f: Callable[[sympy.Expr], sympy.Expr]) -> Multivector:
+        """Apply f to every coefficient.
+
+        Examples
+        --------
+        >>> import sympy
+        >>> x = sympy.Symbol("x")
+        >>> CliffordAlgebra(1, 0).scalar((x + 1) ** 2).applyfunc(sympy.factor)
+        x**2 + 2*x + 1
+        """
         return Multivector(self.algebra, {b: f(c) for b, c in self.terms.items()})
 
     # -- display -----------------------------------------------------------------------

@@ -31,7 +31,13 @@ import sympy
 
 @dataclass(frozen=True)
 class Step:
-    """One checked claim: what is claimed, the computation shown, and whether it held."""
+    """One checked claim: what is claimed, the computation shown, and whether it held.
+
+    Examples
+    --------
+    >>> Step("1 + 1 = 2", "exact", True).holds
+    True
+    """
 
     claim: str
     shown: str
@@ -50,13 +56,40 @@ class Derivation:
 
     @property
     def ok(self) -> bool:
+        """True when every step holds.
+
+        Examples
+        --------
+        >>> Derivation("t", "s", (Step("a", "", True), Step("b", "", False))).ok
+        False
+        """
         return all(s.holds for s in self.steps)
 
     def failures(self) -> list[Step]:
+        """The steps that failed.
+
+        Examples
+        --------
+        >>> Derivation("t", "s", (Step("a", "", True), Step("b", "", False))).failures()
+        [Step(claim='b', shown='', holds=False)]
+        """
         return [s for s in self.steps if not s.holds]
 
     def report(self) -> str:
-        """Plain-text report: statement, each step with its computation, extra details."""
+        """Plain-text report: statement, each step with its computation, extra details.
+
+        Examples
+        --------
+        >>> print(Derivation("t", "s", (Step("a", "shown", True),)).report())
+        t
+        =
+        s
+        <BLANKLINE>
+          [ok] a
+               shown
+        <BLANKLINE>
+        result: holds
+        """
         lines = [self.title, "=" * len(self.title), self.statement, ""]
         for s in self.steps:
             lines.append(f"  [{'ok' if s.holds else 'FAILED'}] {s.claim}")
@@ -88,5 +121,12 @@ def show(expr) -> str:
 
 
 def step(claim: str, shown: str, holds) -> Step:
-    """A :class:`Step` with ``holds`` coerced to a plain bool."""
+    """A :class:`Step` with ``holds`` coerced to a plain bool.
+
+    Examples
+    --------
+    >>> import sympy
+    >>> step("holds", "", sympy.Integer(1) == 1)
+    Step(claim='holds', shown='', holds=True)
+    """
     return Step(claim, shown, bool(holds))

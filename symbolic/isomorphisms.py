@@ -37,7 +37,13 @@ from .derivation import Derivation, Step, show, step
 
 @dataclass(frozen=True)
 class Isomorphism(Derivation):
-    """A checked algebra map Cl(p,q) -> target, with the images of the basis blades."""
+    """A checked algebra map Cl(p,q) -> target, with the images of the basis blades.
+
+    Examples
+    --------
+    >>> complex_from_cl01().images
+    (('1', '1'), ('e1', 'i'))
+    """
 
     images: tuple[tuple[str, str], ...] = ()
     zero_divisor: tuple[str, str] | None = None
@@ -327,7 +333,13 @@ BIVECTORS: tuple[tuple[str, Multivector], ...] = (
 
 @dataclass(frozen=True)
 class Assignment:
-    """i -> signs[0]·B[perm[0]], j -> signs[1]·B[perm[1]], k -> signs[2]·B[perm[2]]."""
+    """i -> signs[0]·B[perm[0]], j -> signs[1]·B[perm[1]], k -> signs[2]·B[perm[2]].
+
+    Examples
+    --------
+    >>> classify_assignment((1, 1, 1), (0, 1, 2))
+    Assignment(signs=(1, 1, 1), perm=(0, 1, 2), kind='anti-isomorphism', det=1)
+    """
 
     signs: tuple[int, int, int]
     perm: tuple[int, int, int]
@@ -335,12 +347,26 @@ class Assignment:
     det: int  # determinant of the signed permutation in the basis (e23, e31, e12)
 
     def images(self) -> tuple[str, str, str]:
+        """The images of i, j, k as blade names.
+
+        Examples
+        --------
+        >>> classify_assignment((-1, 1, 1), (1, 0, 2)).images()
+        ('-e31', 'e23', 'e12')
+        """
         return tuple(
             ("-" if s < 0 else "") + BIVECTORS[p][0]
             for s, p in zip(self.signs, self.perm, strict=True)
         )  # type: ignore[return-value]
 
     def label(self) -> str:
+        """The assignment as one line of text.
+
+        Examples
+        --------
+        >>> classify_assignment((-1, -1, -1), (0, 1, 2)).label()
+        'i -> -e23, j -> -e31, k -> -e12'
+        """
         i, j, k = self.images()
         return f"i -> {i}, j -> {j}, k -> {k}"
 
@@ -357,7 +383,13 @@ def _linear(images: dict[str, Multivector], q: Sequence) -> Multivector:
 
 
 def classify_assignment(signs, perm) -> Assignment:
-    """Check all 16 unit products: φ(a)φ(b) = φ(ab) (iso) or = φ(ba) (anti)."""
+    """Check all 16 unit products: φ(a)φ(b) = φ(ab) (iso) or = φ(ba) (anti).
+
+    Examples
+    --------
+    >>> classify_assignment((1, 1, -1), (0, 1, 2)).kind
+    'isomorphism'
+    """
     images = _assignment_map(signs, perm)
 
     def phi_unit(a: str, b: str) -> Multivector:
@@ -376,7 +408,13 @@ def classify_assignment(signs, perm) -> Assignment:
 
 @dataclass(frozen=True)
 class EvenSubalgebra(Derivation):
-    """Cl⁺(3,0) ≅ ℍ: every signed assignment classified, and the numeric package's choice."""
+    """Cl⁺(3,0) ≅ ℍ: every signed assignment classified, and the numeric package's choice.
+
+    Examples
+    --------
+    >>> even_cl3_assignments().obvious_choice.kind
+    'anti-isomorphism'
+    """
 
     assignments: tuple[Assignment, ...] = ()
     numeric_choice: Assignment | None = None
@@ -384,6 +422,13 @@ class EvenSubalgebra(Derivation):
 
     @property
     def counts(self) -> dict[str, int]:
+        """How many assignments of each kind.
+
+        Examples
+        --------
+        >>> even_cl3_assignments().counts
+        {'isomorphism': 24, 'anti-isomorphism': 24, 'neither': 0}
+        """
         kinds = ("isomorphism", "anti-isomorphism", "neither")
         return {k: sum(a.kind == k for a in self.assignments) for k in kinds}
 
@@ -393,12 +438,26 @@ NUMERIC_SIGNS, NUMERIC_PERM = (-1, -1, -1), (0, 1, 2)
 
 
 def quaternion_to_rotor(q: Sequence) -> Multivector:
-    """φ(q) = w - x e23 - y e31 - z e12 (the numeric package's map ℍ -> Cl⁺(3,0))."""
+    """φ(q) = w - x e23 - y e31 - z e12 (the numeric package's map ℍ -> Cl⁺(3,0)).
+
+    Examples
+    --------
+    >>> from symbolic import hamilton
+    >>> quaternion_to_rotor(hamilton.quat(1, 2, 3, 4))
+    1 - 4*e12 + 3*e13 - 2*e23
+    """
     return _linear(_assignment_map(NUMERIC_SIGNS, NUMERIC_PERM), q)
 
 
 def rotor_to_quaternion(r: Multivector) -> hamilton.Quat:
-    """φ⁻¹: read (w, x, y, z) off the even blades of a Cl(3,0) multivector."""
+    """φ⁻¹: read (w, x, y, z) off the even blades of a Cl(3,0) multivector.
+
+    Examples
+    --------
+    >>> from symbolic import hamilton
+    >>> rotor_to_quaternion(quaternion_to_rotor(hamilton.quat(1, 2, 3, 4)))
+    (1, 2, 3, 4)
+    """
     if r.grades - {0, 2}:
         raise ValueError(f"not an even multivector: {r}")
     return (r[()], -r[(2, 3)], r[(1, 3)], -r[(1, 2)])
@@ -412,6 +471,11 @@ def even_cl3_assignments() -> EvenSubalgebra:
     sign-free assignment i -> e23, j -> e31, k -> e12 reverses products (anti-isomorphism),
     and flipping all three signs fixes it. In general an assignment is an isomorphism
     exactly when its signed-permutation matrix has determinant -1.
+
+    Examples
+    --------
+    >>> print(even_cl3_assignments().details[1])
+       1 i -> e23, j -> e31, k -> e12          +1   anti-isomorphism
     """
     assignments = tuple(
         classify_assignment(signs, perm)
@@ -481,7 +545,13 @@ def even_cl3_assignments() -> EvenSubalgebra:
 
 
 def all_isomorphisms() -> tuple[Derivation, ...]:
-    """Every derivation of this module, in teaching order."""
+    """Every derivation of this module, in teaching order.
+
+    Examples
+    --------
+    >>> [d.title for d in all_isomorphisms()][:3]
+    ['Cl(0,0) ≅ ℝ', 'Cl(0,1) ≅ ℂ', 'Cl(0,2) ≅ ℍ']
+    """
     return (
         reals_from_cl00(),
         complex_from_cl01(),

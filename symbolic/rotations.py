@@ -47,7 +47,17 @@ def _axis_index(axis: str) -> int:
 
 
 def axis_matrix(axis: str, angle) -> sympy.Matrix:
-    """Active right-handed rotation by ``angle`` about a coordinate axis."""
+    """Active right-handed rotation by ``angle`` about a coordinate axis.
+
+    Examples
+    --------
+    >>> import sympy
+    >>> axis_matrix("x", sympy.pi / 2)
+    Matrix([
+    [1, 0,  0],
+    [0, 0, -1],
+    [0, 1,  0]])
+    """
     k = _axis_index(axis)
     c, s = sympy.cos(angle), sympy.sin(angle)
     m = sympy.eye(3)
@@ -57,7 +67,14 @@ def axis_matrix(axis: str, angle) -> sympy.Matrix:
 
 
 def axis_quaternion(axis: str, angle) -> hamilton.Quat:
-    """cos(angle/2) + (unit along axis) sin(angle/2)."""
+    """cos(angle/2) + (unit along axis) sin(angle/2).
+
+    Examples
+    --------
+    >>> import sympy
+    >>> axis_quaternion("y", sympy.pi)
+    (0, 0, 1, 0)
+    """
     k = _axis_index(axis)
     q = [sympy.cos(angle / 2), sympy.S.Zero, sympy.S.Zero, sympy.S.Zero]
     q[k + 1] = sympy.sin(angle / 2)
@@ -80,7 +97,14 @@ def _ordered(seq: str, angles: Sequence) -> list[tuple[str, object]]:
 
 
 def euler_matrix(seq: str, angles: Sequence) -> sympy.Matrix:
-    """Body-to-space rotation matrix of an Euler sequence (scipy's convention)."""
+    """Body-to-space rotation matrix of an Euler sequence (scipy's convention).
+
+    Examples
+    --------
+    >>> import sympy
+    >>> euler_matrix("ZYX", (sympy.pi / 2, 0, 0)) == axis_matrix("z", sympy.pi / 2)
+    True
+    """
     m = sympy.eye(3)
     for axis, angle in _ordered(seq, angles):
         m = m * axis_matrix(axis, angle)
@@ -88,7 +112,15 @@ def euler_matrix(seq: str, angles: Sequence) -> sympy.Matrix:
 
 
 def euler_quaternion(seq: str, angles: Sequence) -> hamilton.Quat:
-    """Body-to-space unit quaternion of an Euler sequence (scipy's convention)."""
+    """Body-to-space unit quaternion of an Euler sequence (scipy's convention).
+
+    Examples
+    --------
+    >>> import sympy
+    >>> a, b = sympy.symbols("a b")
+    >>> euler_quaternion("ZXZ", (a, 0, b))
+    (-sin(a/2)*sin(b/2) + cos(a/2)*cos(b/2), 0, 0, sin(a/2)*cos(b/2) + sin(b/2)*cos(a/2))
+    """
     q = hamilton.quat(1, 0, 0, 0)
     for axis, angle in _ordered(seq, angles):
         q = hamilton.mul(q, axis_quaternion(axis, angle))
@@ -96,12 +128,27 @@ def euler_quaternion(seq: str, angles: Sequence) -> hamilton.Quat:
 
 
 def skew(w: Sequence) -> sympy.Matrix:
-    """[w]× with [w]× v = w × v."""
+    """[w]× with [w]× v = w × v.
+
+    Examples
+    --------
+    >>> skew((1, 2, 3))
+    Matrix([
+    [ 0, -3,  2],
+    [ 3,  0, -1],
+    [-2,  1,  0]])
+    """
     return sympy.Matrix([[0, -w[2], w[1]], [w[2], 0, -w[0]], [-w[1], w[0], 0]])
 
 
 def unskew(m: sympy.Matrix) -> tuple[sympy.Expr, sympy.Expr, sympy.Expr]:
-    """w from [w]× (the antisymmetric part's entries)."""
+    """w from [w]× (the antisymmetric part's entries).
+
+    Examples
+    --------
+    >>> unskew(skew((1, 2, 3)))
+    (1, 2, 3)
+    """
     return (
         sympy.expand((m[2, 1] - m[1, 2]) / 2),
         sympy.expand((m[0, 2] - m[2, 0]) / 2),
@@ -110,7 +157,15 @@ def unskew(m: sympy.Matrix) -> tuple[sympy.Expr, sympy.Expr, sympy.Expr]:
 
 
 def time_derivative(expr, angles: Sequence, rates: Sequence):
-    """d/dt of an expression (or matrix) in the angles, by the chain rule Σ ∂/∂a · ȧ."""
+    """d/dt of an expression (or matrix) in the angles, by the chain rule Σ ∂/∂a · ȧ.
+
+    Examples
+    --------
+    >>> import sympy
+    >>> a, ad = sympy.symbols("a ad")
+    >>> time_derivative(sympy.sin(a), [a], [ad])
+    ad*cos(a)
+    """
     return sum(
         (sympy.diff(expr, a) * r for a, r in zip(angles, rates, strict=True)),
         sympy.zeros(*expr.shape) if isinstance(expr, sympy.MatrixBase) else sympy.S.Zero,
@@ -122,6 +177,14 @@ def body_rates_by_axes(seq: str, angles: Sequence, rates: Sequence) -> tuple[sym
 
     Each rate turns the body about its own axis as that axis sits after the later factors,
     seen from the body: the compact closed form.
+
+    Examples
+    --------
+    >>> import sympy
+    >>> a, b, c = sympy.symbols("a b c")
+    >>> ad, bd, cd = sympy.symbols("ad bd cd")
+    >>> body_rates_by_axes("ZYZ", (a, b, c), (ad, bd, cd))
+    (-ad*sin(b)*cos(c) + bd*sin(c), ad*sin(b)*sin(c) + bd*cos(c), ad*cos(b) + cd)
     """
     factors = _ordered(seq, list(zip(angles, rates, strict=True)))
     omega = sympy.zeros(3, 1)
@@ -136,13 +199,35 @@ def body_rates_by_axes(seq: str, angles: Sequence, rates: Sequence) -> tuple[sym
 
 
 def body_rates_from_matrix(seq: str, angles: Sequence, rates: Sequence) -> tuple[sympy.Expr, ...]:
-    """Body angular velocity from Euler rates, by [ω]× = Rᵀ Ṙ."""
+    """Body angular velocity from Euler rates, by [ω]× = Rᵀ Ṙ.
+
+    Examples
+    --------
+    >>> import sympy
+    >>> a, b, c = sympy.symbols("a b c")
+    >>> rates = sympy.symbols("ad bd cd")
+    >>> w = body_rates_from_matrix("XYZ", (a, b, c), rates)
+    >>> from symbolic.trig import all_identities
+    >>> all_identities(w, body_rates_by_axes("XYZ", (a, b, c), rates))
+    True
+    """
     r = euler_matrix(seq, angles)
     return unskew(r.T * time_derivative(r, angles, rates))
 
 
 def body_rates_from_quaternion(seq: str, angles: Sequence, rates: Sequence):
-    """Body angular velocity from Euler rates, by (0, ω) = 2 q* q̇; returns (ω, scalar part)."""
+    """Body angular velocity from Euler rates, by (0, ω) = 2 q* q̇; returns (ω, scalar part).
+
+    Examples
+    --------
+    >>> import sympy
+    >>> a, b, c = sympy.symbols("a b c")
+    >>> ad, bd, cd = sympy.symbols("ad bd cd")
+    >>> w, scalar = body_rates_from_quaternion("ZYZ", (a, b, c), (ad, bd, cd))
+    >>> from symbolic.trig import all_identities, is_zero
+    >>> all_identities(w, body_rates_by_axes("ZYZ", (a, b, c), (ad, bd, cd))), is_zero(scalar)
+    (True, True)
+    """
     q = euler_quaternion(seq, angles)
     qdot = tuple(time_derivative(c, angles, rates) for c in q)
     w = hamilton.mul(hamilton.conj(q), qdot)
@@ -150,5 +235,14 @@ def body_rates_from_quaternion(seq: str, angles: Sequence, rates: Sequence):
 
 
 def rate_jacobian(omega: Sequence, rates: Sequence) -> sympy.Matrix:
-    """J with ω = J (rate vector)."""
+    """J with ω = J (rate vector).
+
+    Examples
+    --------
+    >>> import sympy
+    >>> a, b, c = sympy.symbols("a b c")
+    >>> rates = sympy.symbols("ad bd cd")
+    >>> rate_jacobian(body_rates_by_axes("ZYZ", (a, b, c), rates), rates).det()
+    -sin(b)*sin(c)**2 - sin(b)*cos(c)**2
+    """
     return sympy.Matrix(3, 3, lambda r, c: sympy.diff(omega[r], rates[c]))

@@ -34,21 +34,49 @@ PSEUDOSCALAR = CL3.pseudoscalar()
 
 
 def vector(v) -> object:
-    """v1 e1 + v2 e2 + v3 e3."""
+    """v1 e1 + v2 e2 + v3 e3.
+
+    Examples
+    --------
+    >>> vector((1, 2, 3))
+    e1 + 2*e2 + 3*e3
+    """
     return v[0] * E1 + v[1] * E2 + v[2] * E3
 
 
 def vector_part(m) -> tuple[sympy.Expr, sympy.Expr, sympy.Expr]:
+    """(v1, v2, v3) of the grade-1 part of a Cl(3,0) multivector.
+
+    Examples
+    --------
+    >>> vector_part(vector((1, 2, 3)) + 5)
+    (1, 2, 3)
+    """
     return (m[(1,)], m[(2,)], m[(3,)])
 
 
 def dual_bivector(w):
-    """Ω = -I ω = -(ω1 e23 + ω2 e31 + ω3 e12): the bivector of angular velocity ω."""
+    """Ω = -I ω = -(ω1 e23 + ω2 e31 + ω3 e12): the bivector of angular velocity ω.
+
+    Examples
+    --------
+    >>> dual_bivector((0, 0, 2))
+    -2*e12
+    """
     return -(PSEUDOSCALAR * vector(w))
 
 
 def unit_rotation_matrix(q) -> sympy.Matrix:
-    """The textbook form of M(q) for a unit q (diagonal 1 - 2(y² + z²), ...)."""
+    """The textbook form of M(q) for a unit q (diagonal 1 - 2(y² + z²), ...).
+
+    Examples
+    --------
+    >>> unit_rotation_matrix((1, 0, 0, 0))
+    Matrix([
+    [1, 0, 0],
+    [0, 1, 0],
+    [0, 0, 1]])
+    """
     w, x, y, z = q
     return sympy.Matrix(
         [
@@ -60,7 +88,17 @@ def unit_rotation_matrix(q) -> sympy.Matrix:
 
 
 def rodrigues_matrix(axis, angle) -> sympy.Matrix:
-    """cos α I + sin α [u]× + (1 - cos α) u uᵀ: rotation by α about the unit vector u."""
+    """cos α I + sin α [u]× + (1 - cos α) u uᵀ: rotation by α about the unit vector u.
+
+    Examples
+    --------
+    >>> import sympy
+    >>> rodrigues_matrix((0, 0, 1), sympy.pi / 2)
+    Matrix([
+    [0, -1, 0],
+    [1,  0, 0],
+    [0,  0, 1]])
+    """
     u = sympy.Matrix(axis)
     ux = sympy.Matrix([[0, -u[2], u[1]], [u[2], 0, -u[0]], [-u[1], u[0], 0]])
     return (
@@ -69,18 +107,37 @@ def rodrigues_matrix(axis, angle) -> sympy.Matrix:
 
 
 def axis_angle(angle, axis) -> hamilton.Quat:
-    """cos(angle/2) + u sin(angle/2): the unit quaternion of a rotation by angle about unit u."""
+    """cos(angle/2) + u sin(angle/2): the unit quaternion of a rotation by angle about unit u.
+
+    Examples
+    --------
+    >>> import sympy
+    >>> axis_angle(sympy.pi, (1, 0, 0))
+    (0, 1, 0, 0)
+    """
     return (sympy.cos(angle / 2), *(c * sympy.sin(angle / 2) for c in axis))
 
 
 def spherical_unit(lat, lon) -> tuple[sympy.Expr, sympy.Expr, sympy.Expr]:
-    """A general unit vector (cos lat cos lon, cos lat sin lon, sin lat)."""
+    """A general unit vector (cos lat cos lon, cos lat sin lon, sin lat).
+
+    Examples
+    --------
+    >>> spherical_unit(0, 0)
+    (1, 0, 0)
+    """
     return (sympy.cos(lat) * sympy.cos(lon), sympy.cos(lat) * sympy.sin(lon), sympy.sin(lat))
 
 
 @dataclass(frozen=True)
 class Sandwich(Derivation):
-    """R v R̃ = q v q*, with the matrix M(q) it defines."""
+    """R v R̃ = q v q*, with the matrix M(q) it defines.
+
+    Examples
+    --------
+    >>> rotor_sandwich().rotor
+    'q0 - q3*e12 + q2*e13 - q1*e23'
+    """
 
     rotor: str = ""
     matrix: sympy.Matrix | None = None
@@ -88,7 +145,13 @@ class Sandwich(Derivation):
 
 @cache
 def rotor_sandwich() -> Sandwich:
-    """The rotor sandwich equals the quaternion rotation operator, entry by entry."""
+    """The rotor sandwich equals the quaternion rotation operator, entry by entry.
+
+    Examples
+    --------
+    >>> rotor_sandwich().matrix[2, 2]
+    q0**2 - q1**2 - q2**2 + q3**2
+    """
     q = hamilton.symbols("q")
     v = sympy.symbols("v1:4", real=True)
     r = quaternion_to_rotor(q)
@@ -157,7 +220,13 @@ def rotor_sandwich() -> Sandwich:
 
 @dataclass(frozen=True)
 class Kinematics(Derivation):
-    """Ṙ = ½ R Ω  ⟺  q̇ = ½ q (0, ω)."""
+    """Ṙ = ½ R Ω  ⟺  q̇ = ½ q (0, ω).
+
+    Examples
+    --------
+    >>> rotor_kinematics().quaternion_rate[0]
+    -omega1*q1/2 - omega2*q2/2 - omega3*q3/2
+    """
 
     rotor_rate: str = ""
     quaternion_rate: tuple[sympy.Expr, ...] = ()
@@ -165,7 +234,13 @@ class Kinematics(Derivation):
 
 @cache
 def rotor_kinematics() -> Kinematics:
-    """dR/dt = ½ R Ω with Ω = -Iω is the quaternion kinematics q̇ = ½ q ⊗ (0, ω)."""
+    """dR/dt = ½ R Ω with Ω = -Iω is the quaternion kinematics q̇ = ½ q ⊗ (0, ω).
+
+    Examples
+    --------
+    >>> [s.holds for s in rotor_kinematics().steps]
+    [True, True, True, True, True]
+    """
     q = hamilton.symbols("q")
     w = sympy.symbols("omega1:4", real=True)
     v = sympy.symbols("v1:4", real=True)

@@ -92,6 +92,15 @@ def reduce_on_circles(expr: sympy.Expr) -> sympy.Expr:
 
     Rational expressions are brought to one fraction first; only the numerator matters
     (a ratio vanishes identically exactly when its numerator does).
+
+    Examples
+    --------
+    >>> from sympy import cos, sin, symbols
+    >>> a = symbols("a", real=True)
+    >>> reduce_on_circles(cos(a) ** 2 + sin(a) ** 2 - 1)
+    0
+    >>> reduce_on_circles(sin(a)) != 0
+    True
     """
     poly, circles = _to_circle_polynomial(expr)
     numerator = sympy.expand(sympy.numer(sympy.together(poly)))
@@ -114,21 +123,54 @@ def reduce_on_circles(expr: sympy.Expr) -> sympy.Expr:
 
 
 def is_zero(expr: sympy.Expr) -> bool:
-    """True when ``expr`` vanishes for every value of its angles and other symbols."""
+    """True when ``expr`` vanishes for every value of its angles and other symbols.
+
+    Examples
+    --------
+    >>> from sympy import cos, sin, symbols
+    >>> a = symbols("a", real=True)
+    >>> is_zero(sin(2 * a) - 2 * sin(a) * cos(a))
+    True
+    """
     return reduce_on_circles(expr) == 0
 
 
 def is_identity(lhs: sympy.Expr, rhs: sympy.Expr) -> bool:
-    """True when lhs = rhs for every value of the symbols."""
+    """True when lhs = rhs for every value of the symbols.
+
+    Examples
+    --------
+    >>> from sympy import cos, symbols
+    >>> a = symbols("a", real=True)
+    >>> is_identity(cos(a / 2) ** 2, (1 + cos(a)) / 2)
+    True
+    """
     return is_zero(sympy.sympify(lhs) - sympy.sympify(rhs))
 
 
 def all_identities(lhs: Sequence, rhs: Sequence) -> bool:
-    """Entry-wise :func:`is_identity` (sequences or matrices of the same shape)."""
+    """Entry-wise :func:`is_identity` (sequences or matrices of the same shape).
+
+    Examples
+    --------
+    >>> from sympy import cos, sin, symbols
+    >>> a = symbols("a", real=True)
+    >>> all_identities([sin(-a), cos(-a)], [-sin(a), cos(a)])
+    True
+    """
     lhs, rhs = list(lhs), list(rhs)
     return len(lhs) == len(rhs) and all(is_identity(a, b) for a, b in zip(lhs, rhs, strict=True))
 
 
 def matrices_equal(a: sympy.Matrix, b: sympy.Matrix) -> bool:
-    """Entry-wise :func:`is_identity`."""
+    """Entry-wise :func:`is_identity`.
+
+    Examples
+    --------
+    >>> from sympy import Matrix, cos, sin, symbols
+    >>> a = symbols("a", real=True)
+    >>> m = Matrix([[cos(a), -sin(a)], [sin(a), cos(a)]])
+    >>> matrices_equal(m * m, m.subs(a, 2 * a))
+    True
+    """
     return a.shape == b.shape and all_identities(a, b)
