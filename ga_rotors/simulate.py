@@ -11,6 +11,7 @@ The primary path (whose ω goes into the trajectory's ``w``) is the first of
 
 from __future__ import annotations
 
+import inspect
 import math
 from collections.abc import Sequence
 
@@ -87,6 +88,7 @@ def simulate(
     outputs: Sequence[str] = (),
     sample_every: int = 1,
     t0: float = 0.0,
+    progress=None,
 ) -> Trajectory:
     """Integrate the motion and return the requested paths and outputs.
 
@@ -120,6 +122,10 @@ def simulate(
         Keep every k-th step (the last step is always kept).
     t0 : float
         Initial time.
+    progress : callable, optional
+        ``progress(done, total)``, steps over all paths, called as the compiled loops
+        advance in chunks (integrators whose ``run`` takes no ``progress`` report once
+        per path).
 
     Returns
     -------
@@ -205,9 +211,20 @@ def simulate(
     components: dict[str, tuple[str, ...]] = {"w": ("1", "2", "3")}
     status: dict[str, dict] = {}
     primary_w = None
-    for p in requested:
+    chunked = progress is not None and "progress" in inspect.signature(method.run).parameters
+    total = nsteps * len(requested)
+    for n, p in enumerate(requested):
         spec = _paths.get(p)
-        result = method.run(problem, p, starts[p], w0, float(t0), h, nsteps, sample_every)
+        args = (problem, p, starts[p], w0, float(t0), h, nsteps, sample_every)
+        if chunked:
+            def report(done, n=n):
+                progress(n * nsteps + done, total)
+
+            result = method.run(*args, progress=report)
+        else:
+            result = method.run(*args)
+            if progress is not None:
+                progress((n + 1) * nsteps, total)
         if primary_w is None:
             primary_w = result.w
             arrays["w"] = result.w

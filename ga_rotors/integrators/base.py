@@ -353,11 +353,12 @@ class TemplateIntegrator(Integrator):
     def problems(self) -> frozenset[str]:
         return frozenset(self.steps)
 
-    def run(self, problem, path, x0, w0, t0, h, nsteps, every):
+    def run(self, problem, path, x0, w0, t0, h, nsteps, every, progress=None):
+        """See :meth:`Integrator.run`; ``progress(steps_done)`` is called between chunks."""
         from . import _codegen
 
         self.check(problem, path)
-        return _codegen.run_loop(self, problem, path, x0, w0, t0, h, nsteps, every)
+        return _codegen.run_loop(self, problem, path, x0, w0, t0, h, nsteps, every, progress)
 
 
 _REGISTRY: dict[str, Integrator] = {}
