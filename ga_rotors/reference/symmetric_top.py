@@ -28,7 +28,7 @@ from .._validate import as_float_array, require_unit
 from ..body import RigidBody
 from ..errors import InputError
 
-__all__ = ["SymmetricTop"]
+__all__ = ["SymmetricTop", "symmetry_axis"]
 
 
 @jit
@@ -48,6 +48,27 @@ def _orientations(t, q0, ls, inv_perp, nu, k, out_q, out_w, inertia):
         out_w[n, 0] = lb[0] / inertia[0]
         out_w[n, 1] = lb[1] / inertia[1]
         out_w[n, 2] = lb[2] / inertia[2]
+
+
+def symmetry_axis(moments) -> int:
+    """The index k of a symmetric top's distinct moment (2 for a sphere), or InputError.
+
+    Examples
+    --------
+    >>> symmetry_axis((0.0056, 0.0028, 0.0028)), symmetry_axis((1.0, 1.0, 1.0))
+    (0, 2)
+    """
+    i1, i2, i3 = moments
+    if i1 == i2:
+        return 2
+    if i2 == i3:
+        return 0
+    if i1 == i3:
+        return 1
+    raise InputError(
+        f"body: moments {tuple(moments)} have no two exactly equal; the closed forms are for "
+        "symmetric tops (use ga_rotors.reference.asymmetric_top)"
+    )
 
 
 class SymmetricTop:
@@ -77,20 +98,7 @@ class SymmetricTop:
 
     def __init__(self, body, orientation, angular_velocity):
         moments = body.moments if isinstance(body, RigidBody) else tuple(RigidBody(body).moments)
-        i1, i2, i3 = moments
-        if i1 == i2 == i3:
-            k = 2
-        elif i1 == i2:
-            k = 2
-        elif i2 == i3:
-            k = 0
-        elif i1 == i3:
-            k = 1
-        else:
-            raise InputError(
-                f"body: moments {moments} have no two exactly equal; the closed form is for "
-                "symmetric tops (use ga_rotors.reference.asymmetric_top)"
-            )
+        k = symmetry_axis(moments)
         q0 = as_float_array(orientation, "orientation", last=4)
         w0 = as_float_array(angular_velocity, "angular_velocity", last=3)
         if q0.shape != (4,) or w0.shape != (3,):
