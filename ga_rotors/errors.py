@@ -27,3 +27,26 @@ class GimbalLockWarning(UserWarning):
     The free angle is set by a documented rule (see ``docs/conventions.md``);
     the rotation the angles describe is still exact.
     """
+
+
+class SceneError(InputError):
+    """A scene file (or scene dictionary) is invalid.
+
+    The message names the file, the key as a dotted path (``initial.orientation.units``,
+    ``effects[2].type``) and what was expected, e.g.::
+
+        heavy_top.toml: time.duration: expected a finite positive number of seconds, got -1
+
+    Attributes
+    ----------
+    file : str
+        The scene's file name (``<dict>`` for a scene built in Python).
+    key : str
+        Dotted path of the offending key (empty when the whole file is at fault).
+    """
+
+    def __init__(self, file: str, key: str, message: str):
+        self.file = str(file)
+        self.key = key
+        where = f"{self.file}: {key}: " if key else f"{self.file}: "
+        super().__init__(where + message)

@@ -34,6 +34,8 @@ from .simulate import simulate
 from .trajectory import Trajectory
 
 __all__ = [
+    "DISK_MASS",
+    "DISK_RADIUS",
     "MODELS",
     "RATES",
     "STEP",
@@ -57,6 +59,10 @@ class Model:
     label: str
 
 
+#: The paper's gyroscope disk: mass (kg) and radius (m).
+DISK_MASS = 2.0
+DISK_RADIUS = 0.075
+
 MODELS = {
     "paper": Model(
         "paper",
@@ -65,7 +71,7 @@ MODELS = {
     ),
     "disk": Model(
         "disk",
-        shapes.disk(2.0, 0.075),
+        shapes.disk(DISK_MASS, DISK_RADIUS),
         "uniform disk: symmetry axis z3 = spin axis",
     ),
 }

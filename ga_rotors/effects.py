@@ -1,0 +1,395 @@
+"""Torques a scene can declare, each a compiled kernel and its parameters (a TorqueTerm).
+
+A scene's ``[[effects]]`` entries become :class:`ga_rotors.integrators.TorqueTerm` objects;
+the code generator (:mod:`ga_rotors.integrators._codegen`) writes a loop whose ``torque``
+is the sum of exactly those kernels. An effect that is not declared is not in the
+generated source at all, and a scene without effects is the free problem, whose loop has
+no torque term. Every kernel returns the torque in the *principal body frame* the
+integration runs in; ``q`` is the body->space unit quaternion, ``w`` the body angular
+velocity, ``p`` the term's parameters.
+
+=============== ======================================================== ==================
+type            torque (body frame)                                      parameters
+=============== ======================================================== ==================
+gravity         τ = r × (q* (m g) q): weight m g (space frame) acting    m g (3), r (3)
+                at the centre of mass, r from the pivot to it (body)
+damping         τ = −c ω (isotropic) or τ = −C ω (C diagonal in the      c, or C (9)
+                user's body axes, carried into the principal frame)
+body_torque     τ = constant (body frame)                                τ (3)
+space_torque    τ = q* τ_s q, a constant space-frame torque              τ_s (3)
+user            ``kernel(t, q, w, p)`` named ``"package.module:function"`` the listed params
+=============== ======================================================== ==================
+
+The heavy top. A body turning about a fixed pivot obeys Euler's equations with the
+inertia *about the pivot*: L = I_O ω and dL/dt = τ_O hold about a fixed point, not about
+the centre of mass, which moves. When the body's inertia is given about its centre of
+mass (the default, and always for a ``shape``), the parallel-axis theorem gives
+I_O = I_cm + m (|r|² 1 − r rᵀ) (:func:`inertia_about_pivot`); the scene diagonalises I_O,
+and the gravity torque is τ = r × m g with r = pivot→centre of mass. Energy
+½ ω·I_O ω − m g·(q r q*) is then conserved (tests check it).
+
+User torques. ``function = "package.module:function"`` names a *numba-compiled* kernel
+(``@numba.njit``, ideally ``cache=True``) with the signature ``kernel(t, q, w, p)`` that
+returns a 3-tuple of floats. It must be compiled (not a plain function) because the
+generated loop imports it by name and calls it from compiled code; a plain function is
+refused with a message saying how to compile it. The module is imported when the scene
+is simulated (never when it is loaded or shown), from ``sys.path`` and then from the
+scene file's directory. Before use the kernel's Python version is called once at
+(t = 0, q = 1, ω = 0, p) and must return three finite numbers.
+"""
+
+from __future__ import annotations
+
+import importlib
+import math
+import re
+import sys
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from ._jit import jit
+from ._kernels import cross, qconj, qrotate
+from ._schema import Reader, join
+from .errors import InputError
+from .integrators.base import TorqueTerm
+
+__all__ = [
+    "EFFECTS",
+    "STANDARD_GRAVITY",
+    "EffectType",
+    "Frame",
+    "Key",
+    "body_torque",
+    "damping",
+    "gravity",
+    "inertia_about_pivot",
+    "isotropic_damping",
+    "load_user_kernel",
+    "space_torque",
+]
+
+#: m/s², the default gravity ``g = [0, 0, -STANDARD_GRAVITY]`` (space frame, z up).
+STANDARD_GRAVITY = 9.80665
+
+
+# ---------------------------------------------------------------------------- kernels
+
+
+@jit
+def gravity(t, q, w, p):
+    """Torque of the weight about the pivot: r × (q* F q), F = m g (space), r = p[3:6]."""
+    f = qrotate(qconj(q), (p[0], p[1], p[2]))
+    return cross((p[3], p[4], p[5]), f)
+
+
+@jit
+def isotropic_damping(t, q, w, p):
+    """τ = −c ω, c = p[0]."""
+    c = p[0]
+    return (-c * w[0], -c * w[1], -c * w[2])
+
+
+@jit
+def damping(t, q, w, p):
+    """τ = −C ω with C = p[0:9] row-major (principal frame)."""
+    return (
+        -(p[0] * w[0] + p[1] * w[1] + p[2] * w[2]),
+        -(p[3] * w[0] + p[4] * w[1] + p[5] * w[2]),
+        -(p[6] * w[0] + p[7] * w[1] + p[8] * w[2]),
+    )
+
+
+@jit
+def body_torque(t, q, w, p):
+    """A constant body-frame torque p[0:3]."""
+    return (p[0], p[1], p[2])
+
+
+@jit
+def space_torque(t, q, w, p):
+    """A constant space-frame torque p[0:3], in body components q* τ q."""
+    return qrotate(qconj(q), (p[0], p[1], p[2]))
+
+
+# ---------------------------------------------------------------------------- physics
+
+
+def inertia_about_pivot(inertia_cm, mass: float, r) -> np.ndarray:
+    """Parallel-axis theorem: I_O = I_cm + m (|r|² 1 − r rᵀ), r = pivot → centre of mass.
+
+    Examples
+    --------
+    A uniform disk (m = 2 kg, R = 0.075 m) on a pivot 0.1 m below its centre, on its axis:
+
+    >>> from ga_rotors import shapes
+    >>> np.diag(inertia_about_pivot(np.diag(shapes.disk(2.0, 0.075)), 2.0, [0, 0, 0.1]))
+    array([0.0228125, 0.0228125, 0.005625 ])
+    """
+    r = np.asarray(r, dtype=np.float64)
+    return np.asarray(inertia_cm, dtype=np.float64) + mass * (
+        np.dot(r, r) * np.eye(3) - np.outer(r, r)
+    )
+
+
+@dataclass(frozen=True)
+class Frame:
+    """What building a term needs besides its own keys.
+
+    ``principal_rotation`` P takes the principal axes (the integration frame) to the
+    user's body axes: a body-frame vector v becomes P* v P. ``mass`` is the body's mass
+    (None if not given), ``base_dir`` the scene file's directory (user torques).
+    """
+
+    principal_rotation: tuple[float, float, float, float] = (1.0, 0.0, 0.0, 0.0)
+    mass: float | None = None
+    base_dir: Path | None = None
+    file: str = "<dict>"
+
+    def to_principal(self, v) -> tuple[float, float, float]:
+        """Body-frame components in the user's axes -> principal-frame components."""
+        out = qrotate(qconj(self.principal_rotation), tuple(float(x) for x in v))
+        return tuple(float(x) for x in out)
+
+    def matrix(self) -> np.ndarray:
+        """M with v_user = M v_principal."""
+        from .matrix import from_quaternion
+
+        return from_quaternion(self.principal_rotation)
+
+
+# ---------------------------------------------------------------------------- the schema
+
+_REQUIRED = object()
+
+
+@dataclass(frozen=True)
+class Key:
+    """One key of an effect table: how it is read, its default, units and meaning."""
+
+    name: str
+    read: Callable
+    default: object = _REQUIRED
+    doc: str = ""
+
+    @property
+    def required(self) -> bool:
+        return self.default is _REQUIRED
+
+
+@dataclass(frozen=True)
+class EffectType:
+    """A kind of effect: its keys and how a resolved entry becomes a TorqueTerm."""
+
+    name: str
+    doc: str
+    keys: tuple[Key, ...]
+    build: Callable = field(repr=False)
+
+    def resolve(self, reader: Reader, entry: dict, key: str) -> dict:
+        """Check ``entry``'s keys and fill defaults; ``type`` first."""
+        names = ["type", *(k.name for k in self.keys)]
+        reader.table(entry, key, names, ["type", *(k.name for k in self.keys if k.required)])
+        out = {"type": self.name}
+        for k in self.keys:
+            value = entry.get(k.name, k.default)
+            out[k.name] = k.read(reader, value, join(key, k.name))
+        return out
+
+
+def _vector(reader, value, key):
+    return list(reader.vector(value, key))
+
+
+def _gravity_vector(reader, value, key):
+    g = _vector(reader, value, key)
+    if not any(g):
+        raise reader.error(key, "expected a nonzero vector (m/s²); without gravity, omit it")
+    return g
+
+
+def _coefficient(reader, value, key):
+    if isinstance(value, list | tuple):
+        values = reader.vector(value, key)
+        return [reader.number(v, join(key, i), nonnegative=True) for i, v in enumerate(values)]
+    return reader.number(value, key, nonnegative=True, unit="N·m·s")
+
+
+def _inertia_about(reader, value, key):
+    return reader.string(value, key, ("com", "pivot"))
+
+
+_NAME = re.compile(r"^[A-Za-z_]\w*(\.[A-Za-z_]\w*)*:[A-Za-z_]\w*$")
+
+
+def _function(reader, value, key):
+    text = reader.string(value, key)
+    if not _NAME.match(text):
+        raise reader.error(
+            key, f"expected 'package.module:function' (an importable name), got {text!r}"
+        )
+    return text
+
+
+def _params(reader, value, key):
+    return list(reader.numbers(value, key))
+
+
+def _build_gravity(entry: dict, frame: Frame, reader: Reader, key: str) -> TorqueTerm:
+    if frame.mass is None:
+        raise reader.error("body.mass", f"missing; the gravity effect ({key}) needs the mass")
+    weight = [frame.mass * g for g in entry["g"]]
+    r = frame.to_principal(entry["pivot_to_com"])
+    return TorqueTerm(gravity, (*weight, *r), name="gravity")
+
+
+def _build_damping(entry: dict, frame: Frame, reader: Reader, key: str) -> TorqueTerm:
+    c = entry["coefficient"]
+    if not isinstance(c, list):
+        return TorqueTerm(isotropic_damping, (c,), name="damping")
+    m = frame.matrix()
+    return TorqueTerm(damping, tuple((m.T @ np.diag(c) @ m).ravel()), name="damping")
+
+
+def _build_body_torque(entry: dict, frame: Frame, reader: Reader, key: str) -> TorqueTerm:
+    return TorqueTerm(body_torque, frame.to_principal(entry["torque"]), name="body_torque")
+
+
+def _build_space_torque(entry: dict, frame: Frame, reader: Reader, key: str) -> TorqueTerm:
+    return TorqueTerm(space_torque, tuple(entry["torque"]), name="space_torque")
+
+
+def _build_user(entry: dict, frame: Frame, reader: Reader, key: str) -> TorqueTerm:
+    kernel = load_user_kernel(entry["function"], frame.base_dir, reader, join(key, "function"))
+    params = tuple(entry["params"])
+    try:
+        term = TorqueTerm(kernel, params, name=entry["function"].rpartition(":")[2])
+    except InputError as exc:
+        raise reader.error(join(key, "function"), str(exc)) from None
+    _trial_call(kernel, params, reader, join(key, "function"))
+    return term
+
+
+_INERTIA_ABOUT = (
+    '"com": the body\'s inertia is about its centre of mass (shifted to the pivot); '
+    '"pivot": already about the pivot'
+)
+
+#: type name -> EffectType, in the order the docs list them.
+EFFECTS: dict[str, EffectType] = {
+    e.name: e
+    for e in (
+        EffectType(
+            "gravity",
+            "weight acting at the centre of mass, the body turning about a fixed pivot",
+            (
+                Key("pivot_to_com", _vector, doc="m, body frame: pivot to centre of mass"),
+                Key("g", _gravity_vector, [0.0, 0.0, -STANDARD_GRAVITY], "m/s², space frame"),
+                Key("inertia_about", _inertia_about, "com", _INERTIA_ABOUT),
+            ),
+            _build_gravity,
+        ),
+        EffectType(
+            "damping",
+            "viscous damping τ = −c ω",
+            (Key("coefficient", _coefficient, doc="N·m·s: one number or three (per axis)"),),
+            _build_damping,
+        ),
+        EffectType(
+            "body_torque",
+            "a constant torque fixed in the body",
+            (Key("torque", _vector, doc="N·m, body frame"),),
+            _build_body_torque,
+        ),
+        EffectType(
+            "space_torque",
+            "a constant torque fixed in space",
+            (Key("torque", _vector, doc="N·m, space frame"),),
+            _build_space_torque,
+        ),
+        EffectType(
+            "user",
+            "a compiled kernel(t, q, w, p) named package.module:function",
+            (
+                Key("function", _function, doc='"package.module:function", compiled'),
+                Key("params", _params, [], "numbers passed to the kernel as p"),
+            ),
+            _build_user,
+        ),
+    )
+}
+
+
+# ---------------------------------------------------------------------------- user torques
+
+
+def _import(module: str, base_dir: Path | None):
+    try:
+        return importlib.import_module(module)
+    except ModuleNotFoundError as exc:
+        missing = exc.name or module
+        if base_dir is None or not (module == missing or module.startswith(missing + ".")):
+            raise
+    sys.path.append(str(base_dir))
+    try:
+        return importlib.import_module(module)
+    finally:
+        sys.path.remove(str(base_dir))
+
+
+def load_user_kernel(spec: str, base_dir: Path | None, reader: Reader, key: str):
+    """Import ``"package.module:function"`` and check it is a compiled 4-argument kernel.
+
+    Examples
+    --------
+    >>> load_user_kernel("ga_rotors.effects:body_torque", None, Reader("x.toml"), "k").__name__
+    'body_torque'
+    >>> load_user_kernel("math:hypot", None, Reader("x.toml"), "effects[0].function")
+    Traceback (most recent call last):
+    ...
+    ga_rotors.errors.SceneError: x.toml: effects[0].function: math:hypot is ...
+    """
+    module, _, name = spec.partition(":")
+    try:
+        mod = _import(module, base_dir)
+    except Exception as exc:  # any failure to import is the scene's problem, reported as such
+        raise reader.error(
+            key, f"cannot import module {module!r}: {type(exc).__name__}: {exc}"
+        ) from None
+    try:
+        kernel = getattr(mod, name)
+    except AttributeError:
+        raise reader.error(key, f"module {module!r} has no attribute {name!r}") from None
+    from numba.core.dispatcher import Dispatcher
+
+    if not isinstance(kernel, Dispatcher):
+        kind = "a plain Python function" if callable(kernel) else type(kernel).__name__
+        raise reader.error(
+            key,
+            f"{spec} is {kind}; expected a numba-compiled kernel(t, q, w, p) returning a "
+            "3-tuple: decorate it with @numba.njit(cache=True)",
+        )
+    args = kernel.py_func.__code__.co_argcount
+    if args != 4:
+        raise reader.error(key, f"{spec} takes {args} arguments; expected kernel(t, q, w, p)")
+    return kernel
+
+
+def _trial_call(kernel, params, reader: Reader, key: str) -> None:
+    spec = f"{kernel.py_func.__module__}:{kernel.py_func.__name__}"
+    try:
+        out = kernel.py_func(0.0, (1.0, 0.0, 0.0, 0.0), (0.0, 0.0, 0.0), np.array(params))
+    except Exception as exc:  # the user's code: report what it raised, where
+        raise reader.error(
+            key, f"{spec}(t=0, q=(1,0,0,0), w=(0,0,0), p) raised {type(exc).__name__}: {exc}"
+        ) from None
+    try:
+        values = [float(v) for v in out]
+    except (TypeError, ValueError):
+        values = []
+    if len(values) != 3 or not all(math.isfinite(v) for v in values):
+        raise reader.error(
+            key, f"{spec} must return three finite numbers (a body-frame torque), got {out!r}"
+        )

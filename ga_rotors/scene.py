@@ -1,0 +1,875 @@
+"""Scenes: a rigid-body simulation described as data, validated, resolved with its defaults.
+
+A scene is a TOML file (read with the standard library's :mod:`tomllib`; scene files are
+data and are never evaluated) or the same nested dictionary built in Python. The schema,
+every key with its type, default and units, is in ``docs/scenes.md``; in short::
+
+    [scene]                     name, description
+    [body]                      moments | tensor | shape + dimensions; mass (kg)
+    [initial.orientation]       quaternion | euler + sequence + units | rotor | axis + angle + units
+    [initial.angular_velocity]  body | space | euler_rates, + units (rad/s, deg/s, rpm)
+    [time]                      duration, start, output_step (s)
+    [integrator]                method, step (s), paths
+    [[effects]]                 type = gravity | damping | body_torque | space_torque | user
+    [output]                    quantities, plots, data, summary
+
+Lengths, masses, times, torques and inertia are SI (m, kg, s, N·m, kg·m²). Angles and
+angular rates are ambiguous, so they carry explicit ``units``; a missing ``units`` is an
+error, never a guess. Every error is a :class:`ga_rotors.errors.SceneError` naming the file,
+the key (dotted path) and what was expected.
+
+The integration frame is the body's *principal* frame (about the pivot when the scene
+has gravity). It is the body frame the scene is written in whenever the inertia is
+diagonal there (moments, shapes, a pivot on a principal axis); otherwise (a full tensor,
+an off-axis pivot) :attr:`Scene.principal_rotation` P takes principal axes to the scene's
+body axes, the trajectory holds the principal frame's orientation q, and the scene's body
+frame is at q ⊗ P*.
+
+Examples
+--------
+>>> scene = Scene({
+...     "body": {"shape": "disk", "mass": 2.0, "radius": 0.075},
+...     "initial": {"angular_velocity": {"body": [0.1, 0.0, 15.0], "units": "rad/s"}},
+...     "time": {"duration": 1.0},
+...     "integrator": {"step": 1e-3},
+... })
+>>> scene.body.moments
+(0.0028125, 0.0028125, 0.005625)
+>>> scene.steps, scene.sample_every, scene.exact
+(1000, 1, 'symmetric_top')
+>>> Scene({"body": {"moments": [1, 2, 3]}, "time": {"duraton": 1.0}, "integrator": {"step": 1}})
+Traceback (most recent call last):
+...
+ga_rotors.errors.SceneError: <dict>: time.duraton: unknown key (did you mean 'duration'?); ...
+"""
+
+from __future__ import annotations
+
+import copy
+import itertools
+import json
+import math
+import re
+import tomllib
+from collections.abc import Mapping
+from importlib import resources
+from pathlib import Path
+
+import numpy as np
+
+from . import effects as _effects
+from . import paths as _paths
+from ._schema import Reader, join, suggest
+from .body import RigidBody
+from .errors import InputError, SceneError
+from .shapes import SHAPES
+
+__all__ = [
+    "ANGLE_UNITS",
+    "DATA_FORMATS",
+    "PLOTS",
+    "QUANTITIES",
+    "RATE_UNITS",
+    "SECTIONS",
+    "Scene",
+    "bundled",
+    "bundled_path",
+    "load_scene",
+]
+
+#: Top-level tables, in the order a resolved scene lists them.
+SECTIONS = ("scene", "body", "initial", "time", "integrator", "effects", "output")
+
+#: Angle units -> radians per unit.
+ANGLE_UNITS = {"rad": 1.0, "deg": math.pi / 180.0}
+#: Angular-rate units -> rad/s per unit.
+RATE_UNITS = {"rad/s": 1.0, "deg/s": math.pi / 180.0, "rpm": 2.0 * math.pi / 60.0}
+
+ORIENTATION_FORMS = ("quaternion", "euler", "rotor", "axis")
+ANGULAR_VELOCITY_FORMS = ("body", "space", "euler_rates")
+
+#: Rotor blade names accepted in ``initial.orientation.rotor``: Cl(3) index and sign.
+ROTOR_BLADES = {
+    "1": (0, 1.0),
+    "e12": (4, 1.0),
+    "e21": (4, -1.0),
+    "e13": (5, 1.0),
+    "e31": (5, -1.0),
+    "e23": (6, 1.0),
+    "e32": (6, -1.0),
+}
+
+#: Arrays a scene can add to its trajectory (``output.quantities``).
+QUANTITIES = {
+    "energy": "kinetic energy ½ ω·Iω (J)",
+    "potential_energy": "gravitational energy −m g·r_space about the pivot (J); gravity only",
+    "total_energy": "kinetic plus gravitational energy (J)",
+    "L": "body-frame angular momentum Iω (kg·m²/s)",
+    "L_space": "space-frame angular momentum q (Iω) q* (kg·m²/s)",
+    "omega_space": "space-frame angular velocity q ω q* (rad/s)",
+    "angles": "ZYZ Euler angles (ψ, θ, φ) of the primary path's orientation (rad)",
+    "error": "geodesic angle from the exact orientation, one array per path (rad)",
+    "omega_error": "|ω − ω_exact| of the primary path (rad/s)",
+}
+
+#: Figures ``ga-rotors run`` can draw (``output.plots``).
+PLOTS = {
+    "omega": "body angular velocity components against time",
+    "angles": "nutation θ and precession ψ (ZYZ) of the primary path against time",
+    "momentum": "space-frame angular momentum components against time",
+    "invariants": "drift of the scene's conserved quantities (or their exact decay)",
+    "error": "geodesic error of each path against the exact solution",
+}
+
+#: Data files ``ga-rotors run`` writes (``output.data``).
+DATA_FORMATS = {
+    "csv": "every array as CSV columns, full precision",
+    "npz": "every array in one NumPy .npz archive",
+}
+
+_NAME = re.compile(r"^[A-Za-z0-9][A-Za-z0-9_.-]*$")
+
+
+# ---------------------------------------------------------------------------- resolving
+
+
+def _units(reader: Reader, table: dict, key: str, units: dict, what: str) -> str:
+    if "units" not in table:
+        raise reader.error(
+            join(key, "units"),
+            f"missing; {what} are ambiguous without units: expected one of "
+            + ", ".join(f'"{u}"' for u in units),
+        )
+    return reader.string(table["units"], join(key, "units"), units)
+
+
+def _resolve_scene(reader: Reader, value, default_name: str) -> dict:
+    t = reader.table(value, "scene", ("name", "description"))
+    name = reader.string(t.get("name", default_name), "scene.name")
+    if not _NAME.match(name):
+        raise reader.error(
+            "scene.name", f"expected letters, digits, '_', '.', '-' (a file name), got {name!r}"
+        )
+    return {"name": name, "description": reader.string(t.get("description", ""),
+                                                       "scene.description")}  # fmt: skip
+
+
+def _dimension_keys() -> list[str]:
+    return sorted({d for _, dims in SHAPES.values() for d in dims})
+
+
+def _resolve_body(reader: Reader, value) -> dict:
+    dims = _dimension_keys()
+    t = reader.table(value, "body", ("moments", "tensor", "shape", "mass", *dims))
+    form = reader.one_of(t, "body", ("moments", "tensor", "shape"))
+    out: dict = {}
+    if form == "moments":
+        out["moments"] = list(reader.vector(t["moments"], "body.moments", unit="kg·m²"))
+    elif form == "tensor":
+        out["tensor"] = [list(r) for r in reader.matrix(t["tensor"], "body.tensor")]
+    else:
+        shape = reader.string(t["shape"], "body.shape", SHAPES)
+        out["shape"] = shape
+        needed = SHAPES[shape][1]
+        for d in ("mass", *needed):
+            if d not in t:
+                raise reader.error(
+                    join("body", d),
+                    f"missing; a {shape} needs mass and {', '.join(needed)} (kg, m)",
+                )
+    if "mass" in t:
+        out["mass"] = reader.number(t["mass"], "body.mass", positive=True, unit="kg")
+    for d in dims:
+        if d in t:
+            if form != "shape" or d not in SHAPES[out["shape"]][1]:
+                takes = (
+                    f"a {out['shape']} takes {', '.join(SHAPES[out['shape']][1])}"
+                    if form == "shape"
+                    else "dimensions go with body.shape"
+                )
+                raise reader.error(join("body", d), f"not used here: {takes}")
+            out[d] = reader.number(t[d], join("body", d), positive=True, unit="m")
+    return out
+
+
+def _resolve_orientation(reader: Reader, value) -> dict:
+    key = "initial.orientation"
+    if value is None:
+        return {"quaternion": [1.0, 0.0, 0.0, 0.0]}
+    allowed = {
+        "quaternion": ("quaternion",),
+        "euler": ("euler", "sequence", "units"),
+        "rotor": ("rotor",),
+        "axis": ("axis", "angle", "units"),
+    }
+    every = list(dict.fromkeys(k for keys in allowed.values() for k in keys))
+    t = reader.table(value, key, every)
+    form = reader.one_of(t, key, ORIENTATION_FORMS)
+    reader.table(t, key, allowed[form])
+    if form == "quaternion":
+        return {"quaternion": list(reader.vector(t["quaternion"], join(key, "quaternion"), 4))}
+    if form == "rotor":
+        blades = reader.table(t["rotor"], join(key, "rotor"), ROTOR_BLADES)
+        out = {}
+        seen: dict[int, str] = {}
+        for name, v in blades.items():
+            index = ROTOR_BLADES[name][0]
+            if index in seen:
+                raise reader.error(
+                    join(join(key, "rotor"), name), f"the same blade as {seen[index]!r}; give one"
+                )
+            seen[index] = name
+            out[name] = reader.number(v, join(join(key, "rotor"), name))
+        return {"rotor": out}
+    if form == "euler":
+        if "sequence" not in t:
+            raise reader.error(
+                join(key, "sequence"),
+                'missing; Euler angles need their axis sequence, e.g. "ZYZ" (the paper\'s) or '
+                '"ZYX" (aerospace)',
+            )
+        from .euler import SEQUENCES
+
+        return {
+            "euler": list(reader.vector(t["euler"], join(key, "euler"))),
+            "sequence": reader.string(t["sequence"], join(key, "sequence"), SEQUENCES),
+            "units": _units(reader, t, key, ANGLE_UNITS, "angles"),
+        }
+    for k in ("angle",):
+        if k not in t:
+            raise reader.error(join(key, k), "missing; axis-angle needs axis, angle and units")
+    return {
+        "axis": list(reader.vector(t["axis"], join(key, "axis"))),
+        "angle": reader.number(t["angle"], join(key, "angle")),
+        "units": _units(reader, t, key, ANGLE_UNITS, "angles"),
+    }
+
+
+def _resolve_angular_velocity(reader: Reader, value, orientation: dict) -> dict:
+    key = "initial.angular_velocity"
+    if value is None:
+        return {"body": [0.0, 0.0, 0.0], "units": "rad/s"}
+    t = reader.table(value, key, (*ANGULAR_VELOCITY_FORMS, "units"))
+    form = reader.one_of(t, key, ANGULAR_VELOCITY_FORMS)
+    if form == "euler_rates" and "euler" not in orientation:
+        raise reader.error(
+            join(key, "euler_rates"),
+            "Euler-angle rates need the angles: give initial.orientation as euler (their "
+            "sequence is the orientation's)",
+        )
+    return {
+        form: list(reader.vector(t[form], join(key, form))),
+        "units": _units(reader, t, key, RATE_UNITS, "angular rates"),
+    }
+
+
+def _resolve_initial(reader: Reader, value) -> dict:
+    t = reader.table(value if value is not None else {}, "initial",
+                     ("orientation", "angular_velocity"))  # fmt: skip
+    orientation = _resolve_orientation(reader, t.get("orientation"))
+    return {
+        "orientation": orientation,
+        "angular_velocity": _resolve_angular_velocity(
+            reader, t.get("angular_velocity"), orientation
+        ),
+    }
+
+
+def _resolve_integrator(reader: Reader, value) -> dict:
+    from .integrators import base
+
+    t = reader.table(value if value is not None else {}, "integrator",
+                     ("method", "step", "paths"), ("step",))  # fmt: skip
+    method = reader.string(t.get("method", "rk4"), "integrator.method", base.names())
+    step = reader.number(t["step"], "integrator.step", positive=True, unit="s")
+    paths = reader.names(t.get("paths", ["rotor"]), "integrator.paths", _paths.PATHS)
+    if not paths:
+        raise reader.error(
+            "integrator.paths", f"expected at least one of {', '.join(_paths.PATHS)}"
+        )
+    return {"method": method, "step": step, "paths": paths}
+
+
+def _resolve_time(reader: Reader, value) -> dict:
+    t = reader.table(value, "time", ("start", "duration", "output_step"), ("duration",))
+    out = {
+        "start": reader.number(t.get("start", 0.0), "time.start", unit="s"),
+        "duration": reader.number(t["duration"], "time.duration", positive=True, unit="s"),
+        "output_step": None,  # default: the integrator's step, filled in by _resolve
+    }
+    if "output_step" in t:
+        out["output_step"] = reader.number(
+            t["output_step"], "time.output_step", positive=True, unit="s"
+        )
+    return out
+
+
+def _resolve_effects(reader: Reader, value) -> list[dict]:
+    out = []
+    for i, entry in enumerate(reader.array(value if value is not None else [], "effects")):
+        key = join("effects", i)
+        if not isinstance(entry, Mapping):
+            raise reader.error(key, "expected a table ([[effects]] with a type)")
+        if "type" not in entry:
+            raise reader.error(
+                join(key, "type"), f"missing; expected one of {', '.join(_effects.EFFECTS)}"
+            )
+        kind = reader.string(entry["type"], join(key, "type"), _effects.EFFECTS)
+        out.append(_effects.EFFECTS[kind].resolve(reader, dict(entry), key))
+    gravity = [i for i, e in enumerate(out) if e["type"] == "gravity"]
+    if len(gravity) > 1:
+        raise reader.error(
+            join("effects", gravity[1]), "a body has one pivot: declare gravity at most once"
+        )
+    return out
+
+
+def _resolve_output(reader: Reader, value) -> dict:
+    t = reader.table(value if value is not None else {}, "output",
+                     ("quantities", "plots", "data", "summary"))  # fmt: skip
+    return {
+        "quantities": reader.names(t.get("quantities", []), "output.quantities", QUANTITIES),
+        "plots": reader.names(t.get("plots", []), "output.plots", PLOTS),
+        "data": reader.names(t.get("data", []), "output.data", DATA_FORMATS),
+        "summary": reader.boolean(t.get("summary", True), "output.summary"),
+    }
+
+
+def _resolve(reader: Reader, data, default_name: str) -> dict:
+    top = reader.table(data, "", SECTIONS, ("body", "time"))
+    out = {
+        "scene": _resolve_scene(reader, top.get("scene", {}), default_name),
+        "body": _resolve_body(reader, top["body"]),
+        "initial": _resolve_initial(reader, top.get("initial")),
+        "time": _resolve_time(reader, top["time"]),
+        "integrator": _resolve_integrator(reader, top.get("integrator")),
+        "effects": _resolve_effects(reader, top.get("effects")),
+        "output": _resolve_output(reader, top.get("output")),
+    }
+    if out["time"]["output_step"] is None:
+        out["time"]["output_step"] = out["integrator"]["step"]
+    return out
+
+
+# ---------------------------------------------------------------------------- the scene
+
+
+def _whole(reader: Reader, span: float, step: float, key: str, message: str) -> int:
+    """span / step as a whole number (simulate's rule), or a SceneError at ``key``."""
+    from .simulate import _steps
+
+    try:
+        return _steps(span, step)
+    except InputError:
+        raise reader.error(key, message) from None
+
+
+class Scene:
+    """A validated scene: the resolved data and what it implies.
+
+    Parameters
+    ----------
+    data : mapping
+        The scene as nested dicts and lists, exactly as the TOML file would hold it.
+    file : str
+        Name used in error messages (the file's path for :func:`load_scene`).
+    base_dir : path, optional
+        Where user-torque modules may also be imported from (the file's directory).
+
+    Attributes
+    ----------
+    data : dict
+        The resolved scene: every key, defaults filled in (what ``ga-rotors show``
+        prints, as TOML; loading it again gives the same scene).
+    body : RigidBody
+        Principal moments of the integration frame (about the pivot with gravity).
+    principal_rotation : tuple
+        P: principal axes -> the scene's body axes (identity when the inertia is diagonal).
+    orientation : ndarray (4,)
+        Initial orientation of the integration frame (unit quaternion).
+    angular_velocity : ndarray (3,)
+        Initial body angular velocity in the integration frame (rad/s).
+    euler_angles : ndarray (3,) or None
+        The initial ZYZ angles (rad) when the scene gives them directly (passed to the
+        Euler-angle path exactly, rather than extracted from the quaternion).
+    steps, sample_every : int
+        Number of integration steps; steps between output samples.
+    exact : str or None
+        Which exact solution applies (:attr:`exact_reason` says why not, when None).
+    """
+
+    def __init__(self, data: Mapping, *, file: str = "<dict>", base_dir=None):
+        self.file = str(file)
+        self.base_dir = None if base_dir is None else Path(base_dir)
+        reader = Reader(self.file)
+        self._given = copy.deepcopy(dict(data)) if isinstance(data, Mapping) else data
+        default = Path(self.file).stem if self.file != "<dict>" else "scene"
+        if not _NAME.match(default):
+            default = "scene"
+        self.data = _resolve(reader, self._given, default)
+        self._derive(reader)
+
+    # ------------------------------------------------------------------ construction
+
+    @classmethod
+    def from_toml(cls, text: str, *, file: str = "<string>", base_dir=None) -> Scene:
+        """Parse TOML text (data only: :mod:`tomllib`, nothing evaluated).
+
+        Examples
+        --------
+        >>> Scene.from_toml("[body]\\nmoments = [1, 2, 3]\\n[time]\\nduration = 1\\n"
+        ...                 "[integrator]\\nstep = 0.5\\n").steps
+        2
+        >>> Scene.from_toml("[body\\n", file="bad.toml")
+        Traceback (most recent call last):
+        ...
+        ga_rotors.errors.SceneError: bad.toml: not valid TOML: ... (at line 1, column 6)
+        """
+        try:
+            data = tomllib.loads(text)
+        except tomllib.TOMLDecodeError as exc:
+            raise SceneError(file, "", f"not valid TOML: {exc}") from None
+        return cls(data, file=file, base_dir=base_dir)
+
+    def replace(self, changes: Mapping[str, object]) -> Scene:
+        """A new scene with some keys changed, given as dotted paths.
+
+        Examples
+        --------
+        >>> s = load_scene("spinning_disk").replace({"time.duration": 0.5})
+        >>> s.data["time"]["duration"], s.steps
+        (0.5, 500)
+        """
+        given = copy.deepcopy(self._given)
+        for path, value in changes.items():
+            node = given
+            parts = re.findall(r"[^.\[\]]+|\[\d+\]", path)
+            for part, nxt in itertools.pairwise(parts):
+                index = int(part[1:-1]) if part.startswith("[") else part
+                if isinstance(index, str) and index not in node:
+                    node[index] = [] if nxt.startswith("[") else {}
+                node = node[index]
+            last = parts[-1]
+            node[int(last[1:-1]) if last.startswith("[") else last] = value
+        return Scene(given, file=self.file, base_dir=self.base_dir)
+
+    # ------------------------------------------------------------------ derived values
+
+    def _derive(self, reader: Reader) -> None:
+        d = self.data
+        body = d["body"]
+        tensor, key = self._inertia(reader, body)
+        mass = body.get("mass")
+        self.gravity_index = next(
+            (i for i, e in enumerate(d["effects"]) if e["type"] == "gravity"), None
+        )
+        if self.gravity_index is not None:
+            tensor = self._about_pivot(reader, tensor, mass)
+            key = join(join("effects", self.gravity_index), "pivot_to_com")
+        self.body, self.principal_rotation = self._principal(reader, tensor, key)
+        self.mass = mass
+        self._frame = _effects.Frame(self.principal_rotation, mass, self.base_dir, self.file)
+
+        q_user = self._orientation(reader, d["initial"]["orientation"])
+        from . import quaternion as Q
+
+        self.orientation = Q.multiply(q_user, self.principal_rotation)
+        w_user = self._angular_velocity(reader, d["initial"], q_user)
+        self.angular_velocity = np.array(self._frame.to_principal(w_user))
+        self.euler_angles = None
+        o = d["initial"]["orientation"]
+        if "euler" in o and o["sequence"] == "ZYZ" and self.principal_rotation == _IDENTITY:
+            self.euler_angles = np.array(o["euler"]) * ANGLE_UNITS[o["units"]]
+
+        time, integ = d["time"], d["integrator"]
+        self.steps = _whole(
+            reader, time["duration"], integ["step"], "integrator.step",
+            f"expected a step that divides time.duration ({time['duration']!r} s) into whole "
+            f"steps, got {integ['step']!r} s",
+        )  # fmt: skip
+        self.sample_every = _whole(
+            reader, time["output_step"], integ["step"], "time.output_step",
+            f"expected a whole multiple of integrator.step ({integ['step']!r} s), got "
+            f"{time['output_step']!r} s",
+        )  # fmt: skip
+        self.kind = "torqued" if d["effects"] else "free"
+        self._check_integrator(reader)
+        self.exact, self.exact_reason = self._exact()
+        self._check_outputs(reader)
+
+    @staticmethod
+    def _inertia(reader: Reader, body: dict) -> tuple[np.ndarray, str]:
+        if "moments" in body:
+            try:
+                RigidBody(tuple(body["moments"]))
+            except InputError as exc:
+                raise reader.error("body.moments", str(exc).partition(": ")[2]) from None
+            return np.diag(body["moments"]), "body.moments"
+        if "tensor" in body:
+            try:
+                RigidBody.from_tensor(body["tensor"])
+            except InputError as exc:
+                raise reader.error("body.tensor", str(exc).partition(": ")[2]) from None
+            t = np.array(body["tensor"], dtype=np.float64)
+            return 0.5 * (t + t.T), "body.tensor"
+        func, dims = SHAPES[body["shape"]]
+        try:
+            moments = func(body["mass"], *(body[k] for k in dims))
+        except InputError as exc:
+            raise reader.error("body", str(exc)) from None
+        return np.diag(moments), "body.shape"
+
+    def _about_pivot(self, reader: Reader, tensor: np.ndarray, mass) -> np.ndarray:
+        key = join("effects", self.gravity_index)
+        g = self.data["effects"][self.gravity_index]
+        if mass is None:
+            raise reader.error("body.mass", f"missing; the gravity effect ({key}) needs the mass")
+        shift = _effects.inertia_about_pivot(np.zeros((3, 3)), mass, g["pivot_to_com"])
+        if g["inertia_about"] == "com":
+            return tensor + shift
+        # Given about the pivot: what is left about the centre of mass must be a body.
+        try:
+            RigidBody.from_tensor(tensor - shift)
+        except InputError as exc:
+            raise reader.error(
+                join(key, "inertia_about"),
+                "the body's inertia about the pivot minus m(|r|²1 − r rᵀ) (its inertia about "
+                f"the centre of mass) is not a rigid body's inertia: {exc}",
+            ) from None
+        return tensor
+
+    @staticmethod
+    def _principal(reader: Reader, tensor: np.ndarray, key: str):
+        if np.count_nonzero(tensor - np.diag(np.diag(tensor))) == 0:
+            try:
+                return RigidBody(tuple(np.diag(tensor))), _IDENTITY
+            except InputError as exc:
+                raise reader.error(key, str(exc).partition(": ")[2]) from None
+        try:
+            body = RigidBody.from_tensor(tensor)
+        except InputError as exc:
+            raise reader.error(key, str(exc).partition(": ")[2]) from None
+        return RigidBody(body.moments), body.principal_rotation
+
+    @staticmethod
+    def _orientation(reader: Reader, o: dict) -> np.ndarray:
+        from . import euler
+        from . import quaternion as Q
+        from ._validate import require_unit
+        from .isomorphism import from_even
+
+        key = "initial.orientation"
+        try:
+            if "quaternion" in o:
+                return require_unit(np.array(o["quaternion"]), "quaternion")
+            if "euler" in o:
+                angles = np.array(o["euler"]) * ANGLE_UNITS[o["units"]]
+                return euler.to_quaternion(o["sequence"], angles)
+            if "axis" in o:
+                return Q.from_axis_angle(o["axis"], o["angle"] * ANGLE_UNITS[o["units"]])
+            c = np.zeros(8)
+            for name, v in o["rotor"].items():
+                index, sign = ROTOR_BLADES[name]
+                c[index] = sign * v
+            return require_unit(from_even(c, name="rotor"), "rotor")
+        except InputError as exc:
+            form = next(f for f in ORIENTATION_FORMS if f in o)
+            raise reader.error(join(key, form), str(exc).partition(": ")[2]) from None
+
+    @staticmethod
+    def _angular_velocity(reader: Reader, initial: dict, q_user: np.ndarray) -> np.ndarray:
+        from . import quaternion as Q
+        from .kinematics import body_omega_from_euler_rates
+
+        a = initial["angular_velocity"]
+        scale = RATE_UNITS[a["units"]]
+        if "body" in a:
+            return np.array(a["body"]) * scale
+        if "space" in a:
+            return Q.rotate(Q.conjugate(q_user), np.array(a["space"]) * scale)
+        o = initial["orientation"]
+        angles = np.array(o["euler"]) * ANGLE_UNITS[o["units"]]
+        return body_omega_from_euler_rates(
+            o["sequence"], angles, np.array(a["euler_rates"]) * scale
+        )
+
+    def _check_integrator(self, reader: Reader) -> None:
+        from types import SimpleNamespace
+
+        from .integrators import base
+
+        method = base.get(self.data["integrator"]["method"])
+        for path in self.data["integrator"]["paths"]:
+            try:
+                method.check(SimpleNamespace(kind=self.kind), path)
+            except InputError as exc:
+                key = "integrator.paths" if str(exc).startswith("paths") else "integrator.method"
+                raise reader.error(key, str(exc).partition(": ")[2]) from None
+
+    def _exact(self) -> tuple[str | None, str]:
+        """(name of the exact solution that applies, or None; and why not)."""
+        i1, i2, _ = self.body.moments
+        effects = self.data["effects"]
+        if not effects:
+            if self.body.is_symmetric:
+                return "symmetric_top", "torque-free, two equal moments: closed form"
+            return "asymmetric_top", "torque-free, three distinct moments: Jacobi functions"
+        types = [e["type"] for e in effects]
+        if types == ["damping"] and not isinstance(effects[0]["coefficient"], list):
+            if self.body.is_symmetric:
+                return "damped_symmetric_top", "isotropic damping of a symmetric top"
+            return None, "isotropic damping has an exact solution only for a symmetric top"
+        if types == ["gravity"]:
+            r = self._frame.to_principal(effects[0]["pivot_to_com"])
+            if i1 == i2 and r[0] == r[1] == 0.0 and r[2] > 0.0:
+                return "heavy_top", "gravity on a symmetric top, centre of mass on its axis"
+            return None, (
+                "gravity has an exact (Lagrange) solution only for I1 = I2 about the pivot "
+                "with the centre of mass on the body +z axis"
+            )
+        return None, f"no exact solution is known to ga_rotors for effects {types}"
+
+    def _check_outputs(self, reader: Reader) -> None:
+        out = self.data["output"]
+        needs = {
+            "error": self.exact is not None and self.exact_has_orientation,
+            "omega_error": self.exact is not None,
+            "potential_energy": self.gravity_index is not None,
+        }
+        for section, names in (("quantities", out["quantities"]), ("plots", out["plots"])):
+            for i, name in enumerate(names):
+                if needs.get(name, True):
+                    continue
+                reason = (
+                    "needs gravity" if name == "potential_energy"
+                    else f"needs an exact solution; this scene has none ({self.exact_reason})"
+                )  # fmt: skip
+                raise reader.error(join(join("output", section), i), f"{name!r} {reason}")
+
+    @property
+    def exact_has_orientation(self) -> bool:
+        """Whether the exact solution gives the orientation (not only ω)."""
+        if self.exact == "damped_symmetric_top":
+            i1, i2, i3 = self.body.moments
+            return i1 == i2 == i3
+        return self.exact is not None
+
+    # ------------------------------------------------------------------ accessors
+
+    @property
+    def name(self) -> str:
+        return self.data["scene"]["name"]
+
+    @property
+    def description(self) -> str:
+        return self.data["scene"]["description"]
+
+    @property
+    def step(self) -> float:
+        return self.data["integrator"]["step"]
+
+    @property
+    def paths(self) -> list[str]:
+        return list(self.data["integrator"]["paths"])
+
+    @property
+    def effects(self) -> list[dict]:
+        return copy.deepcopy(self.data["effects"])
+
+    def torques(self) -> tuple:
+        """The declared effects as TorqueTerms (imports user-torque modules).
+
+        Examples
+        --------
+        >>> [t.name for t in load_scene("heavy_top").torques()]
+        ['gravity']
+        >>> load_scene("spinning_disk").torques()
+        ()
+        """
+        reader = Reader(self.file)
+        return tuple(
+            _effects.EFFECTS[e["type"]].build(e, self._frame, reader, join("effects", i))
+            for i, e in enumerate(self.data["effects"])
+        )
+
+    def to_dict(self) -> dict:
+        """The resolved scene (a deep copy).
+
+        Examples
+        --------
+        >>> load_scene("heavy_top").to_dict()["effects"][0]["inertia_about"]
+        'com'
+        """
+        return copy.deepcopy(self.data)
+
+    def to_toml(self) -> str:
+        """The resolved scene as TOML text; ``Scene.from_toml`` of it is the same scene.
+
+        Examples
+        --------
+        >>> s = load_scene("spinning_disk")
+        >>> Scene.from_toml(s.to_toml()).data == s.data
+        True
+        """
+        return dumps_toml(self.data)
+
+    def describe(self) -> str:
+        """What the scene resolves to, as TOML comment lines (``ga-rotors show``).
+
+        Examples
+        --------
+        >>> print(load_scene("heavy_top").describe().splitlines()[0])
+        # integration frame: principal moments (0.002225, 0.002225, 0.00125) kg·m² about the pivot
+        """
+        from .integrators import base
+
+        q, w = self.orientation, self.angular_velocity
+        method = base.get(self.data["integrator"]["method"])
+        lines = [
+            f"integration frame: principal moments {_fmt(self.body.moments)} kg·m²"
+            + (" about the pivot" if self.gravity_index is not None else ""),
+            f"principal rotation P (principal -> scene body axes): {_fmt(self.principal_rotation)}",
+            f"initial orientation q0 (w, x, y, z): {_fmt(q)}",
+            f"initial body angular velocity: {_fmt(w)} rad/s",
+            f"problem: {self.kind}; torques: "
+            + (", ".join(e["type"] for e in self.data["effects"]) or "none (torque-free)"),
+            f"integrator: {method.name} (order {method.order}), {self.steps:,} steps, "
+            f"a sample every {self.sample_every} step(s), paths {', '.join(self.paths)}",
+            f"exact solution: {self.exact or 'none'} ({self.exact_reason})",
+        ]
+        return "\n".join("# " + line for line in lines)
+
+    def __repr__(self) -> str:
+        return f"Scene({self.name!r}, {self.kind}, {self.steps} steps)"
+
+
+_IDENTITY = (1.0, 0.0, 0.0, 0.0)
+
+
+def _fmt(v) -> str:
+    return "(" + ", ".join(f"{float(x):.10g}" for x in v) + ")"
+
+
+# ---------------------------------------------------------------------------- TOML out
+
+_BARE = re.compile(r"^[A-Za-z0-9_-]+$")
+
+
+def _toml_key(k: str) -> str:
+    return k if _BARE.match(k) else json.dumps(k)
+
+
+def _toml_value(v) -> str:
+    if isinstance(v, bool):
+        return "true" if v else "false"
+    if isinstance(v, int | float):
+        return repr(float(v))
+    if isinstance(v, str):
+        if "\n" not in v:
+            return json.dumps(v, ensure_ascii=False)
+        # A multi-line basic string: readable in the file, the same value when parsed.
+        body = "".join(c if c == "\n" else json.dumps(c, ensure_ascii=False)[1:-1] for c in v)
+        return '"""\n' + body + '"""'
+
+    if isinstance(v, Mapping):
+        return "{ " + ", ".join(f"{_toml_key(k)} = {_toml_value(x)}" for k, x in v.items()) + " }"
+    return "[" + ", ".join(_toml_value(x) for x in v) + "]"
+
+
+def dumps_toml(data: Mapping) -> str:
+    """Resolved scene data as TOML: tables, sub-tables and arrays of tables.
+
+    Examples
+    --------
+    >>> print(dumps_toml({"time": {"duration": 1}, "effects": [{"type": "damping"}]}))
+    [time]
+    duration = 1.0
+    <BLANKLINE>
+    [[effects]]
+    type = "damping"
+    <BLANKLINE>
+    """
+    chunks = []
+
+    def table(header: str, t: Mapping) -> None:
+        plain = {k: v for k, v in t.items() if not isinstance(v, Mapping) or k == "rotor"}
+        nested = {k: v for k, v in t.items() if k not in plain}
+        if plain or not nested:
+            chunks.append(f"{header}\n" + "".join(f"{_toml_key(k)} = {_toml_value(v)}\n"
+                                                  for k, v in plain.items()))  # fmt: skip
+        for k, v in nested.items():
+            table(f"[{header[1:-1]}.{_toml_key(k)}]", v)
+
+    for section, value in data.items():
+        if isinstance(value, list):
+            for entry in value:
+                chunks.append(f"[[{section}]]\n" + "".join(
+                    f"{_toml_key(k)} = {_toml_value(v)}\n" for k, v in entry.items()))  # fmt: skip
+        else:
+            table(f"[{_toml_key(section)}]", value)
+    return "\n".join(chunks)
+
+
+# ---------------------------------------------------------------------------- files
+
+
+def bundled() -> dict[str, str]:
+    """Bundled scene names -> their one-line descriptions.
+
+    Examples
+    --------
+    >>> "heavy_top" in bundled()
+    True
+    """
+    out = {}
+    for entry in sorted(resources.files("ga_rotors.scenes").iterdir(), key=lambda p: p.name):
+        if entry.name.endswith(".toml"):
+            data = tomllib.loads(entry.read_text(encoding="utf-8"))
+            description = data.get("scene", {}).get("description", "")
+            out[entry.name[:-5]] = description.strip().splitlines()[0] if description else ""
+    return out
+
+
+def bundled_path(name: str) -> Path:
+    """The file of the bundled scene ``name``.
+
+    Examples
+    --------
+    >>> bundled_path("heavy_top").name
+    'heavy_top.toml'
+    """
+    return Path(str(resources.files("ga_rotors.scenes") / f"{name}.toml"))
+
+
+def load_scene(path_or_name) -> Scene:
+    """Load a scene file, or a bundled scene by name (``ga-rotors scenes`` lists them).
+
+    Examples
+    --------
+    >>> load_scene("spinning_disk").name
+    'spinning_disk'
+    >>> load_scene("spining_disk")
+    Traceback (most recent call last):
+    ...
+    ga_rotors.errors.SceneError: spining_disk: no such file, and no bundled scene of that name ...
+    """
+    if isinstance(path_or_name, Scene):
+        return path_or_name
+    path = Path(path_or_name)
+    if not path.is_file():
+        names = bundled()
+        name = str(path_or_name)
+        if name in names:
+            path = bundled_path(name)
+        else:
+            raise SceneError(
+                name,
+                "",
+                f"no such file, and no bundled scene of that name{suggest(name, names)}; "
+                f"bundled: {', '.join(names)}",
+            )
+    try:
+        text = path.read_text(encoding="utf-8")
+    except (OSError, UnicodeDecodeError) as exc:
+        raise SceneError(str(path), "", f"cannot read the file: {exc}") from None
+    return Scene.from_toml(text, file=str(path), base_dir=path.resolve().parent)

@@ -1,0 +1,51 @@
+"""List the bundled scenes; run one with ga-rotors run NAME, print it with ga-rotors show NAME.
+
+The scenes are TOML files shipped in this package (ga_rotors/scenes/*.toml); their schema
+is in docs/scenes.md. With --figures DIR every bundled scene is run and its figure written
+to DIR/<name>.png (how docs/figures/scenes/ is made).
+"""
+
+from __future__ import annotations
+
+import argparse
+
+__all__ = ["add_arguments", "run"]
+
+
+def add_arguments(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument(
+        "--figures",
+        metavar="DIR",
+        default=None,
+        help="run every bundled scene and write its figure to DIR/<name>.png",
+    )
+
+
+def run(args: argparse.Namespace) -> int:
+    from ..scene import bundled
+
+    names = bundled()
+    if args.figures is None:
+        width = max(map(len, names))
+        for name, description in names.items():
+            print(f"{name:<{width}}  {description}")
+        return 0
+    from pathlib import Path
+
+    from ..errors import InputError
+    from ..scene import load_scene
+    from ..scene_output import figure_png
+    from ..scene_run import simulate
+    from ..trajectory import atomic_write
+
+    out = Path(args.figures)
+    if not out.is_dir():
+        raise InputError(f"--figures: {out} is not a directory")
+    for name in names:
+        scene = load_scene(name)
+        if not scene.data["output"]["plots"]:
+            continue
+        png = figure_png(scene, simulate(scene))
+        path = atomic_write(out / f"{name}.png", lambda fh, b=png: fh.write(b))
+        print(f"wrote {path} ({len(png) // 1024} KiB)")
+    return 0

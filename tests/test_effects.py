@@ -1,0 +1,246 @@
+"""Effects: torque kernels against independent oracles, and the physics they imply."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from scipy.spatial.transform import Rotation
+
+from ga_rotors import effects, shapes
+from ga_rotors import quaternion as Q
+from ga_rotors.errors import SceneError
+from ga_rotors.scene import Scene
+from ga_rotors.scene_run import simulate
+
+RNG = np.random.default_rng(11)
+
+
+def random_states(n=20):
+    q = Q.normalize(RNG.normal(size=(n, 4)))
+    w = RNG.normal(size=(n, 3))
+    return q, w
+
+
+def matrix(q) -> np.ndarray:
+    """Oracle: scipy's rotation matrix (body -> space) of a scalar-first quaternion."""
+    return Rotation.from_quat(np.roll(q, -1)).as_matrix()
+
+
+@pytest.mark.parametrize("compiled", [True, False], ids=["compiled", "python"])
+def test_kernels_match_numpy_oracles(compiled):
+    q_all, w_all = random_states()
+    for q, w in zip(q_all, w_all, strict=True):
+        q, w = tuple(q), tuple(w)
+        M = matrix(q)
+        weight, r = RNG.normal(size=3), RNG.normal(size=3)
+        C = RNG.normal(size=(3, 3))
+        tau = RNG.normal(size=3)
+        call = {
+            "gravity": (np.cross(r, M.T @ weight), np.r_[weight, r]),
+            "space_torque": (M.T @ tau, tau),
+            "body_torque": (tau, tau),
+            "isotropic_damping": (-0.7 * np.array(w), np.array([0.7])),
+            "damping": (-C @ w, C.ravel()),
+        }
+        for name, (expected, params) in call.items():
+            kernel = getattr(effects, name)
+            f = kernel if compiled else kernel.py_func
+            got = np.array(f(0.0, q, w, np.ascontiguousarray(params)))
+            assert np.allclose(got, expected, rtol=0, atol=1e-14), name
+
+
+def test_parallel_axis_theorem_against_point_masses():
+    # A cloud of point masses: inertia about the centre of mass and about a pivot, summed
+    # directly, must agree with I_cm + m(|r|² 1 − r rᵀ) to rounding.
+    x = RNG.normal(size=(50, 3))
+    m = RNG.uniform(0.5, 2.0, size=50)
+    com = (m[:, None] * x).sum(0) / m.sum()
+
+    def inertia(points):
+        return sum(
+            mi * (p @ p * np.eye(3) - np.outer(p, p)) for mi, p in zip(m, points, strict=True)
+        )
+
+    pivot = np.array([0.3, -1.2, 0.8])
+    about_pivot = effects.inertia_about_pivot(inertia(x - com), m.sum(), com - pivot)
+    assert np.allclose(about_pivot, inertia(x - pivot), rtol=1e-13, atol=1e-13)
+
+
+def test_rod_hanging_from_its_end_has_the_textbook_inertia():
+    m, length, radius = 2.0, 1.0, 0.01
+    body = {"shape": "rod", "mass": m, "length": length, "radius": radius}
+    g = {"type": "gravity", "pivot_to_com": [0.0, 0.0, -length / 2]}
+    s = Scene({"body": body, "time": {"duration": 1.0}, "integrator": {"step": 0.1},
+               "effects": [g]})  # fmt: skip
+    expected = m * radius**2 / 4 + m * length**2 / 3  # about an end, transverse
+    assert np.allclose(s.body.moments, (expected, expected, m * radius**2 / 2), rtol=1e-15)
+    assert s.principal_rotation == (1.0, 0.0, 0.0, 0.0)
+    assert s.exact is None  # centre of mass below the pivot (−z): not the Lagrange form
+
+
+def _off_axis_gravity_scene(step: float) -> Scene:
+    # A box on a pivot off every principal axis: the pivot inertia is a full tensor, the
+    # integration frame differs from the body frame, and the torque's r must follow.
+    return Scene({
+        "body": {"shape": "box", "mass": 1.5, "a": 0.3, "b": 0.2, "c": 0.1},
+        "initial": {"orientation": {"axis": [1, 1, 0], "angle": 40, "units": "deg"},
+                    "angular_velocity": {"body": [1.0, -2.0, 8.0], "units": "rad/s"}},
+        "time": {"duration": 1.0},
+        "integrator": {"step": step, "paths": ["quaternion"]},
+        "effects": [{"type": "gravity", "pivot_to_com": [0.05, -0.03, 0.08]}],
+        "output": {"quantities": ["total_energy"]},
+    })  # fmt: skip
+
+
+def test_off_axis_pivot_conserves_total_energy_at_rk4_order():
+    # If r or the inertia were in the wrong frame, T + V would drift at O(1) whatever the
+    # step; with both right, the drift is RK4's truncation error, O(h⁴): halving h divides
+    # it by 16 (leading order; the ratio is 16 × (1 + O(h))).
+    drifts = []
+    for h in (4e-3, 2e-3):
+        s = _off_axis_gravity_scene(h)
+        assert s.principal_rotation != (1.0, 0.0, 0.0, 0.0)
+        e = simulate(s).total_energy
+        drifts.append(np.abs(e - e[0]).max() / np.abs(e).max())
+    assert drifts[0] > 1e-12  # far above rounding: the truncation error is what we measure
+    assert 12.0 < drifts[0] / drifts[1] < 20.0
+
+
+def test_space_torque_changes_the_space_momentum_linearly():
+    tau = np.array([0.02, -0.01, 0.03])
+    s = Scene({
+        "body": {"moments": [0.01, 0.02, 0.025]},
+        "initial": {"angular_velocity": {"body": [1.0, 2.0, 5.0], "units": "rad/s"}},
+        "time": {"duration": 2.0},
+        "integrator": {"step": 1e-3, "paths": ["rotor"]},
+        "effects": [{"type": "space_torque", "torque": tau.tolist()}],
+        "output": {"quantities": ["L_space"]},
+    })  # fmt: skip
+    tr = simulate(s)
+    free = tr.L_space - tr.t[:, None] * tau
+    # RK4 error model: orientation error ~ T|ω|(|ω|h)⁴/1920 ≈ 2·5.5·(5.5e-3)⁴/1920 ≈ 5e-12
+    # rad, times |L| ≈ 0.13: ~1e-12 in L. Allow 1e-11 (next-order terms, ω not constant).
+    assert np.abs(free - free[0]).max() < 1e-11
+
+
+def test_body_torque_spins_up_a_sphere_exactly():
+    # ω̇ = τ/I is constant, so RK4 (exact for polynomials of degree ≤ 4) gives ω = τ t/I to
+    # rounding, and the body turns about the fixed axis τ̂ by |τ| t²/(2I).
+    tau = np.array([0.0, 0.3, 0.4])
+    inertia = shapes.sphere(2.0, 0.5)[0]
+    s = Scene({
+        "body": {"shape": "sphere", "mass": 2.0, "radius": 0.5},
+        "time": {"duration": 1.0},
+        "integrator": {"step": 1e-3, "paths": ["quaternion"]},
+        "effects": [{"type": "body_torque", "torque": tau.tolist()}],
+    })  # fmt: skip
+    tr = simulate(s)
+    assert np.allclose(tr.w, tr.t[:, None] * tau / inertia, rtol=0, atol=1e-13)
+    angle = np.linalg.norm(tau) * tr.t**2 / (2 * inertia)
+    exact = Q.from_axis_angle(tau, angle)
+    # Per-step error of RK4 on q̇ = ½ q ω(t) with ω linear in t: O(h⁵ |ω̇|...) ≈ 1e-15.
+    assert Q.distance(exact, tr.q).max() < 1e-12
+
+
+def test_per_axis_damping_follows_the_principal_frame():
+    R = Rotation.from_rotvec([0.4, 0.1, -0.3]).as_matrix()
+    tensor = R @ np.diag([1.0, 2.0, 2.5]) @ R.T
+    c = np.array([0.1, 0.2, 0.3])
+    s = Scene({"body": {"tensor": tensor.tolist()}, "time": {"duration": 1.0},
+               "integrator": {"step": 0.1},
+               "effects": [{"type": "damping", "coefficient": c.tolist()}]})  # fmt: skip
+    (term,) = s.torques()
+    M = Q.to_matrix(s.principal_rotation)
+    w_p = np.array([0.3, -0.5, 1.0])
+    tau_p = np.array(effects.damping.py_func(0.0, (1, 0, 0, 0), tuple(w_p), np.array(term.params)))
+    assert np.allclose(M @ tau_p, -np.diag(c) @ (M @ w_p), atol=1e-15)
+
+
+# ---------------------------------------------------------------------------- user torques
+
+USER = """
+import numba
+
+@numba.njit(cache=False)
+def spin_up(t, q, w, p):
+    return (0.0, 0.0, p[0])
+
+def plain(t, q, w, p):
+    return (0.0, 0.0, 1.0)
+
+@numba.njit(cache=False)
+def two_args(t, q):
+    return (0.0, 0.0, 1.0)
+
+@numba.njit(cache=False)
+def broken(t, q, w, p):
+    return (0.0, 0.0, p[5])
+
+@numba.njit(cache=False)
+def short(t, q, w, p):
+    return (0.0, 1.0)
+"""
+
+
+@pytest.fixture
+def user_scene(tmp_path, monkeypatch):
+    """Write a scene file and a torque module next to it (not on sys.path)."""
+    import sys
+
+    name = f"user_torques_{tmp_path.name}"
+    (tmp_path / f"{name}.py").write_text(USER + f"\nopen({str(tmp_path / 'imported')!r}, 'w')\n")
+
+    def make(function: str, params=(2.0,)) -> Scene:
+        path = tmp_path / "user.toml"
+        path.write_text(
+            '[body]\nshape = "sphere"\nmass = 1.0\nradius = 1.0\n'
+            '[time]\nduration = 0.1\n[integrator]\nstep = 0.01\npaths = ["quaternion"]\n'
+            f'[[effects]]\ntype = "user"\nfunction = "{name}:{function}"\n'
+            f"params = {list(params)}\n"
+        )
+        from ga_rotors.scene import load_scene
+
+        return load_scene(path)
+
+    monkeypatch.setattr(sys, "path", list(sys.path))
+    yield make, tmp_path
+    sys.modules.pop(name, None)
+
+
+def test_user_torque_from_the_scene_directory_runs(user_scene):
+    make, where = user_scene
+    s = make("spin_up", params=(0.4,))
+    assert not (where / "imported").exists()  # loading a scene imports nothing
+    tr = simulate(s)
+    inertia = 0.4  # ⅖ m R²
+    assert np.allclose(tr.w[:, 2], 0.4 * tr.t / inertia, rtol=0, atol=1e-14)
+    assert tr.meta["torques"] == ["spin_up"]
+    assert str(where) not in __import__("sys").path  # the directory was only borrowed
+
+
+@pytest.mark.parametrize(
+    ("function", "message"),
+    [
+        ("plain", "is a plain Python function; expected a numba-compiled kernel"),
+        ("two_args", "takes 2 arguments; expected kernel(t, q, w, p)"),
+        ("broken", "raised IndexError"),
+        ("short", "must return three finite numbers"),
+        ("missing", "has no attribute 'missing'"),
+    ],
+)
+def test_bad_user_torques_fail_with_the_key(user_scene, function, message):
+    make, _ = user_scene
+    s = make(function)
+    with pytest.raises(SceneError) as info:
+        simulate(s)
+    assert info.value.key == "effects[0].function" and message in str(info.value)
+
+
+def test_unimportable_user_module_is_a_scene_error():
+    s = Scene({"body": {"moments": [1, 2, 2.5]}, "time": {"duration": 1.0},
+               "integrator": {"step": 0.5},
+               "effects": [{"type": "user", "function": "no_such_pkg.torques:f"}]})  # fmt: skip
+    with pytest.raises(SceneError) as info:
+        simulate(s)
+    assert info.value.key == "effects[0].function"
+    assert "cannot import module 'no_such_pkg.torques'" in str(info.value)
