@@ -23,6 +23,9 @@ COMMANDS: dict[str, str] = {
     "demo": "ga_rotors.demo",
     "verify": "symbolic.verify",
     "bench": "ga_rotors.bench",
+    "run": "ga_rotors.run",
+    "scenes": "ga_rotors.scenes",
+    "show": "ga_rotors.show",
 }
 
 

@@ -21,7 +21,15 @@ from pathlib import Path
 
 import numpy as np
 
-__all__ = ["DIGEST_PREFIX", "FIGURES", "FigureData", "draw_all", "figure_data", "read_digest"]
+__all__ = [
+    "DIGEST_PREFIX",
+    "FIGURES",
+    "FigureData",
+    "draw_all",
+    "figure_data",
+    "palette_png",
+    "read_digest",
+]
 
 DIGEST_PREFIX = "ga_rotors paper data "
 
@@ -139,21 +147,26 @@ class _Canvas:
         self.fig.suptitle(title, fontsize=10)
 
     def png(self, digest: str) -> bytes:
-        """The figure as a 64-colour palette PNG (a third of the RGB size: these are line
-        plots), with the data digest in its ``Description`` text chunk."""
-        from matplotlib.backends.backend_agg import FigureCanvasAgg
-        from PIL import Image, PngImagePlugin
+        """The figure as a palette PNG with the data digest (:func:`palette_png`)."""
+        return palette_png(self.fig, DIGEST_PREFIX + digest)
 
-        canvas = FigureCanvasAgg(self.fig)
-        self.fig.set_dpi(_DPI)
-        canvas.draw()
-        image = Image.frombuffer("RGBA", canvas.get_width_height(), canvas.buffer_rgba())
-        image = image.convert("RGB").quantize(colors=64, method=Image.Quantize.FASTOCTREE)
-        info = PngImagePlugin.PngInfo()
-        info.add_text("Description", DIGEST_PREFIX + digest)
-        buf = io.BytesIO()
-        image.save(buf, format="png", pnginfo=info)
-        return buf.getvalue()
+
+def palette_png(fig, description: str, dpi: int = _DPI) -> bytes:
+    """A matplotlib Figure as a 64-colour palette PNG (a third of the RGB size: these are
+    line plots), with ``description`` in its ``Description`` text chunk."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from PIL import Image, PngImagePlugin
+
+    canvas = FigureCanvasAgg(fig)
+    fig.set_dpi(dpi)
+    canvas.draw()
+    image = Image.frombuffer("RGBA", canvas.get_width_height(), canvas.buffer_rgba())
+    image = image.convert("RGB").quantize(colors=64, method=Image.Quantize.FASTOCTREE)
+    info = PngImagePlugin.PngInfo()
+    info.add_text("Description", description)
+    buf = io.BytesIO()
+    image.save(buf, format="png", pnginfo=info)
+    return buf.getvalue()
 
 
 def _error_columns(data: list[FigureData]) -> list[tuple[str, list]]:
@@ -205,10 +218,11 @@ def draw_all(data: list[FigureData], out_dir, digest: str, stems=None) -> list[P
     return written
 
 
-def read_digest(png) -> str | None:
-    """The data digest stored in a figure written by :func:`draw_all`, or None."""
+def read_digest(png, prefix: str = DIGEST_PREFIX) -> str | None:
+    """The data digest stored in a figure written by :func:`draw_all` (or by
+    :func:`palette_png` with ``prefix``), or None."""
     from PIL import Image
 
     with Image.open(png) as im:
         text = im.info.get("Description", "")
-    return text[len(DIGEST_PREFIX) :] if text.startswith(DIGEST_PREFIX) else None
+    return text[len(prefix) :] if text.startswith(prefix) else None

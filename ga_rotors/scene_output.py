@@ -1,0 +1,302 @@
+"""A scene run's files: data (CSV, NPZ), one figure, the summary and the resolved scene.
+
+:func:`write_outputs` writes, into one directory, exactly what ``output`` declares:
+
+* ``<name>.csv`` / ``<name>.npz`` for ``output.data``;
+* ``<name>.png``, one panel per entry of ``output.plots`` (drawn with matplotlib, a
+  palette PNG carrying a digest of the data it shows);
+* ``<name>.summary.txt`` when ``output.summary`` is on, and ``<name>.scene.toml``, the
+  resolved scene, whenever anything is written (what made these files).
+
+Atomicity: everything is first written into a staging directory on the same file system;
+only when every file is complete are they moved into place (one ``rename`` of the whole
+directory when it did not exist, otherwise one ``os.replace`` per file). A failure at any
+point removes the staging directory, so a failed run leaves no half-written files and
+changes nothing it had not finished.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import os
+import shutil
+import tempfile
+import warnings
+from pathlib import Path
+
+import numpy as np
+
+from .scene import Scene
+from .trajectory import Trajectory
+
+__all__ = ["DIGEST_PREFIX", "data_digest", "draw", "figure_png", "write_outputs"]
+
+DIGEST_PREFIX = "ga_rotors scene data "
+
+_WIDTH = 7.0
+_ROW = 1.55
+_DPI = 72
+
+
+def data_digest(scene: Scene, trajectory: Trajectory, digits: int = 6) -> str:
+    """A digest of what determines a scene's figure, robust to round-off.
+
+    The resolved scene's text and the samples of ``t``, ``w`` and the primary path's
+    orientation, each array rounded to ``digits`` decimals of its own largest magnitude
+    (values at round-off level, such as a component that is zero in exact arithmetic,
+    round to 0 and cannot change the digest from one machine to the next).
+
+    Examples
+    --------
+    >>> from ga_rotors.scene import load_scene
+    >>> from ga_rotors.scene_run import simulate
+    >>> s = load_scene("spinning_disk").replace({"time.duration": 0.1})
+    >>> data_digest(s, simulate(s)) == data_digest(s, simulate(s))
+    True
+    """
+    from . import paths as _paths
+
+    h = hashlib.sha256(scene.to_toml().encode())
+    primary = _paths.get(trajectory.meta["primary"]).array
+    for name in ("t", "w", primary):
+        a = np.asarray(trajectory[name], dtype=np.float64)
+        scale = float(np.abs(a).max()) or 1.0
+        h.update(name.encode())
+        h.update(np.round(a / scale * 10.0**digits).astype(np.int64).tobytes())
+    return h.hexdigest()[:16]
+
+
+# ---------------------------------------------------------------------------- panels
+
+
+class _Context:
+    """What the panels draw from, each piece computed once and only if a panel needs it."""
+
+    def __init__(self, scene: Scene, tr: Trajectory):
+        self.scene, self.tr = scene, tr
+        self.t = tr.t[: tr.w.shape[0]]
+        self._cache: dict = {}
+
+    def get(self, name: str):
+        if name not in self._cache:
+            self._cache[name] = getattr(self, f"_{name}")()
+        return self._cache[name]
+
+    def _q(self):
+        from . import quaternion as Q
+        from .crosscheck import orientations
+
+        return Q.normalize(orientations(self.tr, self.tr.meta["primary"]))[: self.t.shape[0]]
+
+    def _angles(self):
+        from . import euler
+        from .errors import GimbalLockWarning
+
+        with warnings.catch_warnings():  # a locked sample is still drawn: its rotation is exact
+            warnings.simplefilter("ignore", GimbalLockWarning)
+            a = euler.from_quaternion(self.get("q"), "ZYZ")
+        a[:, 0], a[:, 2] = np.unwrap(a[:, 0]), np.unwrap(a[:, 2])
+        return np.degrees(a)
+
+    def _exact(self):
+        from .scene_run import exact_solution
+
+        return exact_solution(self.scene)
+
+
+def _omega(axes, ctx: _Context) -> None:
+    (ax,) = axes
+    for k in range(3):
+        ax.plot(ctx.t, ctx.tr.w[:, k], lw=0.8, label=f"ω{k + 1}")
+    ax.set_ylabel("body ω (rad/s)", fontsize=8)
+    ax.legend(fontsize=7, loc="upper right", ncols=3)
+
+
+def _angles(axes, ctx: _Context) -> None:
+    a = ctx.get("angles")
+    axes[0].plot(ctx.t, a[:, 1], lw=0.8, color="C1")
+    axes[0].set_ylabel("θ (°)", fontsize=8)
+    axes[1].plot(ctx.t, a[:, 0], lw=0.8)
+    axes[1].set_ylabel("ψ (°)", fontsize=8)
+
+
+def _momentum(axes, ctx: _Context) -> None:
+    from . import quaternion as Q
+
+    (ax,) = axes
+    L = Q.rotate(ctx.get("q"), ctx.scene.body.momentum(ctx.tr.w))
+    for k, name in enumerate("xyz"):
+        ax.plot(ctx.t, L[:, k], lw=0.8, label=f"L{name}")
+    ax.set_ylabel("space L (kg·m²/s)", fontsize=8)
+    ax.legend(fontsize=7, loc="upper right", ncols=3)
+
+
+def _invariants(axes, ctx: _Context) -> None:
+    from .scene_report import invariant_series
+
+    (ax,) = axes
+    rows = invariant_series(ctx.scene, ctx.tr, ctx.get("q"))
+    if rows:
+        floor = 1e-17  # exact zeros have no place on a log axis
+        for _, label, deviation, _ in rows:
+            ax.semilogy(ctx.t, np.maximum(deviation, floor), lw=0.8, label=label)
+        ax.set_ylabel("relative drift", fontsize=8)
+        ax.legend(fontsize=7, loc="lower right", ncols=len(rows))
+    elif ctx.scene.exact == "damped_symmetric_top":
+        exact = ctx.get("exact")
+        L = np.linalg.norm(ctx.scene.body.momentum(ctx.tr.w), axis=-1)
+        ax.semilogy(ctx.t, L, lw=0.8, label="|L| simulated")
+        ax.semilogy(ctx.t, exact.model.momentum_norm(ctx.t - ctx.t[0]), "--", lw=0.8,
+                    label="|L| exact")  # fmt: skip
+        ax.set_ylabel("|L| (kg·m²/s)", fontsize=8)
+        ax.legend(fontsize=7, loc="upper right")
+    else:
+        ax.text(0.5, 0.5, "no simple conserved quantity", ha="center", transform=ax.transAxes)
+
+
+def _error(axes, ctx: _Context) -> None:
+    from . import paths as _paths
+    from . import quaternion as Q
+    from .crosscheck import orientations
+
+    (ax,) = axes
+    exact = ctx.get("exact")
+    for path in ctx.scene.paths:
+        q = Q.normalize(orientations(ctx.tr, path))
+        e = exact.orientation_error(ctx.tr.t[: q.shape[0]], q)
+        ax.semilogy(ctx.tr.t[: q.shape[0]], np.maximum(e, 1e-17), lw=0.8,
+                    label=f"{path} ({_paths.get(path).array})")  # fmt: skip
+    ax.set_ylabel("error (rad)", fontsize=8)
+    ax.legend(fontsize=7, loc="lower right")
+
+
+#: plot name -> (rows, drawing function); the names are :data:`ga_rotors.scene.PLOTS`.
+#: ``angles`` draws nutation θ and precession ψ (the spin φ, a near-straight line that
+#: would flatten both, is in the data when ``angles`` is a quantity).
+PANELS = {
+    "omega": (1, _omega),
+    "angles": (2, _angles),
+    "momentum": (1, _momentum),
+    "invariants": (1, _invariants),
+    "error": (1, _error),
+}
+
+
+def draw(scene: Scene, trajectory: Trajectory):
+    """A matplotlib Figure with one panel per ``output.plots`` entry (in that order).
+
+    Examples
+    --------
+    >>> from ga_rotors.scene import load_scene
+    >>> from ga_rotors.scene_run import simulate
+    >>> scene = load_scene("damped_top").replace({"time.duration": 0.1})
+    >>> len(draw(scene, simulate(scene)).axes)     # omega, invariants
+    2
+    """
+    from matplotlib.figure import Figure
+
+    plots = scene.data["output"]["plots"]
+    rows = sum(PANELS[p][0] for p in plots)
+    height = _ROW * rows + 0.8
+    fig = Figure(figsize=(_WIDTH, height))
+    fig.subplots_adjust(left=0.12, right=0.98, top=1 - 0.45 / height, bottom=0.45 / height,
+                        hspace=0.12)  # fmt: skip
+    axes = fig.subplots(rows, 1, sharex=True, squeeze=False)[:, 0]
+    ctx = _Context(scene, trajectory)
+    row = 0
+    for p in plots:
+        n, func = PANELS[p]
+        func(axes[row : row + n], ctx)
+        row += n
+    for ax in axes:
+        ax.tick_params(labelsize=7)
+    axes[-1].set_xlabel("t (s)", fontsize=8)
+    fig.suptitle(f"{scene.name}", fontsize=10)
+    return fig
+
+
+def figure_png(scene: Scene, trajectory: Trajectory) -> bytes:
+    """The scene's figure as PNG bytes, carrying :func:`data_digest` in its metadata.
+
+    Examples
+    --------
+    >>> from ga_rotors.scene import load_scene
+    >>> from ga_rotors.scene_run import simulate
+    >>> scene = load_scene("damped_top").replace({"time.duration": 0.1})
+    >>> figure_png(scene, simulate(scene))[1:4]
+    b'PNG'
+    """
+    from .paper_figures import palette_png
+
+    return palette_png(draw(scene, trajectory), DIGEST_PREFIX + data_digest(scene, trajectory),
+                       dpi=_DPI)  # fmt: skip
+
+
+# ---------------------------------------------------------------------------- files
+
+
+def _plan(scene: Scene, tr: Trajectory, summary: str | None) -> list[tuple[str, object]]:
+    name = scene.name
+    out = scene.data["output"]
+    plan: list[tuple[str, object]] = []
+    for fmt in out["data"]:
+        if fmt == "csv":
+            plan.append((f"{name}.csv", lambda p: tr.to_csv(p)))
+        else:
+            plan.append((f"{name}.npz", lambda p: tr.to_npz(p)))
+    if out["plots"]:
+        plan.append((f"{name}.png", lambda p: p.write_bytes(figure_png(scene, tr))))
+    if not plan:
+        return []
+    if summary is not None:
+        plan.append((f"{name}.summary.txt", lambda p: p.write_text(summary + "\n", "utf-8")))
+    plan.append((f"{name}.scene.toml", lambda p: p.write_text(scene.to_toml(), "utf-8")))
+    return plan
+
+
+def write_outputs(scene: Scene, trajectory: Trajectory, out_dir, summary: str | None = None):
+    """Write the declared files into ``out_dir`` atomically; return their paths.
+
+    Nothing is written (and no directory created) when the scene declares no data and
+    no plots.
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> from ga_rotors.scene import load_scene
+    >>> from ga_rotors.scene_run import simulate
+    >>> s = load_scene("spinning_disk").replace({"time.duration": 0.1, "output.plots": []})
+    >>> out = pathlib.Path(tempfile.mkdtemp()) / "run"
+    >>> [p.name for p in write_outputs(s, simulate(s), out)]
+    ['spinning_disk.csv', 'spinning_disk.scene.toml']
+    """
+    from .errors import InputError
+    from .trajectory import _umask
+
+    plan = _plan(scene, trajectory, summary)
+    if not plan:
+        return []
+    out = Path(out_dir)
+    if out.exists() and not out.is_dir():
+        raise InputError(f"--out: {out} exists and is not a directory")
+    exists = out.is_dir()
+    parent = out if exists else out.parent
+    try:
+        parent.mkdir(parents=True, exist_ok=True)
+        staging = Path(tempfile.mkdtemp(dir=parent, prefix=f".{out.name}.staging-"))
+    except OSError as exc:
+        raise InputError(f"--out: cannot write into {parent}: {exc.strerror}") from None
+    try:
+        for name, write in plan:
+            write(staging / name)
+        if exists:
+            for name, _ in plan:
+                os.replace(staging / name, out / name)
+            staging.rmdir()
+        else:
+            os.chmod(staging, 0o777 & ~_umask())  # mkdtemp makes 0700; give what mkdir would
+            os.rename(staging, out)
+    except BaseException:
+        shutil.rmtree(staging, ignore_errors=True)
+        raise
+    return [out / name for name, _ in plan]

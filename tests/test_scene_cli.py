@@ -1,0 +1,200 @@
+"""ga-rotors run / scenes / show: exit codes, messages, atomic outputs, progress."""
+
+from __future__ import annotations
+
+import io
+import os
+import subprocess
+import sys
+import tomllib
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from ga_rotors import scene_output
+from ga_rotors.cli import main
+from ga_rotors.run import ProgressBar
+from ga_rotors.scene import Scene, bundled, load_scene
+
+ROOT = Path(__file__).resolve().parent.parent
+
+SHORT = """
+[scene]
+name = "short"
+
+[body]
+shape = "disk"
+mass = 2.0
+radius = 0.075
+
+[initial.angular_velocity]
+body = [0.2, 0.0, 15.0]
+units = "rad/s"
+
+[time]
+duration = 0.2
+output_step = 0.01
+
+[integrator]
+step = 0.001
+paths = ["rotor", "quaternion"]
+
+[output]
+plots = ["omega", "error"]
+data = ["csv", "npz"]
+"""
+
+
+@pytest.fixture
+def short(tmp_path) -> Path:
+    path = tmp_path / "short.toml"
+    path.write_text(SHORT)
+    return path
+
+
+def test_run_writes_what_the_scene_declares(short, tmp_path, capsys):
+    out = tmp_path / "out"
+    assert main(["run", str(short), "--out", str(out), "--no-progress"]) == 0
+    printed = capsys.readouterr().out
+    assert "rotor vs quaternion" in printed and "exact solution (symmetric_top)" in printed
+    names = sorted(p.name for p in out.iterdir())
+    assert names == ["short.csv", "short.npz", "short.png", "short.scene.toml",
+                     "short.summary.txt"]  # fmt: skip
+    assert Scene.from_toml((out / "short.scene.toml").read_text()).data == load_scene(short).data
+    data = np.load(out / "short.npz")
+    assert data["t"].shape == (21,) and data["R"].shape == (21, 4)
+    assert (out / "short.summary.txt").read_text().startswith("scene short: rk4")
+
+
+def test_run_without_declared_files_writes_nothing(short, tmp_path, capsys):
+    text = SHORT.replace('plots = ["omega", "error"]\ndata = ["csv", "npz"]\n', "")
+    path = tmp_path / "quiet.toml"
+    path.write_text(text)
+    out = tmp_path / "never"
+    assert main(["run", str(path), "--out", str(out)]) == 0
+    assert not out.exists()
+    assert "no files declared" in capsys.readouterr().out
+
+
+@pytest.mark.parametrize("existing", [False, True], ids=["new-dir", "existing-dir"])
+def test_a_failed_run_leaves_no_half_written_files(short, tmp_path, monkeypatch, existing):
+    out = tmp_path / "out"
+    if existing:
+        out.mkdir()
+        (out / "short.csv").write_text("previous run\n")
+    # The CSV and NPZ are written first; the figure then fails.
+    written = []
+    real_csv = scene_output.Trajectory.to_csv
+
+    def spy_csv(self, path=None):
+        written.append(path)
+        return real_csv(self, path)
+
+    def broken_png(scene, trajectory):
+        assert written and Path(written[0]).exists()  # half the files exist (staged)
+        raise RuntimeError("injected failure while drawing")
+
+    monkeypatch.setattr(scene_output.Trajectory, "to_csv", spy_csv)
+    monkeypatch.setattr(scene_output, "figure_png", broken_png)
+    with pytest.raises(RuntimeError, match="injected failure"):
+        main(["run", str(short), "--out", str(out), "--no-progress"])
+    if existing:
+        assert sorted(p.name for p in out.iterdir()) == ["short.csv"]
+        assert (out / "short.csv").read_text() == "previous run\n"
+    else:
+        assert not out.exists()
+    assert not any(".staging-" in p.name for p in tmp_path.rglob("*"))
+
+
+def test_bad_scene_exits_2_with_one_line_and_no_traceback(tmp_path):
+    bad = tmp_path / "bad.toml"
+    bad.write_text(SHORT.replace('units = "rad/s"\n', ""))
+    env = {**os.environ, "PYTHONPATH": str(ROOT)}
+    proc = subprocess.run([sys.executable, "-m", "ga_rotors", "run", str(bad)], env=env,
+                          capture_output=True, text=True, timeout=120)  # fmt: skip
+    assert proc.returncode == 2
+    assert "Traceback" not in proc.stderr
+    assert proc.stderr.strip() == (
+        f"ga-rotors: error: {bad}: initial.angular_velocity.units: missing; angular rates "
+        'are ambiguous without units: expected one of "rad/s", "deg/s", "rpm"'
+    )
+
+
+@pytest.mark.parametrize(
+    ("argv", "message"),
+    [
+        (["run", "no_such_scene"], "no_such_scene: no such file, and no bundled scene"),
+        (["show", "heavytop"], "did you mean 'heavy_top'"),
+    ],
+)
+def test_cli_errors_are_one_line(argv, message, capsys):
+    assert main(argv) == 2
+    err = capsys.readouterr().err
+    assert err.startswith("ga-rotors: error: ") and message in err and err.count("\n") == 1
+
+
+def test_scenes_lists_every_bundled_scene(capsys):
+    assert main(["scenes"]) == 0
+    lines = capsys.readouterr().out.splitlines()
+    assert [line.split()[0] for line in lines] == sorted(bundled())
+    assert all(len(line.split(maxsplit=1)) == 2 for line in lines)  # each has a description
+
+
+def test_show_prints_a_loadable_scene_with_every_default(capsys):
+    assert main(["show", "intermediate_axis_flip"]) == 0
+    text = capsys.readouterr().out
+    data = tomllib.loads(text)  # the derived values are comments
+    assert data["initial"]["orientation"] == {"quaternion": [1.0, 0.0, 0.0, 0.0]}
+    assert data["time"]["start"] == 0.0 and data["output"]["summary"] is True
+    assert Scene(data).data == load_scene("intermediate_axis_flip").data
+    assert "# exact solution: asymmetric_top" in text
+
+
+# ---------------------------------------------------------------------------- progress
+
+
+class FakeStream(io.StringIO):
+    def __init__(self, tty: bool):
+        super().__init__()
+        self._tty = tty
+
+    def isatty(self) -> bool:
+        return self._tty
+
+
+def test_progress_bar_on_a_terminal_redraws_in_place():
+    stream = FakeStream(tty=True)
+    bar = ProgressBar(stream, delay=0.0)
+    for done in (10, 50, 100):
+        bar.last = -1.0  # as if 0.1 s had passed between chunks
+        bar(done, 100)
+    bar.close()
+    text = stream.getvalue()
+    assert text.count("\r[") == 3 and text.endswith("\n") and "100.0%" in text
+
+
+def test_progress_bar_is_silent_for_short_runs_and_off_a_terminal():
+    quiet = FakeStream(tty=True)
+    bar = ProgressBar(quiet)  # default delay: nothing within the first 0.5 s
+    bar(100, 100)
+    bar.close()
+    assert quiet.getvalue() == ""
+    log = FakeStream(tty=False)
+    bar = ProgressBar(log, delay=0.0)  # not a terminal, not forced: nothing
+    bar(100, 100)
+    assert log.getvalue() == ""
+    forced = ProgressBar(log, enabled=True, delay=0.0)  # --progress in a log: tenths
+    for done in range(0, 101, 5):
+        forced(done, 100)
+    assert log.getvalue().count("\n") == 11 and "\r" not in log.getvalue()
+
+
+def test_run_reports_progress_while_the_loops_run(short, tmp_path, monkeypatch, capsys):
+    from ga_rotors.integrators import _codegen
+
+    monkeypatch.setattr(_codegen, "CHUNK_STEPS", 50)
+    seen = []
+    monkeypatch.setattr(ProgressBar, "__call__", lambda self, d, t: seen.append((d, t)))
+    assert main(["run", str(short), "--out", str(tmp_path / "o"), "--progress"]) == 0
+    assert seen[-1] == (400, 400) and len(seen) == 2 * 4  # two paths, four chunks each

@@ -1,0 +1,236 @@
+"""Running scenes: only what is declared is integrated, evaluated or computed."""
+
+from __future__ import annotations
+
+import itertools
+import os
+import subprocess
+import sys
+import textwrap
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from ga_rotors import effects, scene_run
+from ga_rotors.integrators import Problem, _codegen, get
+from ga_rotors.integrators.base import TemplateIntegrator
+from ga_rotors.scene import Scene, load_scene
+from ga_rotors.scene_run import simulate
+
+ROOT = Path(__file__).resolve().parent.parent
+
+#: One scene entry per effect type, and the kernel each must put in the generated loop.
+ENTRIES = {
+    "gravity": ({"type": "gravity", "pivot_to_com": [0.0, 0.0, 0.1]}, "gravity"),
+    "damping": ({"type": "damping", "coefficient": 1e-3}, "isotropic_damping"),
+    "damping3": ({"type": "damping", "coefficient": [1e-3, 2e-3, 3e-3]}, "damping"),
+    "body_torque": ({"type": "body_torque", "torque": [0.0, 0.0, 1e-3]}, "body_torque"),
+    "space_torque": ({"type": "space_torque", "torque": [1e-3, 0.0, 0.0]}, "space_torque"),
+    "user": ({"type": "user", "function": "_torques_for_tests:linear_damping",
+              "params": [1e-3]}, "linear_damping"),
+}  # fmt: skip
+KERNELS = {kernel for _, kernel in ENTRIES.values()}
+
+
+def scene_with(*entries) -> Scene:
+    return Scene({
+        "body": {"shape": "disk", "mass": 2.0, "radius": 0.075},
+        "initial": {"angular_velocity": {"body": [0.3, 0.1, 15.0], "units": "rad/s"}},
+        "time": {"duration": 0.05},
+        "integrator": {"step": 1e-3, "paths": ["rotor", "quaternion"]},
+        "effects": list(entries),
+    })  # fmt: skip
+
+
+def generated_source(scene: Scene, path: str) -> str:
+    problem = Problem(scene.body.moments, scene.torques())
+    return _codegen.source(get(scene.data["integrator"]["method"]), problem, path)
+
+
+def imported_kernels(text: str) -> set[str]:
+    """Names of effect kernels the generated module imports as torque terms."""
+    names = set()
+    for line in text.splitlines():
+        if " as _term_" in line:
+            names.add(line.split(" import ")[1].split(" as ")[0])
+    return names
+
+
+@pytest.mark.parametrize("name", sorted(ENTRIES))
+def test_only_the_declared_effect_is_in_the_generated_loop(name):
+    entry, kernel = ENTRIES[name]
+    for path in ("rotor", "quaternion"):
+        text = generated_source(scene_with(entry), path)
+        assert imported_kernels(text) == {kernel}
+        assert "def torque(" in text
+
+
+def test_two_effects_make_a_sum_of_exactly_two_terms():
+    s = scene_with(ENTRIES["gravity"][0], ENTRIES["space_torque"][0])
+    text = generated_source(s, "rotor")
+    assert imported_kernels(text) == {"gravity", "space_torque"}
+    assert "params[0:6]" in text and "params[6:9]" in text
+
+
+def test_no_effects_means_no_torque_in_the_source_at_all():
+    text = generated_source(scene_with(), "rotor")
+    assert "torque" not in text and not imported_kernels(text)
+    assert "free_euler_rates(inertia, w)" in text
+
+
+def test_undeclared_effects_are_never_evaluated_uncompiled(tmp_path):
+    # Uncompiled, the generated module is plain Python: every undeclared effect kernel is
+    # replaced by a tripwire that raises, and the declared one by a counter. RK4 evaluates
+    # the torque four times a step, on each of the two paths.
+    script = textwrap.dedent(
+        """
+        import sys
+        import ga_rotors.effects as E
+        from ga_rotors.scene import Scene
+        from ga_rotors.scene_run import simulate
+
+        def tripwire(name):
+            def kernel(t, q, w, p):
+                raise AssertionError(f"undeclared effect {name} was evaluated")
+            kernel.__module__, kernel.__qualname__ = "ga_rotors.effects", name
+            kernel.__name__ = name
+            return kernel
+
+        calls = []
+        declared = E.space_torque
+        def space_torque(t, q, w, p):
+            calls.append(t)
+            return declared(t, q, w, p)
+        space_torque.__module__ = "ga_rotors.effects"
+
+        for name in ("gravity", "isotropic_damping", "damping", "body_torque"):
+            setattr(E, name, tripwire(name))
+        E.space_torque = space_torque
+        s = Scene({
+            "body": {"moments": [1.0, 2.0, 2.5]},
+            "initial": {"angular_velocity": {"body": [0.1, 0.2, 0.3], "units": "rad/s"}},
+            "time": {"duration": 0.05},
+            "integrator": {"step": 0.01, "paths": ["rotor", "quaternion"]},
+            "effects": [{"type": "space_torque", "torque": [0.0, 0.0, 1.0]}],
+        })
+        tr = simulate(s)
+        print(len(calls), tr.names)
+        """
+    )
+    env = {
+        **os.environ,
+        "NUMBA_DISABLE_JIT": "1",
+        "GA_ROTORS_CACHE_DIR": str(tmp_path),
+        "PYTHONPATH": os.pathsep.join([str(ROOT), str(ROOT / "tests")]),
+    }
+    proc = subprocess.run(
+        [sys.executable, "-c", script], env=env, capture_output=True, text=True, timeout=300
+    )
+    assert proc.returncode == 0, proc.stderr
+    count, names = proc.stdout.split(" ", 1)
+    assert int(count) == 4 * 5 * 2
+    assert names.strip() == "('t', 'w', 'R', 'q')"
+
+
+def test_undeclared_paths_are_never_integrated(monkeypatch):
+    ran = []
+    original = TemplateIntegrator.run
+
+    def recording(self, problem, path, *args, **kwargs):
+        ran.append(path)
+        return original(self, problem, path, *args, **kwargs)
+
+    monkeypatch.setattr(TemplateIntegrator, "run", recording)
+    for paths in (["quaternion"], ["euler", "rotor"]):
+        ran.clear()
+        s = load_scene("spinning_disk").replace(
+            {"time.duration": 0.05, "integrator.paths": paths, "output.quantities": []}
+        )
+        tr = simulate(s)
+        assert sorted(ran) == sorted(paths)
+        assert set(tr.meta["paths"]) == set(paths)
+
+
+def test_nothing_is_computed_for_outputs_nobody_asked_for(monkeypatch):
+    def tripwire(*args, **kwargs):
+        raise AssertionError("computed an output nobody asked for")
+
+    s = load_scene("heavy_top").replace({"time.duration": 0.01, "output.quantities": []})
+    for name in ("exact_solution", "_quantities", "gravity_terms"):
+        monkeypatch.setattr(scene_run, name, tripwire)
+    import ga_rotors.crosscheck as crosscheck
+
+    monkeypatch.setattr(crosscheck, "orientations", tripwire)
+    tr = simulate(s)
+    assert tr.names == ("t", "w", "R", "q")
+
+    # Asking for one quantity computes that one: energy comes from simulate itself, and the
+    # exact solution is still not touched.
+    monkeypatch.undo()
+    monkeypatch.setattr(scene_run, "exact_solution", tripwire)
+    tr = simulate(s.replace({"output.quantities": ["energy", "potential_energy"]}))
+    assert tr.names == ("t", "w", "R", "q", "energy", "potential_energy")
+
+
+def test_quantities_are_what_they_say():
+    from ga_rotors import quaternion as Q
+
+    s = load_scene("heavy_top").replace({
+        "time.duration": 0.2,
+        "output.quantities": ["energy", "potential_energy", "total_energy", "L", "L_space",
+                              "omega_space", "angles", "error", "omega_error"],
+    })  # fmt: skip
+    tr = simulate(s)
+    q = Q.normalize(tr.q)
+    weight, r = scene_run.gravity_terms(s)
+    assert np.allclose(tr.potential_energy, -(Q.rotate(q, r) @ weight), rtol=0, atol=1e-15)
+    assert np.allclose(tr.total_energy, tr.energy + tr.potential_energy, rtol=0, atol=1e-15)
+    assert np.allclose(tr.omega_space, Q.rotate(q, tr.w), rtol=0, atol=1e-13)
+    assert np.allclose(tr.L_space, Q.rotate(q, tr.L), rtol=0, atol=1e-15)
+    assert tr.error_R.max() < 1e-10 and tr.error_q.max() < 1e-10
+    assert tr.omega_error.max() < 1e-9
+    assert np.allclose(tr.angles[0], np.radians([0.0, 30.0, 0.0]), atol=1e-15)
+
+
+def test_chunked_loops_give_the_same_samples(monkeypatch):
+    # Progress runs the compiled loop in chunks restarted from the stored samples; the
+    # states and the Euler path's watch statistics must be identical to one call.
+    s = load_scene("paper_0.001deg").replace({"time.duration": 2.0, "output.quantities": []})
+    whole = simulate(s)
+    monkeypatch.setattr(_codegen, "CHUNK_STEPS", 300)  # 7 chunks of 300 steps (30 samples)
+    calls = []
+    chunked = simulate(s, progress=lambda done, total: calls.append((done, total)))
+    for name in whole.names:
+        assert np.array_equal(whole[name], chunked[name]), name
+    a, b = whole.meta["paths"]["euler"]["watch"], chunked.meta["paths"]["euler"]["watch"]
+    # Times inside a chunk are (t0 + k·chunk·h) + i·h instead of t0 + (k·chunk + i)·h: the
+    # time the watch records may differ in the last bits (two roundings), nothing else.
+    when_a, when_b = a.pop("first_unresolved"), b.pop("first_unresolved")
+    assert a == b and abs(when_a - when_b) <= 4 * np.spacing(when_a)
+    assert calls[-1] == (3 * 2000, 3 * 2000) and len(calls) == 3 * 7
+    assert all(a[0] < b[0] for a, b in itertools.pairwise(calls))
+
+
+def test_numba_failure_of_a_user_kernel_names_the_effect(tmp_path, monkeypatch):
+    # A kernel that works in Python but not in nopython mode (it calls a plain Python
+    # helper) passes the trial call and then fails to compile: the error names the effect.
+    (tmp_path / "bad_kernel_mod.py").write_text(
+        "import numba\n\ndef helper(t):\n    return 1.0\n\n"
+        "@numba.njit(cache=False)\ndef k(t, q, w, p):\n    return (0.0, 0.0, helper(t))\n"
+    )
+    monkeypatch.syspath_prepend(str(tmp_path))
+    s = Scene({"body": {"moments": [1, 2, 2.5]}, "time": {"duration": 0.1},
+               "integrator": {"step": 0.05},
+               "effects": [{"type": "user", "function": "bad_kernel_mod:k"}]})  # fmt: skip
+    from ga_rotors.errors import SceneError
+
+    with pytest.raises(SceneError, match=r"effects\[0\]\.function: numba could not compile"):
+        simulate(s)
+
+
+def test_effects_table_kernels_are_module_level_and_documented():
+    for name, kind in effects.EFFECTS.items():
+        assert kind.name == name and kind.doc
+        for key in kind.keys:
+            assert key.doc, (name, key.name)
