@@ -72,6 +72,7 @@ __all__ = [
     "RATE_UNITS",
     "SECTIONS",
     "Scene",
+    "adaptive",
     "bundled",
     "bundled_path",
     "load_scene",
@@ -275,19 +276,50 @@ def _resolve_initial(reader: Reader, value) -> dict:
     }
 
 
+def adaptive(method) -> bool:
+    """Whether an integrator sets its accuracy by a tolerance (``rtol``), not a step.
+
+    Examples
+    --------
+    >>> from ga_rotors.integrators import get
+    >>> adaptive(get("dop853")), adaptive(get("rk4"))
+    (True, False)
+    """
+    return hasattr(method, "rtol")
+
+
 def _resolve_integrator(reader: Reader, value) -> dict:
     from .integrators import base
 
     t = reader.table(value if value is not None else {}, "integrator",
-                     ("method", "step", "paths"), ("step",))  # fmt: skip
-    method = reader.string(t.get("method", "rk4"), "integrator.method", base.names())
-    step = reader.number(t["step"], "integrator.step", positive=True, unit="s")
+                     ("method", "step", "tolerance", "paths"))  # fmt: skip
+    name = reader.string(t.get("method", "rk4"), "integrator.method", base.names())
+    method = base.get(name)
+    out: dict = {"method": name, "step": None}
+    if "step" in t:
+        out["step"] = reader.number(t["step"], "integrator.step", positive=True, unit="s")
+    if adaptive(method):
+        out["tolerance"] = reader.number(t.get("tolerance", method.rtol), "integrator.tolerance",
+                                         positive=True)  # fmt: skip
+        if out["tolerance"] >= 1.0:
+            raise reader.error("integrator.tolerance", f"expected < 1, got {out['tolerance']!r}")
+    else:
+        if "tolerance" in t:
+            others = [n for n in base.names() if adaptive(base.get(n))]
+            raise reader.error(
+                "integrator.tolerance",
+                f"{name} is a fixed-step method: integrator.step sets its accuracy (a "
+                f"tolerance is for adaptive methods: {', '.join(others)})",
+            )
+        if out["step"] is None:
+            raise reader.error("integrator.step", f"missing; {name} is a fixed-step method")
     paths = reader.names(t.get("paths", ["rotor"]), "integrator.paths", _paths.PATHS)
     if not paths:
         raise reader.error(
             "integrator.paths", f"expected at least one of {', '.join(_paths.PATHS)}"
         )
-    return {"method": method, "step": step, "paths": paths}
+    out["paths"] = paths
+    return out
 
 
 def _resolve_time(reader: Reader, value) -> dict:
@@ -346,8 +378,17 @@ def _resolve(reader: Reader, data, default_name: str) -> dict:
         "effects": _resolve_effects(reader, top.get("effects")),
         "output": _resolve_output(reader, top.get("output")),
     }
-    if out["time"]["output_step"] is None:
-        out["time"]["output_step"] = out["integrator"]["step"]
+    time, integrator = out["time"], out["integrator"]
+    if integrator["step"] is None:  # an adaptive method: the step only fixes sample times
+        if time["output_step"] is None:
+            raise reader.error(
+                "integrator.step",
+                f"missing; {integrator['method']} is adaptive, but its samples need "
+                "integrator.step or time.output_step",
+            )
+        integrator["step"] = time["output_step"]
+    if time["output_step"] is None:
+        time["output_step"] = integrator["step"]
     return out
 
 
@@ -733,8 +774,14 @@ class Scene:
             f"initial body angular velocity: {_fmt(w)} rad/s",
             f"problem: {self.kind}; torques: "
             + (", ".join(e["type"] for e in self.data["effects"]) or "none (torque-free)"),
-            f"integrator: {method.name} (order {method.order}), {self.steps:,} steps, "
-            f"a sample every {self.sample_every} step(s), paths {', '.join(self.paths)}",
+            f"integrator: {method.name} (order {method.order}), "
+            + (
+                f"adaptive at tolerance {self.data['integrator']['tolerance']:g}, "
+                f"{self.steps:,} output intervals"
+                if adaptive(method)
+                else f"{self.steps:,} steps"
+            )
+            + f", a sample every {self.sample_every} step(s), paths {', '.join(self.paths)}",
             f"exact solution: {self.exact or 'none'} ({self.exact_reason})",
         ]
         return "\n".join("# " + line for line in lines)

@@ -376,10 +376,13 @@ def report(scene: Scene, trajectory: Trajectory) -> Report:
     raw, tr = trajectory, _on_sphere(trajectory)
     method = tr.meta["integrator"]
     torques = ", ".join(tr.meta["torques"]) or "none (torque-free)"
-    rep.lines.append(
-        f"scene {scene.name}: {method}, {tr.meta['steps']:,} steps of {tr.meta['step']:g} s; "
-        f"torques: {torques}"
+    spec = scene.data["integrator"]
+    how = (
+        f"adaptive at tolerance {spec['tolerance']:g}, sampled every {tr.meta['step']:g} s"
+        if "tolerance" in spec
+        else f"{tr.meta['steps']:,} steps of {tr.meta['step']:g} s"
     )
+    rep.lines.append(f"scene {scene.name}: {method}, {how}; torques: {torques}")
     rep.lines.append("paths (geodesic angles below are between rotations: states normalised):")
     _paths(raw, rep)
     q = orientations(tr, tr.meta["primary"])[: tr.w.shape[0]]

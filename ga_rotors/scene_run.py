@@ -117,6 +117,17 @@ def exact_solution(scene: Scene) -> Exact | None:
     return None
 
 
+def _integrator(scene: Scene):
+    """The registered method's name, or for an adaptive one an instance at the tolerance."""
+    from .integrators import base
+
+    spec = scene.data["integrator"]
+    if "tolerance" not in spec:
+        return spec["method"]
+    method = base.get(spec["method"])
+    return method if method.rtol == spec["tolerance"] else type(method)(rtol=spec["tolerance"])
+
+
 def _user_compile_error(scene: Scene, exc: Exception):
     from .errors import SceneError
 
@@ -164,7 +175,7 @@ def simulate(scene, *, progress=None) -> Trajectory:
             duration=scene.data["time"]["duration"],
             step=scene.step,
             paths=scene.paths,
-            integrator=scene.data["integrator"]["method"],
+            integrator=_integrator(scene),
             torques=torques,
             euler_angles=scene.euler_angles,
             outputs=[name for name in wanted if name in _sim.OUTPUTS],

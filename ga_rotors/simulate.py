@@ -107,8 +107,9 @@ def simulate(
         Time span and fixed step (s); ``step`` must divide ``duration``.
     paths : sequence of {"rotor", "quaternion", "euler"}
         Orientation paths to integrate (each a separate integration).
-    integrator : str
-        A registered integrator (:func:`ga_rotors.integrators.names`).
+    integrator : str or Integrator
+        A registered integrator's name (:func:`ga_rotors.integrators.names`), or an
+        integrator object (e.g. ``Dop853(rtol=1e-12)`` for another tolerance).
     torques : sequence of TorqueTerm
         Declared torques; none means torque-free.
     euler_angles : array_like (3,), optional
@@ -147,7 +148,7 @@ def simulate(
     >>> tr.meta["paths"]["rotor"]["complete"]
     True
     """
-    method = base.get(integrator)
+    method = integrator if isinstance(integrator, base.Integrator) else base.get(integrator)
     requested = _requested(paths)
     nsteps = _steps(duration, step)
     if isinstance(sample_every, bool) or not isinstance(sample_every, int) or sample_every < 1:

@@ -486,3 +486,25 @@ def test_docs_describe_every_key_of_the_schema():
     forms = ("`{}`", "`{} ", "`[{}]`", "`[[{}]]`", "`[{}.", '`"{}"`')
     missing = sorted(k for k in keys if not any(f.format(k) in text for f in forms))
     assert not missing, f"docs/scenes.md does not describe {missing}"
+
+
+def test_adaptive_methods_take_a_tolerance_and_fixed_step_methods_refuse_one():
+    s = Scene(minimal(integrator={"method": "dop853", "tolerance": 1e-12},
+                      time={"duration": 1.0, "output_step": 0.1}))  # fmt: skip
+    assert s.data["integrator"] == {"method": "dop853", "step": 0.1, "tolerance": 1e-12,
+                                    "paths": ["rotor"]}  # fmt: skip
+    assert (s.steps, s.sample_every) == (10, 1)
+    assert Scene.from_toml(s.to_toml()).data == s.data
+    default = Scene(minimal(integrator={"method": "dop853", "step": 0.01}))
+    from ga_rotors.integrators import get
+
+    assert default.data["integrator"]["tolerance"] == get("dop853").rtol
+    cases = [
+        ({"step": 0.01, "tolerance": 1e-9}, "integrator.tolerance", "rk4 is a fixed-step method"),
+        ({"method": "dop853", "tolerance": 2.0}, "integrator.tolerance", "expected < 1"),
+        ({"method": "dop853"}, "integrator.step", "dop853 is adaptive"),
+        ({"method": "rk4"}, "integrator.step", "missing; rk4 is a fixed-step method"),
+    ]
+    for integrator, key, message in cases:
+        err = scene_error(minimal(integrator=integrator))
+        assert err.key == key and message in str(err), str(err)

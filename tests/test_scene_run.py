@@ -234,3 +234,20 @@ def test_effects_table_kernels_are_module_level_and_documented():
         assert kind.name == name and kind.doc
         for key in kind.keys:
             assert key.doc, (name, key.name)
+
+
+def test_an_adaptive_scene_runs_at_its_tolerance():
+    from ga_rotors.scene_report import report
+
+    errors = {}
+    for tol in (1e-8, 1e-11):
+        s = load_scene("intermediate_axis_flip").replace({
+            "integrator.method": "dop853", "integrator.tolerance": tol, "time.duration": 3.0,
+            "integrator.step": 0.005, "output.quantities": [],
+        })  # fmt: skip
+        rep = report(s, simulate(s))
+        assert rep.lines[0].startswith(f"scene intermediate_axis_flip: dop853, adaptive at "
+                                       f"tolerance {tol:g}")  # fmt: skip
+        errors[tol] = rep.values["error_rotor"]
+    # A tighter tolerance must buy accuracy (DOP853 is order 8: far more than 10×).
+    assert errors[1e-11] < errors[1e-8] / 10
