@@ -420,12 +420,12 @@ def main(argv: list[str] | None = None) -> int:
 
     print(f"The paper's run: RK4, {N:,} steps of {H * 1e3:g} ms, disk, θ₀ = 15°; "
           f"min of {r} repeats after warm-up.")  # fmt: skip
-    head = f"{'':38}{'time':>11}{'ns/step':>9}{'/numba':>8}{'/C':>7}{'error (rad)':>13}"
+    head = f"{'':38}{'time':>12}{'ns/step':>11}{'/numba':>9}{'/C':>9}{'error (rad)':>13}"
     print(head)
     for name, t, err, note in rows:
-        c_ratio = f"{t / c_floor:7.2f}" if c_floor else f"{'-':>7}"
+        c_ratio = f"{t / c_floor:9.2f}" if c_floor else f"{'-':>9}"
         e = f"{err:13.1e}" if err is not None else f"{'':13}"
-        print(f"{name:38}{t * 1e3:9.3f}ms{t / N * 1e9:9.1f}{t / floor:8.2f}{c_ratio}{e}  {note}")
+        print(f"{name:38}{t * 1e3:10.3f}ms{t / N * 1e9:11.1f}{t / floor:9.2f}{c_ratio}{e}  {note}")
 
     if not args.no_main_job:
         wall, cpu = main_job_wall(5)
