@@ -22,9 +22,14 @@ from .errors import GaRotorsError
 __all__ = ["add_arguments", "reproduce", "run"]
 
 DEFAULT_OUT = "results"
-#: Figure-drawing processes forked by the command line (two cores: two workers, while the
-#: parent simulates and then writes the CSV files).
-_WORKERS = 2
+#: The figures each forked worker draws (two cores: two workers, while the parent
+#: simulates and then writes the CSV files), balanced by measured drawing cost.
+_SHARES = (
+    ("fig03_euler_angles_15deg", "fig05_quaternion_15deg", "fig07_rotor_angles_0.001deg",
+     "fig08_euler_rates_0.001deg", "fig09_body_rates_0.001deg"),
+    ("fig04_body_rates_15deg", "fig06_euler_path_0.001deg", "fig10_quaternion_0.001deg",
+     "errors"),
+)  # fmt: skip
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
@@ -155,10 +160,7 @@ def reproduce(
     out = _out_dir(out_dir)
     drawers = []
     if figures and parallel and hasattr(os, "fork"):
-        from .paper_figures import FIGURES  # numpy only; no matplotlib in the parent yet
-
-        stems = tuple(FIGURES)
-        drawers = [_Drawer(stems[k::_WORKERS]) for k in range(_WORKERS)]
+        drawers = [_Drawer(share) for share in _SHARES]
     sent = 0
     try:
         from . import paper_figures, paper_scenes

@@ -56,6 +56,13 @@ def test_full_command_draws_every_figure_in_its_worker(tmp_path):
     assert not list(tmp_path.glob(".*.tmp"))
 
 
+def test_worker_shares_cover_every_figure_once():
+    from ga_rotors.paper import _SHARES
+
+    drawn = [stem for share in _SHARES for stem in share]
+    assert sorted(drawn) == sorted(paper_figures.FIGURES)
+
+
 def test_out_that_is_a_file_is_refused_without_traceback(tmp_path, capsys):
     target = tmp_path / "taken"
     target.write_text("x")
