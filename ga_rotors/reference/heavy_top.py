@@ -227,13 +227,13 @@ class HeavyTop:
         """Bounds of θ, nutation period and mean precession rate."""
         k = elliptic.complete_first(self.m, self.m1)
         period = 2.0 * k / self.rate
-        dpsi = self._psi_increment(np.array([period]), np.array([self._r0 + 2.0 * k]))[0]
+        dpsi = self._psi_increment(np.array([self._r0 + 2.0 * k]))[0]
         theta_max = 2.0 * math.atan2(math.sqrt(self._om1), math.sqrt(self._op1))
         om2 = self._om1 * self._n1_plus
         theta_min = 2.0 * math.atan2(math.sqrt(om2), math.sqrt(2.0 - om2))
         return Nutation(theta_min, theta_max, period, dpsi / period)
 
-    def _psi_increment(self, t, r):
+    def _psi_increment(self, r):
         p_plus = (self._pi_plus(r) - self._p0[0]) / (self.rate * self._om1)
         p_minus = (self._pi_minus(r) - self._p0[1]) / (self.rate * self._op1)
         return 0.5 * self._b_minus_a * p_plus + 0.5 * self._b_plus_a * p_minus
@@ -260,7 +260,7 @@ class HeavyTop:
         """
         t = _times(t)
         r = self.rate * t + self._r0
-        sn, cn, _ = elliptic.jacobi(r, self.m, self.m1)
+        sn, cn, dn = elliptic.jacobi(r, self.m, self.m1)
         one_minus = self._om1 * (self._n1_plus + self._n_plus * cn * cn)
         one_plus = self._op1 * (1.0 - self._n_minus * sn * sn)
         theta = 2.0 * np.arctan2(np.sqrt(one_minus), np.sqrt(one_plus))
@@ -273,11 +273,9 @@ class HeavyTop:
             Q.multiply(axis_rotation(2, psi), axis_rotation(1, theta)), axis_rotation(2, phi)
         )
         # Body rates from the angles' rates (z–y′–z″): ω = (−ψ̇ sθ cφ + θ̇ sφ, ψ̇ sθ sφ + θ̇ cφ, ω₃).
-        u = 0.5 * (one_plus - one_minus)
         sin_t = np.sqrt(one_minus * one_plus)
         psidot = half_bma / one_minus + half_bpa / one_plus
         # θ̇ = −u̇ / sin θ, u̇ = 2 (u₂ − u₁) λ sn cn dn
-        _, _, dn = elliptic.jacobi(r, self.m, self.m1)
         udot = 2.0 * (self._u[1] - self._u[0]) * self.rate * sn * cn * dn
         thetadot = -udot / sin_t
         cphi, sphi = np.cos(phi), np.sin(phi)
@@ -289,7 +287,6 @@ class HeavyTop:
             ],
             axis=-1,
         )
-        del u
         err = (
             16.0
             * _EPS
