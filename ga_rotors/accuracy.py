@@ -64,6 +64,7 @@ EVALUATIONS = {
     "split_sym": 1,
     "lgvi": 1,
     "midpoint": 1,
+    "dp8": 12,
     "mujoco_rk4": 4,
     "mujoco_euler": 1,
 }

@@ -138,6 +138,7 @@ BUILTIN_MODULES = (
     "ga_rotors.integrators.variational",
     "ga_rotors.integrators.implicit",
     "ga_rotors.integrators.dop853",
+    "ga_rotors.integrators.dp8",
 )
 
 
