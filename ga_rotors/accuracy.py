@@ -676,7 +676,7 @@ def plot(st: Study, path) -> None:
         style = "-" if pts[0].family == "ga_rotors" else "--"
         for row, attr in enumerate(("error", "energy_drift", "momentum_drift")):
             y = np.array([max(getattr(p, attr), 1e-17) for p in pts])
-            keep = np.isfinite(y)
+            keep = np.isfinite(y) & (y <= 10.0)  # a drift beyond 10 only says "diverged"
             for col, xattr in enumerate(("seconds", "evaluations")):
                 x = np.array([getattr(p, xattr) for p in pts])
                 axes[row, col].loglog(
@@ -696,9 +696,9 @@ def plot(st: Study, path) -> None:
             axes[row, col].grid(True, which="major", alpha=0.3)
     axes[2, 0].set_xlabel("wall time (s), minimum of repeats")
     axes[2, 1].set_xlabel("right-hand-side evaluations (splitting: Strang stages)")
-    fig.legend(loc="upper center", ncol=6, fontsize=7, frameon=False)
     fig.suptitle(st.case.title, y=0.995, fontsize=10)
-    fig.tight_layout(rect=(0, 0, 1, 0.93))
+    fig.legend(loc="upper center", bbox_to_anchor=(0.5, 0.97), ncol=6, fontsize=7, frameon=False)
+    fig.tight_layout(rect=(0, 0, 1, 0.9))
     _save_atomically(fig, path)
     plt.close(fig)
 

@@ -3,7 +3,7 @@
 Not a compiled loop: scipy drives the steps in Python and calls the right-hand side once
 per evaluation. The right-hand side itself is the same compiled, specialised vector field
 the fixed-step methods use (ẋ from the path's kinematics, ω̇ from Euler's equations with
-exactly the declared torques), generated from the :func:`vector_field_step` template, so
+exactly the declared torques), :func:`ga_rotors.integrators._codegen.vector_field`, so
 a comparison with the compiled methods measures the method and scipy's driver, not a
 slower formula. Order 8, adaptive: a tolerance, not a step, sets the accuracy; the ``h``
 and ``every`` of :meth:`Dop853.run` only fix the sample times. Conserves nothing.
@@ -14,41 +14,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..errors import InputError
-from .base import FREE, TORQUED, Integrator, LoopResult, TemplateIntegrator, register
-from .slots import accel, o_rate
-
-
-def vector_field_step(t, x, w, h, inertia, params):
-    """Not a step: the derivative (ẋ, ω̇) at (t, x, ω), in the step's calling convention."""
-    return o_rate(x, w), accel(t, x, w, inertia, params)
-
-
-#: An unregistered template "integrator" whose specialised ``step`` is the vector field.
-VECTOR_FIELD = TemplateIntegrator(
-    name="vector_field",
-    order=0,
-    description="the specialised right-hand side (ẋ, ω̇), for adaptive drivers",
-    conserves=frozenset(),
-    paths=frozenset({"rotor", "quaternion", "euler"}),
-    steps={FREE: vector_field_step, TORQUED: vector_field_step},
-)
-
-
-def vector_field(problem, path: str):
-    """The compiled ``f(t, x, w, h, inertia, params) -> (ẋ, ω̇)`` for ``problem`` on ``path``.
-
-    Examples
-    --------
-    >>> from ga_rotors.integrators import Problem
-    >>> f = vector_field(Problem((1.0, 2.0, 3.0)), "quaternion")
-    >>> dx, dw = f(0.0, (1.0, 0.0, 0.0, 0.0), (0.0, 0.0, 2.0), 0.0, (1.0, 2.0, 3.0), np.empty(0))
-    >>> dx, dw
-    ((-0.0, 0.0, 0.0, 1.0), (0.0, 0.0, 0.0))
-    """
-    from . import _codegen
-
-    VECTOR_FIELD.check(problem, path)
-    return _codegen.specialise(VECTOR_FIELD, problem, path).module.step
+from .base import FREE, KINEMATIC, TORQUED, Integrator, LoopResult, register
 
 
 class Dop853(Integrator):
@@ -85,22 +51,19 @@ class Dop853(Integrator):
 
     @property
     def problems(self) -> frozenset[str]:
-        return frozenset({FREE, TORQUED})
+        return frozenset({FREE, TORQUED, KINEMATIC})
 
     def run(self, problem, path, x0, w0, t0, h, nsteps, every) -> LoopResult:
         from scipy.integrate import solve_ivp
 
+        from ._codegen import vector_field
+
         self.check(problem, path)
-        f = vector_field(problem, path)
+        rhs = vector_field(problem, path)
         x0 = np.asarray(x0, dtype=np.float64)
         dim = x0.shape[0]
-        inertia = problem.inertia
-        params = problem.params()
-        y0 = np.concatenate([x0, np.asarray(w0, dtype=np.float64)])
-
-        def rhs(t, y):
-            dx, dw = f(t, tuple(y[:dim]), (y[dim], y[dim + 1], y[dim + 2]), 0.0, inertia, params)
-            return np.array(dx + dw)
+        kinematic = problem.kind == KINEMATIC
+        y0 = x0 if kinematic else np.concatenate([x0, np.asarray(w0, dtype=np.float64)])
 
         marks = list(range(0, nsteps + 1, every))
         if marks[-1] != nsteps:
@@ -111,10 +74,14 @@ class Dop853(Integrator):
             atol=self.atol,
         )  # fmt: skip
         y = sol.y.T
+        if kinematic:
+            w = np.array([problem.omega.kernel(t, np.asarray(problem.params())) for t in sol.t])
+        else:
+            w = y[:, dim:]
         return LoopResult(
             t=sol.t,
             x=y[:, :dim],
-            w=y[:, dim:],
+            w=w,
             complete=bool(sol.success) and sol.t.shape == times.shape,
             stats=np.array([float(sol.nfev)]),
         )
