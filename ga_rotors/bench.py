@@ -40,6 +40,7 @@ def run(args) -> int:
 
 
 def _accuracy(args) -> int:
+    import os
     from pathlib import Path
 
     from . import accuracy as A
@@ -65,7 +66,9 @@ def _accuracy(args) -> int:
         parts += ["", f"### {st.case.title}", "", "Time (ms) to reach each target error; "
                   "bold: the fastest.", "", A.method_table(st)]  # fmt: skip
         if args.figures:
-            parts += ["", f"![work-precision, {st.case.name}](figures/accuracy_{st.case.name}.png)"]
+            png = Path(args.figures) / f"accuracy_{st.case.name}.png"
+            link = os.path.relpath(png, Path(args.doc).parent) if args.doc else str(png)
+            parts += ["", f"![work-precision, {st.case.name}]({Path(link).as_posix()})"]
         parts += [f"- {n}" for n in st.notices]
     text = "\n".join(parts) + "\n"
     print(text)
