@@ -2,7 +2,10 @@
 
 from __future__ import annotations
 
+import sys
+
 import numpy as np
+import pytest
 
 from ga_rotors import accuracy as A
 from ga_rotors.cli import main
@@ -26,12 +29,22 @@ def test_euler_angle_path_is_measured_through_the_same_reference():
     assert 2**3.5 < coarse.error / fine.error < 2**4.5
 
 
-def test_peers_run_and_agree_with_the_reference():
+def test_dop853_peer_agrees_with_the_reference():
     case = A.cases()["asymmetric_far"]
     dop = A._dop853(case, 1e-10, 1, 0.1)
     assert dop.error < 1e-7 and dop.evaluations > 100
+
+
+def test_numpy_quaternion_peer_agrees_with_the_reference():
+    pytest.importorskip("quaternion", reason="numpy-quaternion is an optional peer (extra 'peers')")
+    case = A.cases()["asymmetric_far"]
     npq = A._numpy_quaternion(case, 1e-10, 1, 0.1)
     assert npq.error < 1e-7 and npq.evaluations > 100
+
+
+def test_mujoco_rk4_peer_has_rk4s_order_and_a_comparable_constant():
+    pytest.importorskip("mujoco", reason="MuJoCo is an optional peer (extra 'peers')")
+    case = A.cases()["asymmetric_far"]
     muj = A._mujoco(case, "RK4", 2000, 1, 0.1)
     rk4 = A.measure(case, "rk4", 2000, repeats=1)
     # MuJoCo's RK4 moves the quaternion of each stage by the exponential map instead of
@@ -40,9 +53,25 @@ def test_peers_run_and_agree_with_the_reference():
 
 
 def test_a_peer_that_never_returns_is_cut_off():
+    pytest.importorskip("quaternion", reason="numpy-quaternion is an optional peer (extra 'peers')")
     # numpy-quaternion on the fast spinner at 1e-11: scipy's ode never returns (see
     # accuracy._numpy_quaternion); the forked measurement is killed at the limit.
     assert A._numpy_quaternion(A.cases()["fast_spinner"], 1e-11, 0, 0.1, limit=1.0) is None
+
+
+@pytest.mark.parametrize("module", ["quaternion", "mujoco"])
+def test_a_missing_peer_is_skipped_with_a_notice(monkeypatch, module):
+    # CI installs only the test extra: the study must still run and say what it left out.
+    monkeypatch.setitem(sys.modules, module, None)  # makes `import module` raise ImportError
+    case = A.cases()["asymmetric_far"]
+    out = A.Study(case)
+    if module == "quaternion":
+        A._numpy_quaternion_sweep(case, out, (1e-6,), 0, 0.01)
+        assert out.notices == ["numpy-quaternion not installed: skipped"]
+    else:
+        A._mujoco_sweep(case, out, 2, 0, 0.01)
+        assert out.notices == ["mujoco not installed: skipped"]
+    assert out.points == []
 
 
 def test_cheapest_picks_the_fastest_run_that_reaches_each_target():
