@@ -260,9 +260,12 @@ def clifford_rotor_rk4():
         @decorate
         def rates(R, x, y, z):
             omega = -(pseudo * (x * e1 + y * e2 + z * e3))
-            return 0.5 * R * omega, (i2 - i3) * y * z / i1, (i3 - i1) * z * x / i2, (
-                i1 - i2
-            ) * x * y / i3
+            return (
+                0.5 * R * omega,
+                (i2 - i3) * y * z / i1,
+                (i3 - i1) * z * x / i2,
+                (i1 - i2) * x * y / i3,
+            )
 
         @decorate
         def run(R, x, y, z, h, n):

@@ -23,6 +23,7 @@ from pathlib import Path
 
 TARGET = Path(__file__).with_name("_rotor_kernels.py")
 
+
 def _layout():
     import clifford
 

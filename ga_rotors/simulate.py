@@ -218,6 +218,7 @@ def simulate(
         spec = _paths.get(p)
         args = (problem, p, starts[p], w0, float(t0), h, nsteps, sample_every)
         if chunked:
+
             def report(done, n=n):
                 progress(n * nsteps + done, total)
 

@@ -269,9 +269,7 @@ def _generate(
     for slot, attr in slots.PATH_SLOTS.items():
         if slot in used:
             if not hasattr(module, attr):
-                raise InputError(
-                    f"{name}: uses {slot}, which the {path!r} path does not have"
-                )
+                raise InputError(f"{name}: uses {slot}, which the {path!r} path does not have")
             imports.kernel(slot, getattr(module, attr))
 
     names = {"torque", "accel", "omega", "step", "loop", "rhs"}
