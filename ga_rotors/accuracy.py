@@ -93,12 +93,12 @@ class Case:
 
     @property
     def problem(self):
-        from .integrators import Problem, TorqueTerm
+        from .integrators import Problem
         from .reference.heavy_top import gravity_torque
 
         if self.mgl is None:
             return Problem(self.moments)
-        return Problem(self.moments, torques=(TorqueTerm(gravity_torque, (self.mgl,)),))
+        return Problem(self.moments, torques=(gravity_torque(self.mgl),))
 
     def exact_final(self) -> np.ndarray:
         return self.reference.at([self.duration])[0][0]

@@ -19,7 +19,7 @@ import numpy as np
 import pytest
 
 from ga_rotors import quaternion as Q
-from ga_rotors.integrators import PrescribedOmega, Problem, TorqueTerm, get
+from ga_rotors.integrators import PrescribedOmega, Problem, get
 from ga_rotors.reference.asymmetric_top import AsymmetricTop
 from ga_rotors.reference.coning import Coning, coning_rate
 from ga_rotors.reference.heavy_top import HeavyTop, gravity_torque
@@ -96,7 +96,7 @@ def test_observed_order_on_the_heavy_top(name):
     q0 = Q_HEAVY / np.linalg.norm(Q_HEAVY)
     top = HeavyTop(HEAVY_BODY, HEAVY_MGL, q0, HEAVY_W)
     want = top.at([HEAVY_T])[0][0]
-    problem = Problem(HEAVY_BODY, torques=(TorqueTerm(gravity_torque, (HEAVY_MGL,)),))
+    problem = Problem(HEAVY_BODY, torques=(gravity_torque(HEAVY_MGL),))
     errors = _errors(name, problem, q0, HEAVY_W, HEAVY_T, want, *HEAVY_RANGES[name])
     _check(name, errors)
 

@@ -39,10 +39,11 @@ import numpy as np
 from scipy.optimize import brentq
 
 from .. import quaternion as Q
-from .._jit import jit
 from .._validate import as_float_array, require_unit
 from ..body import RigidBody
+from ..effects import gravity
 from ..errors import InputError, PrecisionError
+from ..integrators.base import TorqueTerm
 from . import elliptic
 from .asymmetric_top import State, _orientation_error, _times, axis_rotation
 
@@ -51,16 +52,21 @@ __all__ = ["HeavyTop", "State", "gravity_torque"]
 _EPS = float(np.finfo(float).eps)
 
 
-@jit
-def gravity_torque(t, q, w, p):
-    """Body-frame gravity torque on the heavy top: mgl · (Z_y, −Z_x, 0), p = (mgl,).
+def gravity_torque(mgl: float) -> TorqueTerm:
+    """The heavy top's gravity as an integrator torque term: mgl · (Z_y, −Z_x, 0) in the body.
 
-    Z = q* ẑ q is the vertical in body coordinates (the third row of q's rotation matrix);
-    the centre of mass sits at l along body +z, gravity along space −z.
+    It is the scene engine's gravity effect (:func:`ga_rotors.effects.gravity`, one kernel for
+    every weight) with weight (0, 0, −mgl) acting at unit distance along body +z:
+    τ = ẑ × (q* (−mgl ẑ) q) = −mgl ẑ × Z = mgl · (Z_y, −Z_x, 0), Z = q* ẑ q.
+
+    Examples
+    --------
+    >>> from ga_rotors.integrators import Problem
+    >>> problem = Problem((1.0, 1.0, 0.5), torques=(gravity_torque(2.0),))
+    >>> gravity_torque(2.0).params
+    (0.0, 0.0, -2.0, 0.0, 0.0, 1.0)
     """
-    zx = 2.0 * (q[1] * q[3] - q[0] * q[2])
-    zy = 2.0 * (q[2] * q[3] + q[0] * q[1])
-    return (p[0] * zy, -p[0] * zx, 0.0)
+    return TorqueTerm(gravity, (0.0, 0.0, -float(mgl), 0.0, 0.0, 1.0), name="gravity")
 
 
 @dataclass(frozen=True)
