@@ -706,14 +706,7 @@ def plot(st: Study, path) -> None:
 def _save_atomically(fig, path) -> None:
     from pathlib import Path
 
-    from .trajectory import atomic_write
+    from .files import atomic_write
 
     Path(path).parent.mkdir(parents=True, exist_ok=True)
     atomic_write(path, lambda fh: fig.savefig(fh, format="png", dpi=60))
-
-
-def write_text_atomically(path, text: str) -> None:
-    """Write ``text`` (UTF-8) to ``path`` through a temporary file and os.replace."""
-    from .trajectory import atomic_write
-
-    atomic_write(path, lambda fh: fh.write(text.encode("utf-8")))

@@ -45,6 +45,7 @@ def _accuracy(args) -> int:
 
     from . import accuracy as A
     from .errors import InputError
+    from .files import write_text
 
     available = A.cases()
     chosen = [c for c in args.cases.split(",") if c] or list(available)
@@ -79,5 +80,5 @@ def _accuracy(args) -> int:
             raise InputError(f"--doc: {doc} has no generated block ({BEGIN} … {END})")
         head, rest = old.split(BEGIN, 1)
         _, tail = rest.split(END, 1)
-        A.write_text_atomically(doc, head + BEGIN + "\n\n" + text + "\n" + END + tail)
+        write_text(doc, head + BEGIN + "\n\n" + text + "\n" + END + tail)
     return 0

@@ -164,7 +164,7 @@ def reproduce(
     sent = 0
     try:
         from . import paper_figures, paper_scenes
-        from .trajectory import atomic_write
+        from .files import write_text
 
         scenes = paper_scenes.run_all()
         job = None
@@ -176,7 +176,7 @@ def reproduce(
         written = []
         if data:
             text = paper_scenes.summary(scenes) + "\n"
-            written.append(atomic_write(out / "summary.txt", lambda fh: fh.write(text.encode())))
+            written.append(write_text(out / "summary.txt", text))
             written += [s.trajectory.to_csv(out / f"{s.key}.csv") for s in scenes]
         if figures and not drawers:
             written += paper_figures.draw_all(*job)

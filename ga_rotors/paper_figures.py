@@ -190,7 +190,7 @@ def draw_all(data: list[FigureData], out_dir, digest: str, stems=None) -> list[P
 
     ``stems``: the figures to draw (default: all of :data:`FIGURES`, in order).
     """
-    from .trajectory import atomic_write
+    from .files import atomic_write
 
     out_dir = Path(out_dir)
     by_key = {(d.model, d.theta0_deg): d for d in data}

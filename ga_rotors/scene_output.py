@@ -18,11 +18,7 @@ changes nothing it had not finished.
 from __future__ import annotations
 
 import hashlib
-import os
-import shutil
-import tempfile
 import warnings
-from pathlib import Path
 
 import numpy as np
 
@@ -270,33 +266,9 @@ def write_outputs(scene: Scene, trajectory: Trajectory, out_dir, summary: str | 
     >>> [p.name for p in write_outputs(s, simulate(s), out)]
     ['spinning_disk.csv', 'spinning_disk.scene.toml']
     """
-    from .errors import InputError
-    from .trajectory import _umask
+    from .files import write_together
 
     plan = _plan(scene, trajectory, summary)
     if not plan:
         return []
-    out = Path(out_dir)
-    if out.exists() and not out.is_dir():
-        raise InputError(f"--out: {out} exists and is not a directory")
-    exists = out.is_dir()
-    parent = out if exists else out.parent
-    try:
-        parent.mkdir(parents=True, exist_ok=True)
-        staging = Path(tempfile.mkdtemp(dir=parent, prefix=f".{out.name}.staging-"))
-    except OSError as exc:
-        raise InputError(f"--out: cannot write into {parent}: {exc.strerror}") from None
-    try:
-        for name, write in plan:
-            write(staging / name)
-        if exists:
-            for name, _ in plan:
-                os.replace(staging / name, out / name)
-            staging.rmdir()
-        else:
-            os.chmod(staging, 0o777 & ~_umask())  # mkdtemp makes 0700; give what mkdir would
-            os.rename(staging, out)
-    except BaseException:
-        shutil.rmtree(staging, ignore_errors=True)
-        raise
-    return [out / name for name, _ in plan]
+    return write_together(out_dir, plan, argument="--out")

@@ -25,52 +25,14 @@ export leaves such cells empty, never NaN.
 
 from __future__ import annotations
 
-import os
-import tempfile
 from pathlib import Path
 
 import numpy as np
 
 from .errors import InputError
+from .files import atomic_write, write_text
 
-__all__ = ["Trajectory", "atomic_write"]
-
-
-def _umask() -> int:
-    mask = os.umask(0o022)
-    os.umask(mask)
-    return mask
-
-
-def atomic_write(path, write) -> Path:
-    """Call ``write(file_object)`` on a temporary file, then move it onto ``path``.
-
-    A failure anywhere leaves ``path`` as it was (absent, or the previous version).
-
-    Examples
-    --------
-    >>> import tempfile, pathlib
-    >>> d = pathlib.Path(tempfile.mkdtemp())
-    >>> atomic_write(d / "x.txt", lambda f: f.write(b"hello")).read_bytes()
-    b'hello'
-    """
-    path = Path(path)
-    if path.is_dir():
-        raise InputError(f"path: {path} is a directory; expected a file name")
-    parent = path.parent if str(path.parent) else Path(".")
-    if not parent.is_dir():
-        raise InputError(f"path: directory {parent} does not exist")
-    fd, tmp = tempfile.mkstemp(dir=parent, prefix=f".{path.name}.", suffix=".tmp")
-    try:
-        os.chmod(tmp, 0o666 & ~_umask())  # mkstemp makes 0600; give what open() would
-        with os.fdopen(fd, "wb") as fh:
-            write(fh)
-        os.replace(tmp, path)
-    except BaseException:
-        if os.path.exists(tmp):
-            os.unlink(tmp)
-        raise
-    return path
+__all__ = ["Trajectory"]
 
 
 class Trajectory:
@@ -186,7 +148,7 @@ class Trajectory:
         text = "\n".join(lines) + "\n"
         if path is None:
             return text
-        return atomic_write(path, lambda fh: fh.write(text.encode("utf-8")))
+        return write_text(path, text)
 
     def to_npz(self, path) -> Path:
         """Write every array (and the component labels) to a ``.npz`` file, atomically.

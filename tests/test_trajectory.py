@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 from ga_rotors.errors import InputError
-from ga_rotors.trajectory import Trajectory, atomic_write
+from ga_rotors.trajectory import Trajectory
 
 
 def sample():
@@ -38,27 +38,6 @@ def test_npz_holds_every_array_and_labels(tmp_path):
     with np.load(tr.to_npz(tmp_path / "run.npz")) as z:
         assert np.array_equal(z["w"], tr.w) and z["euler"].shape == (3, 3)
         assert z["euler__components"].tolist() == ["psi", "theta", "phi"]
-
-
-def test_failed_write_leaves_nothing(tmp_path):
-    target = tmp_path / "out.csv"
-
-    def boom(fh):
-        fh.write(b"partial")
-        raise RuntimeError("disk full")
-
-    with pytest.raises(RuntimeError):
-        atomic_write(target, boom)
-    assert list(tmp_path.iterdir()) == []
-
-
-def test_failed_write_keeps_the_previous_file(tmp_path):
-    target = tmp_path / "out.csv"
-    target.write_text("old")
-    with pytest.raises(RuntimeError):
-        atomic_write(target, lambda fh: (_ for _ in ()).throw(RuntimeError("x")))
-    assert target.read_text() == "old"
-    assert [p.name for p in tmp_path.iterdir()] == ["out.csv"]
 
 
 def test_missing_array_names_what_exists():

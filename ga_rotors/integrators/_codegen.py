@@ -57,6 +57,7 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import InputError
+from ..files import write_text
 from ..paths import get as get_path
 from . import loops, slots
 from .base import FREE, KINEMATIC, TORQUED, LoopResult, Problem, TemplateIntegrator
@@ -389,15 +390,7 @@ def _write_once(path: Path, text: str) -> None:
                 return
         except OSError:
             pass
-    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=".tmp-", suffix=".py")
-    try:
-        with os.fdopen(fd, "w", encoding="utf-8") as fh:
-            fh.write(text)
-        os.replace(tmp, path)
-    except BaseException:
-        if os.path.exists(tmp):
-            os.unlink(tmp)
-        raise
+    write_text(path, text)
 
 
 def _import_file(name: str, path: Path) -> types.ModuleType:

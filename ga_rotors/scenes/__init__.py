@@ -33,10 +33,10 @@ def run(args: argparse.Namespace) -> int:
     from pathlib import Path
 
     from ..errors import InputError
+    from ..files import atomic_write
     from ..scene import load_scene
     from ..scene_output import figure_png
     from ..scene_run import simulate
-    from ..trajectory import atomic_write
 
     out = Path(args.figures)
     if not out.is_dir():
