@@ -115,6 +115,8 @@ def qexp_pure(v):
     s = hypot3(v[0], v[1], v[2])
     if s == 0.0:
         return (1.0, v[0], v[1], v[2])
+    if s == inf:  # compiled sin(inf) is nan, plain Python's raises: both give all-NaN
+        return (nan, nan, nan, nan)
     f = sin(s) / s
     return (cos(s), f * v[0], f * v[1], f * v[2])
 
@@ -351,6 +353,8 @@ def quat_from_matrix(m):
 def axis_quat(axis, angle):
     """Unit quaternion of the rotation by ``angle`` about coordinate axis 0, 1 or 2 (x, y, z)."""
     h = 0.5 * angle
+    if abs(h) == inf:  # as in qexp_pure: all-NaN compiled and uncompiled alike
+        return (nan, nan, nan, nan)
     s = sin(h)
     return (cos(h), s if axis == 0 else 0.0, s if axis == 1 else 0.0, s if axis == 2 else 0.0)
 

@@ -22,7 +22,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ._jit import jit
-from ._validate import as_float_array
+from ._validate import as_float_array, require_unit
 from .errors import InputError
 
 __all__ = ["TRIANGLE_TOLERANCE", "RigidBody", "euler_rates", "free_euler_rates"]
@@ -85,6 +85,10 @@ class RigidBody:
     ----------
     moments : array_like, shape (3,)
         Principal moments (I₁, I₂, I₃), positive, satisfying the triangle inequality.
+    principal_rotation : array_like, shape (4,)
+        Unit quaternion taking the principal frame to the body frame the user works in
+        (identity by default; :meth:`from_tensor` sets it). Renormalised within
+        ``UNIT_TOLERANCE``; otherwise :class:`~ga_rotors.errors.InputError`.
 
     Examples
     --------
@@ -107,6 +111,11 @@ class RigidBody:
         _check_moments(m, "moments")
         object.__setattr__(self, "moments", tuple(float(x) for x in m))
         p = as_float_array(self.principal_rotation, "principal_rotation", last=4)
+        if p.shape != (4,):
+            raise InputError(
+                f"principal_rotation: expected one quaternion of shape (4,), got shape {p.shape}"
+            )
+        p = require_unit(p, "principal_rotation")
         object.__setattr__(self, "principal_rotation", tuple(float(x) for x in p))
 
     @classmethod

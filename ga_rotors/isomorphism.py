@@ -83,14 +83,17 @@ def from_even(c, table=ISOMORPHISM, name: str = "R") -> np.ndarray:
     ga_rotors.errors.InputError: R: expected an even multivector (grades 0 and 2), got ...
     """
     c = as_float_array(c, name, last=8)
-    odd = np.sqrt(np.sum(c[..., list(ODD)] ** 2, axis=-1))
-    size = np.sqrt(np.sum(c**2, axis=-1))
-    bad = odd > UNIT_TOLERANCE * np.maximum(size, 1.0)
+    # Scaled by the largest coefficient so that 1e±300 multivectors neither overflow nor
+    # underflow in the squares; the test is relative to the size, as documented.
+    scale = np.abs(c).max(axis=-1, initial=0.0)
+    s = c / np.where(scale > 0.0, scale, 1.0)[..., None]
+    odd = np.sqrt(np.sum(s[..., list(ODD)] ** 2, axis=-1))
+    bad = odd > UNIT_TOLERANCE * np.sqrt(np.sum(s**2, axis=-1))
     if np.any(bad):
         where = tuple(int(i) for i in np.argwhere(bad)[0]) if bad.ndim else ()
         raise InputError(
             f"{name}: expected an even multivector (grades 0 and 2), got odd part "
-            f"{odd[where]:.3g} (e1, e2, e3, e123) at index {where}"
+            f"{odd[where] * scale[where]:.3g} (e1, e2, e3, e123) at index {where}"
         )
     q = np.empty((*c.shape[:-1], 4))
     for component, blade, sign in table:

@@ -33,6 +33,7 @@ import numpy as np
 from ._jit import jit
 from ._validate import as_float_array, require_unit
 from .errors import InputError
+from .isomorphism import from_even
 
 __all__ = [
     "body_omega_from_euler_rates",
@@ -255,13 +256,22 @@ def _cl3():
     return lay, lay.blades
 
 
+def _unit_rotor(R):
+    """R checked like every rotor argument (Cl(3), even, finite, unit within
+    UNIT_TOLERANCE) and renormalised; InputError naming ``R`` otherwise."""
+    from . import rotor
+
+    return rotor.from_quaternion(rotor.to_quaternion(R))
+
+
 def rotor_rate(R, w):
     """Ṙ = ½ R Ω, Ω = −I ω, for a clifford rotor R and body angular velocity ω.
 
     Parameters
     ----------
     R : clifford.MultiVector
-        A unit rotor of Cl(3,0).
+        A unit rotor of Cl(3,0) (within ``UNIT_TOLERANCE`` of unit norm: renormalised;
+        otherwise, or odd or non-finite, :class:`~ga_rotors.errors.InputError`).
     w : array_like, shape (3,)
         Body angular velocity.
 
@@ -272,12 +282,11 @@ def rotor_rate(R, w):
     >>> rotor_rate(R, [0.0, 0.0, 2.0])  # rotation about z: Ṙ = -e12
     -(1.0^e12)
     """
-    layout, blades = _cl3()
+    blades = _cl3()[1]
     w = as_float_array(w, "w", last=3)
     if w.shape != (3,):
         raise InputError(f"w: expected one angular velocity of shape (3,), got {w.shape}")
-    if getattr(R, "layout", None) != layout:
-        raise InputError("R: expected a clifford MultiVector of the Cl(3) layout")
+    R = _unit_rotor(R)
     vec = w[0] * blades["e1"] + w[1] * blades["e2"] + w[2] * blades["e3"]
     omega = -(blades["e123"] * vec)
     return 0.5 * R * omega
@@ -294,8 +303,9 @@ def body_omega_from_rotor_rate(R, Rdot) -> np.ndarray:
     array([0.1, 0.2, 0.3])
     """
     layout, blades = _cl3()
-    for name, value in (("R", R), ("Rdot", Rdot)):
-        if getattr(value, "layout", None) != layout:
-            raise InputError(f"{name}: expected a clifford MultiVector of the Cl(3) layout")
+    R = _unit_rotor(R)
+    if getattr(Rdot, "layout", None) != layout:
+        raise InputError("Rdot: expected a clifford MultiVector of the Cl(3) layout")
+    from_even(Rdot.value, name="Rdot")  # finite and even, as the rate of a rotor is
     v = (2.0 * blades["e123"] * ~R * Rdot)(1)
     return np.array([v[blades["e1"]], v[blades["e2"]], v[blades["e3"]]], dtype=np.float64)

@@ -168,6 +168,8 @@ def normalize(R):
     1.0
     """
     q = _quaternion_of(R, unit=False)
+    if not q.any():
+        raise InputError("R: expected a nonzero even multivector, got 0")
     return _multivector(to_even(_quaternion.normalize(q)))
 
 
