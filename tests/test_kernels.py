@@ -80,53 +80,11 @@ def test_rotvec_roundtrip_and_scipy(r):
     assert np.linalg.norm(back) <= math.pi + 1e-12
 
 
-@pytest.mark.parametrize("angle", [0.0, 1e-300, 1e-200, 1e-100, 1e-20, 1e-12, 1e-9])
-def test_exp_log_exact_at_tiny_angles(angle):
-    axis = np.array([2.0, -3.0, 6.0]) / 7.0
-    r = tuple(angle * axis)
-    q = K.quat_from_rotvec(r)
-    assert q[0] == 1.0 or angle > 1e-9
-    # vector part is half the rotation vector to full relative precision
-    assert np.allclose(q[1:], 0.5 * np.array(r), rtol=1e-15, atol=0)
-    back = np.array(K.rotvec_from_quat(q))
-    assert np.allclose(back, r, rtol=1e-15, atol=0)
-
-
-@pytest.mark.parametrize("eps", [0.0, 1e-12, 1e-8])
-def test_log_exact_near_half_turn(eps):
-    axis = np.array([1.0, 2.0, 2.0]) / 3.0
-    angle = math.pi - eps
-    q = K.quat_from_rotvec(tuple(angle * axis))
-    back = np.array(K.rotvec_from_quat(q))
-    # one rounding each in angle*axis, sin/cos, hypot, atan2 and the norm: 4 ulp of pi.
-    # (2*acos(w) is also accurate here, w ≈ 0; acos loses digits only where |w| → 1.)
-    assert math.isclose(np.linalg.norm(back), angle, rel_tol=0, abs_tol=4 * math.ulp(math.pi))
-    assert np.allclose(back / np.linalg.norm(back), axis, atol=1e-15)
-
-
-def test_log_of_minus_one_chooses_z_axis():
-    assert K.qlog_unit((-1.0, 0.0, 0.0, 0.0)) == (0.0, 0.0, math.pi)
-    assert K.qlog_unit((1.0, 0.0, 0.0, 0.0)) == (0.0, 0.0, 0.0)
-    assert K.rotvec_from_quat((-1.0, 0.0, 0.0, 0.0)) == (0.0, 0.0, 0.0)
-
-
 @pytest.mark.parametrize("scale", [1e-300, 1e-160, 1.0, 1e160, 1e300])
 def test_norm_has_no_overflow_or_underflow(scale):
     q = (3 * scale, 4 * scale, 12 * scale, 84 * scale)
     assert math.isclose(K.qnorm(q), 85 * scale, rel_tol=1e-15)
     assert math.isclose(K.hypot3(3 * scale, 4 * scale, 12 * scale), 13 * scale, rel_tol=1e-15)
-
-
-@pytest.mark.parametrize("delta", [0.0, 1e-15, 1e-12, 1e-9, 1e-6, 1.0, math.pi - 1e-9, math.pi])
-def test_geodesic_angle_resolves_small_and_large(delta):
-    a = unit((0.3, -0.5, 0.7, 0.2))
-    b = K.qmul(a, K.quat_from_rotvec((0.0, delta, 0.0)))
-    # b's components are rounded (half an ulp, ~1e-16 each), so differences are resolved
-    # to ~1e-15 rad; 2*acos(.) would bottom out near 1e-8 rad.
-    assert math.isclose(K.geodesic_angle(a, b), delta, rel_tol=1e-12, abs_tol=1e-15)
-    # the double cover does not matter
-    minus_b = tuple(-c for c in b)
-    assert math.isclose(K.geodesic_angle(a, minus_b), delta, rel_tol=1e-12, abs_tol=1e-15)
 
 
 @given(quat)
@@ -141,12 +99,6 @@ def test_inverse_of_tiny_and_huge_has_no_underflow(scale):
     a = (0.0, 3 * scale, 0.0, 4 * scale)
     inv = K.qinverse(a)
     assert math.isclose(inv[1], -3 / (25 * scale), rel_tol=1e-15)
-
-
-def test_qunit_renormalises_within_tolerance_and_nans_beyond():
-    assert K.qunit((1.0 + 1e-7, 0.0, 0.0, 0.0), 1e-6) == (1.0, 0.0, 0.0, 0.0)
-    for bad in [(1.1, 0.0, 0.0, 0.0), (math.nan, 0.0, 0.0, 0.0), (math.inf, 0.0, 0.0, 0.0)]:
-        assert all(math.isnan(c) for c in K.qunit(bad, 1e-6))
 
 
 @given(quat)
@@ -192,12 +144,6 @@ def test_slerp_moves_at_constant_rate_along_shorter_arc(a, b, t):
     if abs(t) * total <= math.pi - 1e-6:
         assert math.isclose(K.geodesic_angle(a, s), abs(t) * total, abs_tol=1e-13)
     assert math.isclose(K.qnorm(s), 1.0, abs_tol=1e-15)
-
-
-def test_slerp_of_q_and_minus_q_stays_put():
-    q = unit((0.3, -0.5, 0.7, 0.2))
-    for t in (0.0, 0.3, 1.0):
-        assert np.allclose(K.qslerp(q, tuple(-c for c in q), t), q, rtol=0, atol=1e-16)
 
 
 @given(vec)
@@ -256,15 +202,6 @@ def test_matrix_kernels_round_trip_and_match_scipy(a):
     back = K.quat_from_matrix(m)
     assert back[0] >= 0.0
     assert K.geodesic_angle(back, q) <= 1e-15 * 8
-
-
-@pytest.mark.parametrize("axis", [0, 1, 2])
-def test_matrix_to_quaternion_exact_at_half_turns(axis):
-    m = [1.0 if k == axis else -1.0 for k in range(3)]
-    q = K.quat_from_matrix((m[0], 0.0, 0.0, 0.0, m[1], 0.0, 0.0, 0.0, m[2]))
-    expected = [0.0, 0.0, 0.0, 0.0]
-    expected[1 + axis] = 1.0
-    assert q == tuple(expected)
 
 
 @pytest.mark.parametrize("angle", [-7.0, -math.pi, 0.0, 1e-300, 0.5, math.pi, 7.0])
