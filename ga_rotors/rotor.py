@@ -169,7 +169,7 @@ def normalize(R):
     """
     q = _quaternion_of(R, unit=False)
     if not q.any():
-        raise InputError("R: expected a nonzero even multivector, got 0")
+        raise InputError("R: expected nonzero values (an even multivector), got 0")
     return _multivector(to_even(_quaternion.normalize(q)))
 
 
