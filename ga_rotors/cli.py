@@ -26,6 +26,7 @@ COMMANDS: dict[str, str] = {
     "run": "ga_rotors.run",
     "scenes": "ga_rotors.scenes",
     "show": "ga_rotors.show",
+    "cache": "ga_rotors.cache",
 }
 
 

@@ -275,7 +275,7 @@ def test_generated_file_is_named_by_content_and_written_once(tmp_path, monkeypat
         before = spec.path.stat().st_mtime_ns
         _codegen._write_once(spec.path, spec.source)  # identical: untouched (numba keys on mtime)
         assert spec.path.stat().st_mtime_ns == before
-        assert [p.name for p in spec.path.parent.glob(".tmp-*")] == []
+        assert [p.name for p in spec.path.parent.iterdir() if p.name.startswith(".")] == []
     finally:
         _codegen.cache_location.cache_clear()
 

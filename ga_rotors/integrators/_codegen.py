@@ -335,21 +335,92 @@ def cache_location() -> Path | None:
     return None
 
 
-def clear_cache() -> int:
-    """Delete every generated module and its numba cache; return how many files went."""
-    directory = cache_location()
+#: Generated modules of *another* version of the package (another package digest) written
+#: more than this many days ago are deleted the first time a process generates a module:
+#: upgrades and edits do not pile up files forever, and a version still in use elsewhere
+#: (a release beside a working copy) only recompiles a module once per period.
+PRUNE_AFTER_DAYS = 14
+
+
+@dataclass(frozen=True)
+class CacheFile:
+    """One generated module in the cache, and its numba cache files."""
+
+    path: Path
+    version: str
+    files: tuple[Path, ...]
+    bytes: int
+    mtime: float
+
+
+def cached_modules(directory: Path | None = None) -> list[CacheFile]:
+    """Every generated module in ``directory`` (default: :func:`cache_location`).
+
+    ``version`` is the package digest the module was made by (:func:`version_tag`),
+    ``files`` the module and its compiled files under ``__pycache__``.
+    """
+    directory = cache_location() if directory is None else Path(directory)
+    if directory is None or not directory.is_dir():
+        return []
+    compiled: dict[str, list[Path]] = {}
+    pycache = directory / "__pycache__"
+    if pycache.is_dir():
+        for f in pycache.iterdir():
+            compiled.setdefault(f.name.split(".", 1)[0], []).append(f)
+    out = []
+    for f in directory.glob("gen_*.py"):
+        stem = f.name[:-3]
+        files = (f, *compiled.get(stem, ()))
+        try:
+            stats = [g.stat() for g in files]
+        except OSError:  # deleted meanwhile by another process
+            continue
+        parts = stem.rsplit("_", 2)
+        version = parts[1] if len(parts) == 3 else ""
+        size = sum(st.st_size for st in stats)
+        out.append(CacheFile(f, version, files, size, stats[0].st_mtime))
+    return sorted(out, key=lambda c: c.path.name)
+
+
+def _delete(entries) -> int:
     removed = 0
-    if directory is None:
-        return 0
-    for pattern in ("gen_*.py", "__pycache__/gen_*"):
-        for f in directory.glob(pattern):
+    for entry in entries:
+        for f in entry.files:
             try:
                 f.unlink()
                 removed += 1
             except OSError:
                 pass
+    return removed
+
+
+def clear_cache() -> int:
+    """Delete every generated module and its numba cache; return how many files went."""
+    removed = _delete(cached_modules())
     _MEMO.clear()
     return removed
+
+
+def prune_cache(max_age_days: float = PRUNE_AFTER_DAYS, now: float | None = None) -> int:
+    """Delete modules of other package versions not written for ``max_age_days``.
+
+    Returns how many files went. Modules of this version are never pruned.
+    """
+    import time
+
+    limit = (time.time() if now is None else now) - max_age_days * 86400.0
+    mine = version_tag()
+    return _delete(c for c in cached_modules() if c.version != mine and c.mtime < limit)
+
+
+_PRUNED = False
+
+
+def _prune_once() -> None:
+    global _PRUNED
+    if not _PRUNED:
+        _PRUNED = True
+        prune_cache()
 
 
 @functools.cache
@@ -364,6 +435,11 @@ def _package_digest() -> str:
         h.update(str(f.relative_to(PACKAGE_ROOT)).encode())
         h.update(_file_digest(str(f)).encode())
     return h.hexdigest()
+
+
+def version_tag() -> str:
+    """Eight hex digits of the package digest: which version of ga_rotors made a module."""
+    return _package_digest()[:8]
 
 
 def _digest(text: str, modules: list[str]) -> str:
@@ -439,7 +515,7 @@ def specialise(
     text, modules = _generate(integrator, problem, path, cache=directory is not None)
     digest = _digest(text, modules)
     label = "rhs" if integrator is None else integrator.name
-    stem = f"gen_{label}_{problem.kind}_{path}_{digest}"
+    stem = f"gen_{label}_{problem.kind}_{path}_{version_tag()}_{digest}"
     modname = f"_ga_rotors_{stem}"
     file = directory / f"{stem}.py" if directory is not None else None
     loaded = sys.modules.get(modname)
@@ -447,6 +523,7 @@ def specialise(
         module = loaded
     elif file is not None:
         try:
+            _prune_once()
             _write_once(file, text)
             module = _import_file(modname, file)
         except OSError:

@@ -1,0 +1,102 @@
+"""The cache of generated loop modules: named by version, listed, pruned, cleared."""
+
+from __future__ import annotations
+
+import os
+import time
+
+import pytest
+from _torques_for_tests import constant_omega
+
+from ga_rotors.cli import main
+from ga_rotors.integrators import PrescribedOmega, Problem, _codegen, get
+
+DAY = 86400.0
+
+
+@pytest.fixture
+def cache(tmp_path, monkeypatch):
+    directory = tmp_path / "generated"
+    monkeypatch.setattr(_codegen, "_candidates", lambda: [directory])
+    monkeypatch.setattr(_codegen, "_MEMO", {})
+    monkeypatch.setattr(_codegen, "_PRUNED", False)
+    _codegen.cache_location.cache_clear()
+    yield directory
+    _codegen.cache_location.cache_clear()
+
+
+def _fake(directory, version, age_days, now):
+    """A generated module of ``version`` written ``age_days`` ago, with numba cache files."""
+    stem = f"gen_rk4_free_quaternion_{version}_0123456789abcdef0123"
+    (directory / "__pycache__").mkdir(parents=True, exist_ok=True)
+    files = [
+        directory / f"{stem}.py",
+        directory / "__pycache__" / f"{stem}.fixed_step_loop-61.py311.nbi",
+        directory / "__pycache__" / f"{stem}.fixed_step_loop-61.py311.1.nbc",
+    ]
+    for f in files:
+        f.write_text("x")
+        os.utime(f, (now - age_days * DAY, now - age_days * DAY))
+    return files
+
+
+def _specialise():
+    problem = Problem(omega=PrescribedOmega(constant_omega, (0.0, 0.0, 1.0)))
+    return _codegen.specialise(get("rk4"), problem, "quaternion")
+
+
+def test_module_names_carry_the_package_version(cache):
+    spec = _specialise()
+    assert spec.path.name.split("_")[-2] == _codegen.version_tag()
+    (entry,) = _codegen.cached_modules()
+    assert entry.path == spec.path and entry.version == _codegen.version_tag()
+
+
+def test_prune_deletes_only_old_modules_of_other_versions(cache):
+    now = time.time()
+    mine = _codegen.version_tag()
+    old_other = _fake(cache, "deadbeef", 30, now)
+    new_other = _fake(cache, "0badcafe", 1, now)
+    old_mine = _fake(cache, mine, 30, now)
+    assert _codegen.prune_cache(now=now) == 3
+    assert not any(f.exists() for f in old_other)
+    assert all(f.exists() for f in new_other + old_mine)
+    # just inside the limit: kept
+    assert _codegen.prune_cache(max_age_days=1.0 + 1 / 24, now=now) == 0
+
+
+def test_the_first_module_a_process_generates_prunes_the_cache(cache):
+    now = time.time()
+    old_other = _fake(cache, "deadbeef", _codegen.PRUNE_AFTER_DAYS + 1, now)
+    _specialise()
+    assert not any(f.exists() for f in old_other)
+    again = _fake(cache, "deadbeef", _codegen.PRUNE_AFTER_DAYS + 1, now)
+    _codegen._MEMO.clear()
+    _specialise()  # once per process: a second generation does not list the directory again
+    assert all(f.exists() for f in again)
+
+
+def test_cache_command_reports_and_clears(cache, capsys):
+    now = time.time()
+    _fake(cache, "deadbeef", 2, now)
+    _specialise()
+    assert main(["cache"]) == 0
+    out = capsys.readouterr().out
+    assert f"cache: {cache}" in out
+    assert f"this version ({_codegen.version_tag()}): 1 module" in out
+    assert "other versions: 1 module, 3 B (deleted 14 days after they were made)" in out
+    assert main(["cache", "--clear"]) == 0
+    assert "removed 4 files" in capsys.readouterr().out
+    assert list(cache.glob("gen_*")) == [] and list((cache / "__pycache__").iterdir()) == []
+
+
+def test_cache_command_without_a_writable_directory(tmp_path, monkeypatch, capsys):
+    blocker = tmp_path / "file"
+    blocker.write_text("not a directory")
+    monkeypatch.setattr(_codegen, "_candidates", lambda: [blocker / "generated"])
+    _codegen.cache_location.cache_clear()
+    try:
+        assert main(["cache"]) == 0
+        assert "compiled in memory" in capsys.readouterr().out
+    finally:
+        _codegen.cache_location.cache_clear()
