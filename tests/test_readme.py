@@ -1,0 +1,26 @@
+"""The README's quick start is what CI runs: two commands, the second one in .ci/run."""
+
+from __future__ import annotations
+
+import re
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+def _quick_start_commands() -> list[str]:
+    text = (ROOT / "README.md").read_text(encoding="utf-8")
+    section = text.split("## Quick start", 1)[1].split("\n## ", 1)[0]
+    return [b.strip() for b in re.findall(r"```console\n(.*?)```", section, re.S)]
+
+
+def test_quick_start_is_two_commands_main_job_then_tests():
+    main_job, tests = _quick_start_commands()
+    assert "\n" not in main_job and "\n" not in tests
+    assert main_job.endswith("ga-rotors paper")
+    assert tests.endswith("python -m pytest") and '".[test]"' in tests
+
+
+def test_ci_runs_exactly_the_readmes_test_command():
+    ci = (ROOT / ".ci" / "run").read_text(encoding="utf-8").splitlines()
+    assert _quick_start_commands()[1] in ci
