@@ -14,6 +14,12 @@ with M the body torque (zero for the free body, which makes this the discrete Mo
 top). The equation for v is solved by Newton's method from v ≈ h ω / 2 to a relative
 change of 1e-15 (3 or 4 iterations at the step sizes that matter).
 
+Step limit: for a rotation about principal axis k the equation reads I_k sin θ = h I_k ω_k
+(θ the step's rotation angle), so it has a solution only while h|ω_k| ≤ 1, and near 1 the
+discrete rotation θ = asin(h ω_k) is far from the exact h ω_k. Past the limit Newton's
+iterates leave the unit ball (a NaN) or stop converging; either way the step returns NaN,
+so the loop ends and reports the run incomplete instead of returning a wrong rotation.
+
 Order 2, symplectic, time-reversible; for the free body |Π| and the space-frame momentum
 q Π q* are conserved exactly (Π only ever turns by F*·F, and q by ⊗F), up to the Newton
 tolerance and rounding, and the energy error stays bounded.
@@ -21,12 +27,18 @@ tolerance and rounding, and the energy error stays bounded.
 
 from __future__ import annotations
 
+import math
 from math import sqrt
 
 from .._kernels import cross, qconj, qmul, qrotate
 from ._rigid import momenta, rates, solve3
 from .base import FREE, TORQUED, TemplateIntegrator, register
 from .slots import o_from_quat, o_quat, torque
+
+#: Newton's last correction (relative) below which 30 iterations are accepted: quadratic
+#: convergence leaves only rounding once a correction is this small (the Jacobian's
+#: conditioning near the step limit can hold the correction above the 1e-15 target).
+NEWTON_STALLED = 1e-10
 
 
 def discrete_rotation(g, inertia, guess):
@@ -57,8 +69,13 @@ def discrete_rotation(g, inertia, guess):
         dv = solve3(a, r)
         v = (v[0] - dv[0], v[1] - dv[1], v[2] - dv[2])
         size = abs(v[0]) + abs(v[1]) + abs(v[2])
-        if abs(dv[0]) + abs(dv[1]) + abs(dv[2]) <= 1e-15 * size or size == 0.0:
+        change = abs(dv[0]) + abs(dv[1]) + abs(dv[2])
+        if change <= 1e-15 * size or size == 0.0:
             break
+    if not change <= NEWTON_STALLED * size:
+        # Past the step limit (module docstring) the equation has no solution: a NaN ends
+        # the run, which the loop reports, instead of a wrong rotation.
+        return (math.nan, math.nan, math.nan, math.nan)
     s = sqrt(1.0 - (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]))
     return (s, v[0], v[1], v[2])
 
