@@ -29,6 +29,14 @@ class GimbalLockWarning(UserWarning):
     """
 
 
+class IntegrationStoppedWarning(UserWarning):
+    """A simulated path stopped before the end of the run: its state stopped being finite
+    (the Euler-angle path at sin θ = 0, an explicit method blowing up, an implicit step
+    with no solution or no convergence at this step size). The trajectory holds the
+    samples up to then; ``meta["paths"][path]["ended_at"]`` says when.
+    """
+
+
 class SceneError(InputError):
     """A scene file (or scene dictionary) is invalid.
 

@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import inspect
 import math
+import warnings
 from collections.abc import Sequence
 
 import numpy as np
@@ -20,7 +21,7 @@ import numpy as np
 from . import paths as _paths
 from ._validate import as_float_array, require_unit
 from .body import RigidBody
-from .errors import InputError
+from .errors import InputError, IntegrationStoppedWarning
 from .integrators import base
 from .trajectory import Trajectory
 
@@ -134,6 +135,12 @@ def simulate(
         ``t``, ``w`` and one array per path (``R``, ``q``, ``euler``), plus ``outputs``;
         ``meta`` records the integrator, step and each path's status.
 
+    Warns
+    -----
+    IntegrationStoppedWarning
+        When a path's state stopped being finite before the end (its arrays then end at
+        ``meta["paths"][path]["ended_at"]``).
+
     Examples
     --------
     A disk spinning about its symmetry axis, one second, rotor and quaternion paths:
@@ -227,6 +234,15 @@ def simulate(
             result = method.run(*args)
             if progress is not None:
                 progress((n + 1) * nsteps, total)
+        if not result.complete:
+            warnings.warn(
+                f"paths: the {p} path of {method.name} stopped at t = {float(result.t[-1]):g} s "
+                f"of {float(t0) + nsteps * h:g} s: its state stopped being finite (a singular "
+                "path, a blow-up, or an implicit step with no solution at this step size); "
+                "the trajectory holds the samples up to then",
+                IntegrationStoppedWarning,
+                stacklevel=2,
+            )
         if primary_w is None:
             primary_w = result.w
             arrays["w"] = result.w
