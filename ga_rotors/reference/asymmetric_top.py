@@ -40,12 +40,15 @@ by the initial orientation.
 Precision. Every result carries an error bound in radians (:attr:`State.error`), from the
 rounding of the phase u and the angle ψ (both grow linearly in t) and of the elliptic
 function values; :meth:`AsymmetricTop.state` raises :class:`ga_rotors.errors.PrecisionError`
-when the bound exceeds ``max_error`` instead of returning a degraded answer.
+when the bound exceeds ``max_error`` instead of returning a degraded answer. The constructor
+raises it when 1 − m, correctly rounded, is not a normal float (motion within ~1e-154 of the
+separatrix, off it): a subnormal or zero 1 − m would give a wrong flip period.
 """
 
 from __future__ import annotations
 
 import math
+import sys
 from dataclasses import dataclass
 from fractions import Fraction
 
@@ -183,7 +186,17 @@ class AsymmetricTop:
         d_a = excess(a)  # 2E I_a − L², sign of (I_a − I_c)
         d_c = -excess(c)  # L² − 2E I_c, sign of (I_a − I_c)
         self.m = float((ib - ic) * d_a / ((ia - ib) * d_c))
-        self.m1 = float((ia - ic) * sep / ((ia - ib) * d_c))
+        exact_m1 = (ia - ic) * sep / ((ia - ib) * d_c)
+        self.m1 = float(exact_m1)
+        if sep and self.m1 < sys.float_info.min:
+            # 1 − m is subnormal (a few digits left) or underflowed to 0, which would turn
+            # a flipping motion into the separatrix's, which never flips: K(m), the flip
+            # period and every phase past the first flip would be wrong, silently.
+            raise PrecisionError(
+                f"asymmetric top reference: 1 − m = {float(exact_m1):.3g} is below the "
+                "smallest normal float; the motion is too close to the separatrix for "
+                "double precision (move the initial ω off it by more than ~1e-154 relative)"
+            )
         self.rate = math.sqrt(float((ia - ib) * d_c / (ia * ib * ic)))
         self._n = float(-ia * (ib - ic) / (ic * (ia - ib)))
         amp_a = math.sqrt(float(d_c / (ia * (ia - ic))))
