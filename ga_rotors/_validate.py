@@ -70,8 +70,13 @@ def check_finite(a: np.ndarray, name: str) -> None:
         raise InputError(f"{name}: contains {value} at index {where}; expected finite numbers")
 
 
-def require_unit(q: np.ndarray, name: str, tol: float = UNIT_TOLERANCE) -> np.ndarray:
+def require_unit(
+    q: np.ndarray, name: str, tol: float = UNIT_TOLERANCE, what: str = "quaternions"
+) -> np.ndarray:
     """Return ``q`` renormalised, or raise if some ``| |q| - 1 | > tol``.
+
+    ``what`` names the kind of argument in the message ("rotors" for a rotor's
+    coefficients, whose norm is the quaternion's).
 
     Examples
     --------
@@ -87,8 +92,9 @@ def require_unit(q: np.ndarray, name: str, tol: float = UNIT_TOLERANCE) -> np.nd
     if dev.size and not (dev.max() <= tol):
         where = np.unravel_index(int(np.argmax(dev)), dev.shape)
         raise InputError(
-            f"{name}: expected unit quaternions (| |q| - 1 | <= {tol:g}), got norm "
+            f"{name}: expected unit {what} (| |{name}| - 1 | <= {tol:g}), got norm "
             f"{norms[where]:.6g} at index {tuple(int(i) for i in where)}; "
-            "normalise it first (ga_rotors.quaternion.normalize)"
+            f"normalise it first (ga_rotors.{'rotor' if what == 'rotors' else 'quaternion'}"
+            ".normalize)"
         )
     return q / norms[..., None]

@@ -229,6 +229,10 @@ def quaternion_rate(q, w) -> np.ndarray:
 def body_omega_from_quaternion_rate(q, qdot) -> np.ndarray:
     """ω = 2 vec(q* ⊗ q̇) for unit q: the inverse of :func:`quaternion_rate`.
 
+    The scalar part q·q̇, which the rate of a unit quaternion does not have, is dropped:
+    ω is that of q̇'s projection onto the tangent space at q (the least-squares ω for a
+    q̇ taken from finite differences, where q·q̇ ≈ −h|ω|²/8 is not zero).
+
     Examples
     --------
     >>> body_omega_from_quaternion_rate([1.0, 0.0, 0.0, 0.0], [0.0, 0.0, 0.0, 1.0])
@@ -294,6 +298,9 @@ def rotor_rate(R, w):
 
 def body_omega_from_rotor_rate(R, Rdot) -> np.ndarray:
     """ω = ⟨2 I R̃ Ṙ⟩₁: the body angular velocity of a unit rotor moving at Ṙ.
+
+    As in :func:`body_omega_from_quaternion_rate`, the part of Ṙ along R (the scalar of
+    R̃Ṙ) is dropped.
 
     Examples
     --------

@@ -103,7 +103,7 @@ def _coefficients(x, name: str) -> np.ndarray:
 
 def _quaternion_of(R, name: str = "R", unit: bool = True) -> np.ndarray:
     q = from_even(_coefficients(R, name), name=name)
-    return require_unit(q, name) if unit else q
+    return require_unit(q, name, what="rotors") if unit else q
 
 
 def _unit(R, name: str = "R") -> tuple[float, float, float, float]:

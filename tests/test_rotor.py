@@ -174,6 +174,10 @@ def test_apply_takes_and_returns_clifford_vectors():
         ),
         (lambda: rotor.from_quaternion([[1.0, 0, 0, 0]]), r"q: expected one quaternion"),
         (lambda: rotor.from_quaternion([1.0, 1.0, 0, 0]), "q: expected unit"),
+        (
+            lambda: rotor.apply(2.0 + 0 * E12, [1.0, 0, 0]),
+            r"R: expected unit rotors \(\| \|R\| - 1 \| <= 1e-06\), got norm 2 .*rotor\.normalize",
+        ),
         (lambda: rotor.apply(1.0 + 0 * E12, [np.nan, 0, 0]), "v: contains nan"),
         (lambda: rotor.from_euler("XYZW", [0, 0, 0]), "seq: expected three axes"),
     ],
