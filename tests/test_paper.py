@@ -40,6 +40,19 @@ def test_data_and_summary_are_written(tmp_path, capsys):
     assert "nan" not in text.lower()
     data = np.loadtxt(tmp_path / "new" / "disk_15deg.csv", delimiter=",", skiprows=1)
     assert data.shape == (10001, len(header))
+    # docs/gyroscope.md shows this table; its rotor, quaternion and |R| columns (set by
+    # RK4's error, not by rounding) must be what the command prints. The rounding-level
+    # rotor-quat column and the Euler path's near-pole figures may differ across machines.
+    doc = (ROOT / "docs" / "gyroscope.md").read_text(encoding="utf-8")
+    shown = doc.split("```text\n", 1)[1].split("```", 1)[0].splitlines()[1:]
+    printed = [ln for ln in out.splitlines() if ln.split()[:1] and ln.split()[0] in _SCENES]
+    assert len(shown) == len(printed) == 4
+    for a, b in zip(shown, printed, strict=True):
+        cols_a, cols_b = a.split(), b.split()
+        assert [cols_a[i] for i in (0, 2, 3, 5)] == [cols_b[i] for i in (0, 2, 3, 5)], (a, b)
+
+
+_SCENES = ("paper_15deg", "paper_0.001deg", "disk_15deg", "disk_0.001deg")
 
 
 def test_full_command_draws_every_figure_in_its_worker(tmp_path):
