@@ -76,3 +76,21 @@ def test_incomplete_first_any_amplitude():
 def test_pi_integral_rejects_pole():
     with pytest.raises(ValueError, match="n < 1"):
         elliptic.pi_integral(0.1, 1.0, 0.5, 0.5)
+
+
+@pytest.mark.parametrize("m1_text", ["0.5", "1e-3", "1e-14"])
+def test_jacobi_argument_inverts_jacobi_next_to_the_middle_axis(m1_text):
+    # u = ±K (sn = ±1, cn → 0) is where F(atan2(sn, cn) | m) multiplied the rounding of
+    # the amplitude by 1/dn = 1/√m₁ (measured 6e-10 in u at m₁ = 1e-14). From 70-digit
+    # sn, cn rounded once (relative error ε/2 each), the argument must carry the few ulps
+    # of |u| + 2K of the Carlson form only (see jacobi_argument's Notes).
+    with mp.workdps(70):
+        m1 = mp.mpf(m1_text)
+        m = 1 - m1
+        k = mp.ellipk(m)
+        for u in (k, -k, k * (1 - mp.mpf(1e-9)), -k * (1 + mp.mpf(1e-6)), 1.7 * k, 0.3, 0):
+            sn, cn = (float(mp.ellipfun(f, u, m=m)) for f in ("sn", "cn"))
+            got = elliptic.jacobi_argument(sn, cn, float(m), float(m1))
+            assert abs(got - float(u)) <= _bound(abs(float(u)) + 2 * float(k)), (m1_text, u)
+    with pytest.raises(ValueError, match="both zero"):
+        elliptic.jacobi_argument(0.0, 0.0, 0.5, 0.5)

@@ -389,17 +389,14 @@ def test_separatrix_reference_refuses_subnormal_one_minus_m():
     assert elliptic.complete_first(top.m, top.m1) == pytest.approx(float(k), rel=4 * EPS)
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="known bug (issue 7 report): near the separatrix the reference's rounding bound "
-    "omits the conditioning of u0 = F(phi0|m), amplified by 1/dn(u0) ~ 1/sqrt(m1) when the "
-    "motion starts next to the middle axis; at 1 - m = 2e-12 the error against the 30-digit "
-    "oracle near a flip is 1.06e-11 rad while the bound says 1.48e-12",
-)
 def test_separatrix_reference_raises_where_its_bound_crosses_max_error():
     import mp_oracle
 
-    top = AsymmetricTop(FLIP_BODY, LONG_Q0, (1e-6, 1.0, 1e-6))  # 1 − m = 2e-12
+    # 1 − m = 2e-12, starting next to the middle axis: the starting phase u₀ used to be
+    # F(atan2(sn₀, cn₀) | m), which amplified the rounding of the amplitude by
+    # 1/dn(u₀) ≈ 7e5 and put 1.1e-11 rad of error near a flip under a bound of 1.5e-12;
+    # elliptic.jacobi_argument reads u₀ from sn₀, cn₀ to a few ulps (the bound's model).
+    top = AsymmetricTop(FLIP_BODY, LONG_Q0, (1e-6, 1.0, 1e-6))
     limit = 1.5e-12  # the bound grows from 7e-13 at t = 0 to 1.7e-12 at 60 s
     times = np.linspace(0.0, 60.0, 601)
     bound = top.state(times, max_error=np.inf).error

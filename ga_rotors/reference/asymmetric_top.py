@@ -39,7 +39,10 @@ by the initial orientation.
 
 Precision. Every result carries an error bound in radians (:attr:`State.error`), from the
 rounding of the phase u and the angle ψ (both grow linearly in t) and of the elliptic
-function values; :meth:`AsymmetricTop.state` raises :class:`ga_rotors.errors.PrecisionError`
+function values (the starting phase u₀ is read from sn₀, cn₀ by
+:func:`ga_rotors.reference.elliptic.jacobi_argument`, well conditioned next to the middle
+axis, where going through the amplitude would amplify its rounding by 1/√(1 − m));
+:meth:`AsymmetricTop.state` raises :class:`ga_rotors.errors.PrecisionError`
 when the bound exceeds ``max_error`` instead of returning a degraded answer. The constructor
 raises it when 1 − m, correctly rounded, is not a normal float (motion within ~1e-154 of the
 separatrix, off it): a subnormal or zero 1 − m would give a wrong flip period.
@@ -209,7 +212,7 @@ class AsymmetricTop:
         self._coef = self.momentum * float((ia - ic) / (ia * ic)) / self.rate
         sn0 = w[b] / beta if amp_b else 0.0
         cn0 = w[c] / amp_c if amp_c else 1.0
-        self._u0 = float(elliptic.incomplete_first(math.atan2(sn0, cn0), self.m, self.m1))
+        self._u0 = elliptic.jacobi_argument(sn0, cn0, self.m, self.m1)
         if self.m1 > 0.0:
             self.flip_period = 2.0 * elliptic.complete_first(self.m, self.m1) / self.rate
         self._relabel = _RELABEL[a]
@@ -295,13 +298,25 @@ class AsymmetricTop:
     def _rounding_bound(self, t, u, pi, e):
         """Bound on the geodesic error of q from rounding, radians.
 
-        The Jacobi argument u carries an absolute error of a few ulps of |u| (and the
-        elliptic functions a few ulps of their reduced argument); it moves ψ by
-        |dψ/du| ≤ |coef| (1/(1 − n sn²) ≤ 1 as n < 0) and the body direction of L by
-        |de/du| ≤ max I · |dω/du| / |L|, which the z–x′–z″ angles turn into an error of
-        |de| / sin θ. ψ's terms each carry a few ulps of their size, and θ, φ are read
-        from e with an absolute error of ε / sin θ. 16 covers the few roundings of each
-        term (measured errors against the 30-digit oracle are 10-100x below this bound).
+        First-order propagation of a phase error. The computed u = λt + u₀ is off by
+        δu = δu₀ + (a few ulps of |λt|, of |u| and of the 2jK removed by the reduction).
+        Q₀ is fitted to the input ω, not to u₀, so it does not move; what moves is
+        ψ − ψ₀ = |L|t/I_a + coef (Π(u) − Π(u₀)), by coef (g(u) δu − g(u₀) δu₀) with
+        g = 1/(1 − n sn²) ∈ (0, 1] (n < 0), and the body direction e of L, by
+        |de/du| δu ≤ max I · |dω/du| δu / |L|, which the z–x′–z″ angles turn into
+        (1 + 1/sin θ) |de|. δu₀ is a few ulps of |u₀| + 2K because u₀ comes from
+        :func:`elliptic.jacobi_argument` (sn₀, cn₀ straight into Carlson's R_F); taken
+        through the amplitude, F(atan2(sn₀, cn₀) | m) multiplied the ulp of φ₀ ≈ π/2 by
+        1/dn(u₀) ≈ 1/√(1 − m) when the motion starts next to the middle axis (1.1e-11 rad
+        at 1 − m = 2e-12, near a flip, against a bound of 1.5e-12: issue 7). With
+        2jK ≤ |u| + K ≤ 2|u| and |u₀| ≥ K on the branch that adds 2K, every δu is a few
+        ulps of arg = |u| + |u₀| + 1. The elliptic function values carry a few ulps of
+        their reduced argument (a phase error of the same size) plus an absolute ulp.
+        ψ's terms each carry a few ulps of their size, and θ, φ are read from e with an
+        absolute error of ε / sin θ. 16 covers the few roundings of each term; measured
+        errors against the 30-digit oracle are 30-1400x below this bound (median ~70x: it
+        sums worst cases of roundings that partly cancel), near the separatrix as far from
+        it (tests/test_reference_asymmetric.py).
         """
         alpha, beta, gamma = self._amp
         dw_du = abs(alpha) * self.m + abs(beta) + abs(gamma)
