@@ -101,6 +101,35 @@ def test_inverse_of_tiny_and_huge_has_no_underflow(scale):
     assert math.isclose(inv[1], -3 / (25 * scale), rel_tol=1e-15)
 
 
+@pytest.mark.parametrize("angle", [1e-300, 1e-12, 1e-5, 0.3, 1.0, 1.5, math.pi / 2])
+def test_expm1_of_rotation_keeps_relative_precision_of_cos_minus_one(angle):
+    import mpmath as mp
+
+    v = tuple(angle * c for c in (2.0 / 7.0, -3.0 / 7.0, 6.0 / 7.0))
+    d = K.qexpm1_pure(v)
+    with mp.workdps(50):
+        s = mp.sqrt(sum(mp.mpf(c) ** 2 for c in v))
+        want = [mp.cos(s) - 1] + [mp.sin(s) / s * mp.mpf(c) for c in v]
+    # Half-angles up to π/2 (rotations up to π; beyond, sin s/s inherits hypot3's 1 ulp
+    # amplified by |s cot s| > 1, the input's conditioning, as in qexp_pure).
+    # −2 sin²(s/2): sin to 1 ulp, two products, and s = hypot3 to 1 ulp (entering twice):
+    # ≤ 6 ulps relative in every component, where cos(s) − 1 has none left at 1e-12.
+    for got, ref in zip(d, want, strict=True):
+        assert abs(got - float(ref)) <= 6 * 2.0**-53 * abs(float(ref)) + 1e-320
+    assert K.qexpm1_pure((0.0, 0.0, 0.0)) == (0.0, 0.0, 0.0, 0.0)
+    assert all(math.isnan(c) for c in K.qexpm1_pure((math.inf, 0.0, 0.0)))
+
+
+@given(quat, small_vec)
+def test_qmul_exp_is_the_product_with_the_exponential(q, v):
+    q = unit(q)
+    got = np.array(K.qmul_exp(q, v))
+    want = np.array(K.qmul(q, K.qexp_pure(v)))
+    # Both round each component of a unit quaternion a few times (≤ 4 terms of size ≤ 1,
+    # plus the exponential's own ≤ 2 ulps): 16 ulps of 1 covers either.
+    assert np.allclose(got, want, rtol=0, atol=16 * 2.0**-53)
+
+
 @given(quat)
 def test_general_exp_inverts_log(a):
     a = tuple(c / 1e3 for c in a)  # keep e^w representable

@@ -349,6 +349,25 @@ def test_long_run_split_keeps_momentum_to_roundoff_walk_and_energy_bounded(name)
     assert np.abs(e - e[0]).max() <= np.ptp(e_short) + 2 * bound * e[0]
 
 
+@pytest.mark.parametrize(
+    "name, body, w0",
+    [("split_sym", LONG_BODY, LONG_W), ("split_sym", (1.0, 1.0, 2.0), (0.0, 0.0, 5.0)),
+     ("rkmk4", (1.0, 1.0, 2.0), (0.0, 0.0, 5.0)), ("cf4", (1.0, 1.0, 2.0), (0.0, 0.0, 5.0))],
+)  # fmt: skip
+def test_long_run_unit_norm_is_a_random_walk_not_a_drift(name, body, w0):
+    # split_sym's symmetric-top flow turns q by the angle h|L|/I_p, the same every step
+    # (|L| is conserved), and a steady spin turns every method by the same angle every step:
+    # cos of that angle rounded to the same float each time, |exp| = 1 + δ with one fixed
+    # δ ≤ u/2, and |q| drifted linearly: split_sym 2.1e-11 (asymmetric), 4e-11 (spin),
+    # rkmk4 3.9e-11, cf4 1.0e-10 in 10⁶ steps. Now q ⊗ exp is q + q ⊗ (exp − 1): the
+    # rounding lands on q's components, which change every step, ≤ 3 q-updates per step of
+    # ~2 roundings each of |q| = 1: walk(8, N) = 1.1e-12.
+    run = get(name).run(Problem(body), "quaternion", LONG_Q0, w0, 0.0, LONG_H, LONG_N, 1000)
+    assert run.complete
+    drift = np.abs(np.linalg.norm(run.x, axis=1) - 1.0).max()
+    assert drift <= walk(8, LONG_N), drift
+
+
 def test_long_run_rk4_energy_drifts_linearly_at_the_predicted_rate():
     # Symmetric top (I⊥ = 1, I₃ = 2), ω₃ = 5: ω⊥ turns at ν = −5, hν = 0.05. RK4 multiplies
     # E⊥ by ρ = |R(0.05i)|² = 1 − y⁶/72 + y⁸/576 each step (exactly: the ω equation is

@@ -28,7 +28,7 @@ properties hold, except the space-frame L, which the torque changes.
 
 from __future__ import annotations
 
-from .._kernels import qmul, quat_from_rotvec
+from .._kernels import qmul_exp
 from ._rigid import momenta, rates, rotate_about
 from .base import FREE, TORQUED, TemplateIntegrator, register
 from .slots import o_from_quat, o_quat, torque
@@ -143,7 +143,7 @@ def symmetric_pair(inertia):
 def symmetric_flow(q, L, h, inertia, k, p):
     """Exact flow of |L|²/(2I_p) + (1/I_k − 1/I_p) L_k²/2 (a symmetric top) for a time h."""
     a = 1.0 / inertia[p]
-    q = qmul(q, quat_from_rotvec((h * a * L[0], h * a * L[1], h * a * L[2])))
+    q = qmul_exp(q, (0.5 * h * a * L[0], 0.5 * h * a * L[1], 0.5 * h * a * L[2]))
     return rotate_about(q, L, k, h * (1.0 / inertia[k] - a) * L[k])
 
 
