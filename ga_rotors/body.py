@@ -25,12 +25,32 @@ from ._jit import jit
 from ._validate import as_float_array, require_unit
 from .errors import InputError
 
-__all__ = ["TRIANGLE_TOLERANCE", "RigidBody", "euler_rates", "free_euler_rates"]
+__all__ = [
+    "MIN_MOMENT_RATIO",
+    "TRIANGLE_TOLERANCE",
+    "RigidBody",
+    "euler_rates",
+    "free_euler_rates",
+]
 
 #: Relative slack allowed in the triangle inequality I₁ + I₂ ≥ I₃: a flat lamina sits
 #: exactly on the boundary (I₃ = I₁ + I₂), and computing it from dimensions may land a few
 #: ulps outside. Anything further out is not a physical body and is rejected.
 TRIANGLE_TOLERANCE = 1e-12
+
+#: Smallest accepted ratio I_min / I_max. Why a limit, and why this one: Euler's equations
+#: use the coefficients (I_j − I_k)/I_i. For a real body the triangle inequality gives
+#: |I_j − I_k| ≤ I_i, so every coefficient is at most 1 in size and the equations are never
+#: stiff, however thin the body. The triangle check, though, allows a slack of
+#: TRIANGLE_TOLERANCE·(I₁ + I₂ + I₃) ≤ 3·TRIANGLE_TOLERANCE·I_max, which exceeds I_min once
+#: I_min/I_max < 3·TRIANGLE_TOLERANCE: below that, a body a few ulps outside the triangle
+#: could have |(I_j − I_k)/I_i| of any size (I = (1, 1 + 2e-12, 1e-20) passed it with a
+#: coefficient of 2e8: a stiff body no method here is built for). With I_min/I_max ≥
+#: MIN_MOMENT_RATIO the coefficients stay within 1 + 3 = 4. It is also where float64 stops
+#: carrying the thin axis: every moment is known to a relative u = 1.1e-16, so the
+#: coefficient of the thin axis carries an absolute error of 2u·I_max/I_min (4.4e-4 at
+#: the limit, one digit per decade further).
+MIN_MOMENT_RATIO = TRIANGLE_TOLERANCE
 
 
 @jit
@@ -66,6 +86,25 @@ def euler_rates(inertia, w, tau):
 def _check_moments(moments: np.ndarray, name: str) -> None:
     if np.any(moments <= 0):
         raise InputError(f"{name}: principal moments must be positive, got {tuple(moments)}")
+    # Every loop divides by the moments (ω = L/I, τ/I): each I and 1/I must be a normal
+    # float. A subnormal moment (1e-310) made 1/I overflow to inf with no error; a moment
+    # above 1/DBL_MIN = 4.5e307 has a subnormal inverse that has lost its digits.
+    tiny = np.finfo(float).tiny
+    out = (moments < tiny) | (moments > 1.0 / tiny)
+    if np.any(out):
+        raise InputError(
+            f"{name}: each principal moment and its inverse must be normal floats "
+            f"({tiny:.3g} <= I <= {1.0 / tiny:.3g}), got {tuple(float(m) for m in moments)}; "
+            "rescale the units"
+        )
+    ratio = moments.min() / moments.max()
+    if ratio < MIN_MOMENT_RATIO:
+        raise InputError(
+            f"{name}: smallest/largest principal moment = {ratio:.3g} is below "
+            f"{MIN_MOMENT_RATIO:g}: too thin a body for double precision (the triangle "
+            "inequality can no longer be checked to the size of the smallest moment); "
+            "treat the thin axis as having the moment I_max·1e-12 or more"
+        )
     total = moments.sum()
     for k in range(3):
         if 2.0 * moments[k] > total * (1.0 + TRIANGLE_TOLERANCE):
