@@ -1,9 +1,12 @@
 """Measured figures of docs/stability.md: fast spin and long runs, every fixed-step method.
 
-Run from the repository root: ``python benchmarks/bench_stability.py`` (about 20 s).
+Run from the repository root: ``python benchmarks/bench_stability.py`` (about 30 s).
 Prints two Markdown tables: (1) the fast spinner, 1000 rad/s at h = 1 ms for 1 s, on an
 asymmetric body (1, 1.5, 2) and on the flat disk (1, 1, 2), against the exact references;
-(2) 10⁶ steps of h = 0.01 on the (1, 2, 3) top: |L|, space-frame L and energy drift.
+(2) 10⁶ steps of h = 0.01 on the (1, 2, 3) top: |L|, space-frame L and energy drift;
+(3) extreme bodies, on the setups of tests/test_stability_bodies.py (imported from there,
+so the printed figures and the tested ones are the same runs): each method's turn per step
+on the sphere and the near-sphere against its prediction, and the rods.
 """
 
 from __future__ import annotations
@@ -75,7 +78,37 @@ def long_runs():
               f"{np.abs(e / e[0] - 1).max():.2g} |")  # fmt: skip
 
 
+def extreme_bodies():
+    from tests import test_stability_bodies as B
+
+    print("| method | predicted (rad) | nearly spherical | spherical |")
+    print("|---|---|---|---|")
+    sphere = (1.0, 1.0, 1.0)
+    for name in sorted(B.TURN):
+        errors = []
+        for body, ref in ((B.NEAR_SPHERE, AsymmetricTop), (sphere, SymmetricTop)):
+            run, predicted = B._turn_error(body, name)
+            exact = ref(body, B.Q0, B.W0).at(run.t)[0]
+            errors.append(Q.distance(exact, Q.normalize(run.x)).max())
+        print(f"| {name} | {predicted:.4g} | {errors[0]:.4g} | {errors[1]:.4g} |")
+    print()
+    print("| method | rod | orientation error (rad) | max \\|ω₃ − ω₃(0)\\| (rad/s) |")
+    print("|---|---|---|---|")
+    for thin in (1e-6, 1e-12):
+        rod, h, n = (1.0, 1.0, thin), 0.01, 1000
+        for name in ("rk4", "dp8", "split_sym", "split2", "split4", "split6", "lgvi"):
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore")
+                run = get(name).run(Problem(rod), "quaternion", B.Q0, B.ROD_W, 0.0, h, n, 1)
+            exact = SymmetricTop(rod, B.Q0, B.ROD_W).at(run.t)[0]
+            err = Q.distance(exact, Q.normalize(run.x)).max()
+            dw = np.abs(run.w[:, 2] - B.ROD_W[2]).max()
+            print(f"| {name} | (1, 1, {thin:g}) | {err:.2g} | {dw:.2g} |")
+
+
 if __name__ == "__main__":
     fast_spin()
     print()
     long_runs()
+    print()
+    extreme_bodies()
