@@ -437,14 +437,16 @@ def _mujoco(case: Case, integrator: str, n: int, repeats: int, budget: float) ->
 
 
 def _methods(case: Case) -> list[str]:
-    from .integrators import catalogue
+    """The methods that integrate ``case`` at their declared order (none at order 1)."""
+    from .integrators import catalogue, get, torque_conflict
 
-    kind = case.problem.kind
+    problem = case.problem
     names = [
         c["name"]
         for c in catalogue()
-        if kind in c["problems"] and "quaternion" in c["paths"] and c["name"] != "dop853"
-    ]
+        if problem.kind in c["problems"] and "quaternion" in c["paths"] and c["name"] != "dop853"
+        and torque_conflict(get(c["name"]), problem.torques) is None
+    ]  # fmt: skip
     return [*names, "rk4_euler"]
 
 

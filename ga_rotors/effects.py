@@ -45,7 +45,7 @@ import math
 import re
 import sys
 from collections.abc import Callable
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 
 import numpy as np
@@ -187,6 +187,27 @@ class EffectType:
     doc: str
     keys: tuple[Key, ...]
     build: Callable = field(repr=False)
+    #: Whether the torque reads ω; None: the entry's own ``depends_on_omega`` key says.
+    depends_on_omega: bool | None = None
+
+    def reads_omega(self, entry: dict) -> bool:
+        """Whether the torque of a resolved ``entry`` of this type depends on ω.
+
+        Examples
+        --------
+        >>> EFFECTS["damping"].reads_omega({}), EFFECTS["gravity"].reads_omega({})
+        (True, False)
+        >>> EFFECTS["user"].reads_omega({"depends_on_omega": False})
+        False
+        """
+        if self.depends_on_omega is None:
+            return bool(entry["depends_on_omega"])
+        return self.depends_on_omega
+
+    def term(self, entry: dict, frame, reader: Reader, key: str) -> TorqueTerm:
+        """The TorqueTerm of a resolved ``entry``, declaring whether it reads ω."""
+        built = self.build(entry, frame, reader, key)
+        return replace(built, depends_on_omega=self.reads_omega(entry))
 
     def resolve(self, reader: Reader, entry: dict, key: str) -> dict:
         """Check ``entry``'s keys and fill defaults; ``type`` first."""
@@ -237,6 +258,10 @@ def _params(reader, value, key):
     return list(reader.numbers(value, key))
 
 
+def _boolean(reader, value, key):
+    return reader.boolean(value, key)
+
+
 def _build_gravity(entry: dict, frame: Frame, reader: Reader, key: str) -> TorqueTerm:
     if frame.mass is None:
         raise reader.error("body.mass", f"missing; the gravity effect ({key}) needs the mass")
@@ -272,6 +297,11 @@ def _build_user(entry: dict, frame: Frame, reader: Reader, key: str) -> TorqueTe
     return term
 
 
+_DEPENDS_ON_OMEGA = (
+    "whether the kernel reads w; false lets splitting and variational methods (which "
+    "integrate torques of orientation and time only) take it at their full order"
+)
+
 _INERTIA_ABOUT = (
     '"com": the body\'s inertia is about its centre of mass (shifted to the pivot); '
     '"pivot": already about the pivot'
@@ -290,24 +320,28 @@ EFFECTS: dict[str, EffectType] = {
                 Key("inertia_about", _inertia_about, "com", _INERTIA_ABOUT),
             ),
             _build_gravity,
+            depends_on_omega=False,
         ),
         EffectType(
             "damping",
             "viscous damping τ = −c ω",
             (Key("coefficient", _coefficient, doc="N·m·s: one number or three (per axis)"),),
             _build_damping,
+            depends_on_omega=True,
         ),
         EffectType(
             "body_torque",
             "a constant torque fixed in the body",
             (Key("torque", _vector, doc="N·m, body frame"),),
             _build_body_torque,
+            depends_on_omega=False,
         ),
         EffectType(
             "space_torque",
             "a constant torque fixed in space",
             (Key("torque", _vector, doc="N·m, space frame"),),
             _build_space_torque,
+            depends_on_omega=False,
         ),
         EffectType(
             "user",
@@ -315,6 +349,7 @@ EFFECTS: dict[str, EffectType] = {
             (
                 Key("function", _function, doc='"package.module:function", compiled'),
                 Key("params", _params, [], "numbers passed to the kernel as p"),
+                Key("depends_on_omega", _boolean, True, _DEPENDS_ON_OMEGA),
             ),
             _build_user,
         ),

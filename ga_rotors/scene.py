@@ -292,7 +292,7 @@ def _resolve_integrator(reader: Reader, value) -> dict:
     from .integrators import base
 
     t = reader.table(value if value is not None else {}, "integrator",
-                     ("method", "step", "tolerance", "paths"))  # fmt: skip
+                     ("method", "step", "tolerance", "paths", "accept_lower_order"))  # fmt: skip
     name = reader.string(t.get("method", "rk4"), "integrator.method", base.names())
     method = base.get(name)
     out: dict = {"method": name, "step": None}
@@ -319,6 +319,10 @@ def _resolve_integrator(reader: Reader, value) -> dict:
             "integrator.paths", f"expected at least one of {', '.join(_paths.PATHS)}"
         )
     out["paths"] = paths
+    # Stored only when set: the resolved default scene (and its figures' digests) is the
+    # same as before the key existed.
+    if reader.boolean(t.get("accept_lower_order", False), "integrator.accept_lower_order"):
+        out["accept_lower_order"] = True
     return out
 
 
@@ -639,10 +643,25 @@ class Scene:
 
         from .integrators import base
 
-        method = base.get(self.data["integrator"]["method"])
-        for path in self.data["integrator"]["paths"]:
+        integ = self.data["integrator"]
+        method = base.get(integ["method"])
+        # The effects as the check sees them (name, whether they read ω), without building
+        # them: a user kernel is imported only when the scene is simulated.
+        torques = [
+            SimpleNamespace(
+                name=f"{join('effects', i)} ({e['type']})",
+                depends_on_omega=_effects.EFFECTS[e["type"]].reads_omega(e),
+            )
+            for i, e in enumerate(self.data["effects"])
+        ]
+        problem = SimpleNamespace(
+            kind=self.kind,
+            torques=torques,
+            accept_lower_order=integ.get("accept_lower_order", False),
+        )
+        for path in integ["paths"]:
             try:
-                method.check(SimpleNamespace(kind=self.kind), path)
+                method.check(problem, path)
             except InputError as exc:
                 key = "integrator.paths" if str(exc).startswith("paths") else "integrator.method"
                 raise reader.error(key, str(exc).partition(": ")[2]) from None
@@ -729,7 +748,7 @@ class Scene:
         """
         reader = Reader(self.file)
         return tuple(
-            _effects.EFFECTS[e["type"]].build(e, self._frame, reader, join("effects", i))
+            _effects.EFFECTS[e["type"]].term(e, self._frame, reader, join("effects", i))
             for i, e in enumerate(self.data["effects"])
         )
 

@@ -177,6 +177,7 @@ def simulate(scene, *, progress=None) -> Trajectory:
             paths=scene.paths,
             integrator=_integrator(scene),
             torques=torques,
+            accept_lower_order=scene.data["integrator"].get("accept_lower_order", False),
             euler_angles=scene.euler_angles,
             outputs=[name for name in wanted if name in _sim.OUTPUTS],
             sample_every=scene.sample_every,

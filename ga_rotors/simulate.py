@@ -85,6 +85,7 @@ def simulate(
     paths: Sequence[str] | str = ("rotor",),
     integrator: str = "rk4",
     torques: Sequence[base.TorqueTerm] = (),
+    accept_lower_order: bool = False,
     euler_angles=None,
     outputs: Sequence[str] = (),
     sample_every: int = 1,
@@ -112,7 +113,12 @@ def simulate(
         A registered integrator's name (:func:`ga_rotors.integrators.names`), or an
         integrator object (e.g. ``Dop853(rtol=1e-12)`` for another tolerance).
     torques : sequence of TorqueTerm
-        Declared torques; none means torque-free.
+        Declared torques; none means torque-free. A method that integrates torques of
+        orientation and time only (``catalogue()`` column ``torques``: the splittings,
+        ``lgvi``) refuses a torque that depends on ω (``TorqueTerm.depends_on_omega``,
+        True by default), with which it would be first-order accurate.
+    accept_lower_order : bool
+        Run such a combination anyway, accepting first order.
     euler_angles : array_like (3,), optional
         Initial ZYZ angles (ψ, θ, φ) for the Euler-angle path; they must describe
         ``orientation``. Default: extracted from ``orientation`` with :mod:`ga_rotors.euler`.
@@ -183,7 +189,7 @@ def simulate(
         w0 = as_float_array(angular_velocity, "angular_velocity", last=3)
         if w0.shape != (3,):
             raise InputError(f"angular_velocity: expected shape (3,), got {w0.shape}")
-        problem = base.Problem(rigid.moments, tuple(torques))
+        problem = base.Problem(rigid.moments, tuple(torques), accept_lower_order=accept_lower_order)
     for p in requested:
         method.check(problem, p)
 

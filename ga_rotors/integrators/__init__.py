@@ -7,8 +7,10 @@ them, and :func:`ga_rotors.simulate.simulate` to run one.
 """
 
 from .base import (
+    ANY_TORQUE,
     FREE,
     KINEMATIC,
+    ORIENTATION_TORQUES,
     TORQUED,
     Integrator,
     LoopResult,
@@ -20,11 +22,14 @@ from .base import (
     get,
     names,
     register,
+    torque_conflict,
 )
 
 __all__ = [
+    "ANY_TORQUE",
     "FREE",
     "KINEMATIC",
+    "ORIENTATION_TORQUES",
     "TORQUED",
     "Integrator",
     "LoopResult",
@@ -36,4 +41,5 @@ __all__ = [
     "get",
     "names",
     "register",
+    "torque_conflict",
 ]

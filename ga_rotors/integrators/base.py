@@ -13,7 +13,18 @@ An integrator is a :class:`TemplateIntegrator` registered under a name. It decla
   (``o_normalize``, ``o_from_quat``) supports only ``rotor`` and ``quaternion``;
 * ``steps``: problem kind -> step template, for the kinds it supports among
   :data:`FREE` (torque-free), :data:`TORQUED`, :data:`KINEMATIC` (prescribed ω(t));
-* ``helpers``: other templates its steps call (pasted only when reachable).
+* ``helpers``: other templates its steps call (pasted only when reachable);
+* ``torques``: which torques it integrates at its declared order, :data:`ANY_TORQUE`
+  (the default: Runge–Kutta-type methods evaluate the full vector field) or
+  :data:`ORIENTATION_TORQUES`, torques that depend on orientation and time only (a
+  kick–drift–kick splitting or a variational method, whose kick is the exact flow of
+  such a torque; with a torque that reads ω the kick is not exact and the method falls
+  to order 1, measured for split2/4/6 and lgvi under damping).
+
+A :class:`TorqueTerm` says whether it reads ω (``depends_on_omega``, default True: an
+unknown kernel may). :meth:`Integrator.check` refuses a problem that gives an
+:data:`ORIENTATION_TORQUES` method a torque that depends on ω, naming both, unless the
+problem accepts the lower order (``Problem(..., accept_lower_order=True)``).
 
 A *template* is a plain, undecorated, module-level Python function. It calls other
 templates, compiled kernels (``ga_rotors._kernels``, ``ga_rotors.body``,
@@ -102,22 +113,27 @@ import numpy as np
 from ..errors import InputError
 
 __all__ = [
+    "ANY_TORQUE",
     "BUILTIN_MODULES",
     "FREE",
     "KINEMATIC",
+    "ORIENTATION_TORQUES",
     "PROBLEM_KINDS",
     "PROPERTIES",
     "TORQUED",
+    "TORQUE_SUPPORT",
     "Integrator",
     "LoopResult",
     "PrescribedOmega",
     "Problem",
     "TemplateIntegrator",
     "TorqueTerm",
+    "any_torque_methods",
     "catalogue",
     "get",
     "names",
     "register",
+    "torque_conflict",
 ]
 
 FREE = "free"
@@ -129,6 +145,12 @@ PROBLEM_KINDS = (FREE, TORQUED, KINEMATIC)
 PROPERTIES = frozenset(
     {"unit_norm", "energy", "momentum_norm", "space_momentum", "symplectic", "time_reversible"}
 )
+
+#: An integrator's ``torques``: it handles any torque τ(t, q, ω) at its declared order ...
+ANY_TORQUE = "any"
+#: ... or only torques τ(t, q) that do not read ω (its order falls to 1 otherwise).
+ORIENTATION_TORQUES = "orientation-only"
+TORQUE_SUPPORT = (ANY_TORQUE, ORIENTATION_TORQUES)
 
 #: Modules that register integrators on import, loaded on first registry access.
 BUILTIN_MODULES = (
@@ -171,6 +193,11 @@ def _params(values, what: str) -> tuple[float, ...]:
 class TorqueTerm:
     """One declared torque: ``kernel(t, q, w, p) -> body-frame torque`` and its parameters.
 
+    ``depends_on_omega`` says whether the torque reads ``w``. The default, True, is the
+    safe one for a kernel nobody has vouched for; declare False for a torque of
+    orientation and time only (gravity, a constant body or space torque), which the
+    splitting and variational methods integrate at their full order.
+
     Examples
     --------
     >>> from ga_rotors._kernels import cross
@@ -183,9 +210,14 @@ class TorqueTerm:
     kernel: Callable
     params: tuple[float, ...] = ()
     name: str = ""
+    depends_on_omega: bool = True
 
     def __post_init__(self):
         object.__setattr__(self, "params", _params(self.params, "torque params"))
+        if not isinstance(self.depends_on_omega, bool):
+            raise InputError(
+                f"depends_on_omega: expected True or False, got {self.depends_on_omega!r}"
+            )
         _kernel_location(self.kernel, "torque kernel")
         if not self.name:
             object.__setattr__(self, "name", _kernel_location(self.kernel, "torque kernel")[1])
@@ -233,6 +265,9 @@ def _arity(kernel) -> int | None:
 class Problem:
     """What is integrated: a body with declared torques, or a prescribed ω(t).
 
+    ``accept_lower_order=True`` lets a method that handles orientation-only torques run
+    with a torque that depends on ω, knowing it is then first-order accurate.
+
     Examples
     --------
     >>> Problem((1.0, 2.0, 3.0)).kind
@@ -242,6 +277,7 @@ class Problem:
     inertia: tuple[float, float, float] | None = None
     torques: tuple[TorqueTerm, ...] = ()
     omega: PrescribedOmega | None = None
+    accept_lower_order: bool = False
 
     def __post_init__(self):
         object.__setattr__(self, "torques", tuple(self.torques))
@@ -257,6 +293,10 @@ class Problem:
             raise InputError("inertia: a dynamics problem needs the principal moments")
         if self.inertia is not None:
             object.__setattr__(self, "inertia", tuple(float(i) for i in self.inertia))
+        if not isinstance(self.accept_lower_order, bool):
+            raise InputError(
+                f"accept_lower_order: expected True or False, got {self.accept_lower_order!r}"
+            )
 
     @property
     def kind(self) -> str:
@@ -297,6 +337,7 @@ class Integrator(ABC):
     description: str
     conserves: frozenset[str]
     paths: frozenset[str]
+    torques: str = ANY_TORQUE
 
     @property
     @abstractmethod
@@ -321,6 +362,18 @@ class Integrator(ABC):
                 f"paths: {self.name} cannot step the {path!r} path "
                 f"(supports {', '.join(sorted(self.paths))})"
             )
+        if not getattr(problem, "accept_lower_order", False):
+            term = torque_conflict(self, getattr(problem, "torques", ()))
+            if term is not None:
+                raise InputError(
+                    f"integrator: {self.name} (order {self.order}) integrates torques of "
+                    f"orientation and time only at its order, but torque {term.name!r} "
+                    "reads ω (depends_on_omega=True, which user kernels default to), and "
+                    f"with it {self.name} is first-order accurate. Use a method that "
+                    f"handles any torque ({', '.join(any_torque_methods())}), declare "
+                    "depends_on_omega=False if the torque does not read ω, or accept "
+                    "first order explicitly (accept_lower_order=True)"
+                )
 
     def _validate_declaration(self) -> None:
         if not self.name or not self.name.replace("_", "").isalnum():
@@ -330,6 +383,44 @@ class Integrator(ABC):
             raise InputError(f"{self.name}: unknown conserved properties {sorted(unknown)}")
         if not set(self.problems) <= set(PROBLEM_KINDS):
             raise InputError(f"{self.name}: unknown problem kinds {sorted(self.problems)}")
+        if self.torques not in TORQUE_SUPPORT:
+            raise InputError(
+                f"{self.name}: torques must be one of {TORQUE_SUPPORT}, got {self.torques!r}"
+            )
+
+
+def torque_conflict(integrator: Integrator, torques):
+    """The first of ``torques`` that ``integrator`` cannot take at its order, or None.
+
+    ``torques`` are :class:`TorqueTerm` objects (or anything with ``name`` and
+    ``depends_on_omega``, as a scene describes its effects before building them).
+
+    Examples
+    --------
+    >>> from ga_rotors.effects import gravity, isotropic_damping
+    >>> drag = TorqueTerm(isotropic_damping, (0.1,))
+    >>> torque_conflict(get("split2"), [drag]).name, torque_conflict(get("rk4"), [drag])
+    ('isotropic_damping', None)
+    >>> torque_conflict(get("split2"), [TorqueTerm(gravity, (0,) * 6, depends_on_omega=False)])
+    """
+    if integrator.torques == ANY_TORQUE or TORQUED not in integrator.problems:
+        return None
+    return next((t for t in torques if t.depends_on_omega), None)
+
+
+def any_torque_methods() -> list[str]:
+    """Registered methods that integrate any torque (ω-dependent ones too) at their order.
+
+    Examples
+    --------
+    >>> "rk4" in any_torque_methods() and "split2" not in any_torque_methods()
+    True
+    """
+    _load_builtins()
+    return [
+        n for n in sorted(_REGISTRY)
+        if TORQUED in _REGISTRY[n].problems and _REGISTRY[n].torques == ANY_TORQUE
+    ]  # fmt: skip
 
 
 @dataclass(frozen=True, eq=False)
@@ -343,6 +434,7 @@ class TemplateIntegrator(Integrator):
     paths: frozenset[str]
     steps: Mapping[str, Callable]
     helpers: tuple[Callable, ...] = field(default=())
+    torques: str = ANY_TORQUE
 
     def __post_init__(self):
         object.__setattr__(self, "conserves", frozenset(self.conserves))
@@ -419,7 +511,10 @@ def names() -> list[str]:
 
 
 def catalogue() -> list[dict]:
-    """One row per integrator: name, order, conserves, problems, paths, description.
+    """One row per integrator: name, order, conserves, problems, torques, paths, description.
+
+    ``torques`` is ``"any"``, ``"orientation-only"`` (see :data:`ORIENTATION_TORQUES`),
+    or ``"none"`` for a method without a torqued step.
 
     Examples
     --------
@@ -434,6 +529,7 @@ def catalogue() -> list[dict]:
             "order": i.order,
             "conserves": sorted(i.conserves),
             "problems": sorted(i.problems),
+            "torques": i.torques if TORQUED in i.problems else "none",
             "paths": sorted(i.paths),
             "description": i.description,
         }

@@ -32,7 +32,7 @@ from math import sqrt
 
 from .._kernels import cross, qconj, qmul, qrotate
 from ._rigid import momenta, rates, solve3
-from .base import FREE, TORQUED, TemplateIntegrator, register
+from .base import FREE, ORIENTATION_TORQUES, TORQUED, TemplateIntegrator, register
 from .slots import o_from_quat, o_quat, torque
 
 #: Newton's last correction (relative) below which 30 iterations are accepted: quadratic
@@ -95,7 +95,8 @@ def lgvi_free_step(t, x, w, h, inertia, params):
 
 
 def lgvi_torqued_step(t, x, w, h, inertia, params):
-    """LGVI step with the body torque M(q) (orientation-dependent torques)."""
+    """LGVI step with the body torque M(q) (orientation-dependent torques; M_{k+1} is
+    evaluated at the ω before its own half kick, exact only when M does not read ω)."""
     q = o_quat(x)
     pi = momenta(w, inertia)
     m0 = torque(t, q, w, params)
@@ -127,5 +128,6 @@ LGVI = register(
         paths=frozenset({"rotor", "quaternion"}),
         steps={FREE: lgvi_free_step, TORQUED: lgvi_torqued_step},
         helpers=(discrete_rotation,),
+        torques=ORIENTATION_TORQUES,  # M(q): with M(ω) the explicit M_{k+1} makes it order 1
     )
 )

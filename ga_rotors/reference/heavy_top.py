@@ -66,7 +66,9 @@ def gravity_torque(mgl: float) -> TorqueTerm:
     >>> gravity_torque(2.0).params
     (0.0, 0.0, -2.0, 0.0, 0.0, 1.0)
     """
-    return TorqueTerm(gravity, (0.0, 0.0, -float(mgl), 0.0, 0.0, 1.0), name="gravity")
+    return TorqueTerm(
+        gravity, (0.0, 0.0, -float(mgl), 0.0, 0.0, 1.0), name="gravity", depends_on_omega=False
+    )
 
 
 @dataclass(frozen=True)
