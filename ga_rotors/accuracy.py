@@ -78,6 +78,15 @@ class Case:
     the energy and the conserved momentum vector (or component) for states (n, 4), (n, 3).
     ``body_rate(t)`` is the exact body ω at a scalar time (for the kinematics-only peer),
     or None; ``mgl`` is the heavy top's gravity parameter (None when torque-free).
+
+    Examples
+    --------
+    >>> case = cases()["asymmetric_far"]
+    >>> case.problem.kind, cases()["heavy_top"].problem.kind
+    ('free', 'torqued')
+    >>> energy, momentum = case.invariants(case.q0, case.w0)
+    >>> energy  # ½ Σ I_k ω_k² = ½ (1·1 + 2·0.25 + 3·0.04)
+    array([0.81])
     """
 
     name: str
@@ -120,7 +129,14 @@ class Case:
 
 @dataclass(frozen=True)
 class Point:
-    """One run: method, its setting (steps, or tolerance), cost and errors."""
+    """One run: method, its setting (steps, or tolerance), cost and errors.
+
+    Examples
+    --------
+    >>> p = measure(cases()["asymmetric_far"], "split4", 100, repeats=1)
+    >>> p.method, p.setting, p.evaluations, p.family
+    ('split4', 100.0, 500.0, 'ga_rotors')
+    """
 
     method: str
     setting: float
@@ -484,6 +500,19 @@ def study(
     A method's sweep stops once its error is below ``floor``, or grows again past 4× its
     best below 1e-9 (round-off), or one run takes longer than ``max_seconds``; a tolerance
     sweep runs from 1e-3 to 1e-14 in half decades.
+
+    Examples
+    --------
+    A two-point sweep of one method, without peers: doubling the steps of a fourth-order
+    method divides its error by 2⁴.
+
+    >>> import dataclasses
+    >>> case = dataclasses.replace(cases()["asymmetric_far"], steps=(100, 200))
+    >>> st = study(case, ["split4"], factor=2.0, repeats=1, peers=False)
+    >>> [p.setting for p in st.points]
+    [100.0, 200.0]
+    >>> round(st.points[0].error / st.points[1].error)
+    16
     """
     out = Study(case)
     say = log or (lambda _msg: None)

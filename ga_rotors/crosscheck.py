@@ -39,7 +39,15 @@ def orientations(trajectory: Trajectory, path: str) -> np.ndarray:
 
 @dataclass(frozen=True)
 class PathComparison:
-    """Largest geodesic angle between two paths over their common samples."""
+    """Largest geodesic angle between two paths over their common samples.
+
+    :func:`cross_check` returns one per pair of paths; ``str`` gives the line a run prints.
+
+    Examples
+    --------
+    >>> print(PathComparison(("rotor", "quaternion"), 3.1e-15, 2.5, 1001))
+    rotor vs quaternion: max 3.1e-15 rad at t = 2.5 s (1001 samples)
+    """
 
     paths: tuple[str, str]
     max_angle: float

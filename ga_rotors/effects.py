@@ -60,7 +60,6 @@ __all__ = [
     "EFFECTS",
     "STANDARD_GRAVITY",
     "EffectType",
-    "Frame",
     "Key",
     "body_torque",
     "damping",
@@ -167,7 +166,16 @@ _REQUIRED = object()
 
 @dataclass(frozen=True)
 class Key:
-    """One key of an effect table: how it is read, its default, units and meaning."""
+    """One key of an effect table: how it is read, its default, units and meaning.
+
+    Examples
+    --------
+    >>> g = {k.name: k for k in EFFECTS["gravity"].keys}
+    >>> g["pivot_to_com"].required, g["g"].required, g["g"].default
+    (True, False, [0.0, 0.0, -9.80665])
+    >>> g["g"].doc
+    'm/s², space frame'
+    """
 
     name: str
     read: Callable
@@ -181,7 +189,18 @@ class Key:
 
 @dataclass(frozen=True)
 class EffectType:
-    """A kind of effect: its keys and how a resolved entry becomes a TorqueTerm."""
+    """A kind of effect: its keys and how a resolved entry becomes a TorqueTerm.
+
+    :data:`EFFECTS` holds one per ``type`` a scene's ``[[effects]]`` entry may name.
+
+    Examples
+    --------
+    >>> damping = EFFECTS["damping"]
+    >>> damping.doc, [k.name for k in damping.keys]
+    ('viscous damping τ = −c ω', ['coefficient'])
+    >>> list(EFFECTS)
+    ['gravity', 'damping', 'body_torque', 'space_torque', 'user']
+    """
 
     name: str
     doc: str

@@ -59,7 +59,15 @@ _ARRAYS = (
 
 @dataclass
 class FigureData:
-    """What the figures need from one scene: labels and plain arrays."""
+    """What the figures need from one scene: labels and plain arrays.
+
+    Examples
+    --------
+    >>> from ga_rotors.paper_scenes import run_scene
+    >>> [d] = figure_data([run_scene("disk", 15.0, steps=10)])
+    >>> d.model, d.theta0_deg, d.arrays["q"].shape
+    ('disk', 15.0, (11, 4))
+    """
 
     model: str
     label: str
@@ -68,7 +76,17 @@ class FigureData:
 
 
 def figure_data(scenes) -> list[FigureData]:
-    """Light copies of :class:`ga_rotors.paper_scenes.Scene` for drawing."""
+    """Light copies of :class:`ga_rotors.paper_scenes.Scene` for drawing.
+
+    Examples
+    --------
+    >>> from ga_rotors.paper_scenes import run_all
+    >>> data = figure_data(run_all(steps=10))
+    >>> [(d.model, d.theta0_deg) for d in data]
+    [('paper', 15.0), ('paper', 0.001), ('disk', 15.0), ('disk', 0.001)]
+    >>> sorted(data[0].arrays) == sorted(_ARRAYS)
+    True
+    """
     return [
         FigureData(s.model.name, s.model.label, s.theta0_deg, {k: s.trajectory[k] for k in _ARRAYS})
         for s in scenes
@@ -153,7 +171,17 @@ class _Canvas:
 
 def palette_png(fig, description: str, dpi: int = _DPI) -> bytes:
     """A matplotlib Figure as a 64-colour palette PNG (a third of the RGB size: these are
-    line plots), with ``description`` in its ``Description`` text chunk."""
+    line plots), with ``description`` in its ``Description`` text chunk.
+
+    Examples
+    --------
+    >>> from matplotlib.figure import Figure
+    >>> fig = Figure(figsize=(2, 1))
+    >>> _ = fig.add_subplot().plot([0, 1], [0, 1])
+    >>> png = palette_png(fig, "made by a doctest")
+    >>> png[:8], read_digest(io.BytesIO(png), prefix="made by ")
+    (b'\\x89PNG\\r\\n\\x1a\\n', 'a doctest')
+    """
     from matplotlib.backends.backend_agg import FigureCanvasAgg
     from PIL import Image, PngImagePlugin
 
@@ -189,6 +217,16 @@ def draw_all(data: list[FigureData], out_dir, digest: str, stems=None) -> list[P
     """Write figures as ``<out_dir>/<stem>.png`` (atomically); return the paths.
 
     ``stems``: the figures to draw (default: all of :data:`FIGURES`, in order).
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from ga_rotors.paper_scenes import run_scene
+    >>> data = figure_data([run_scene(m, 15.0, steps=10) for m in ("paper", "disk")])
+    >>> with tempfile.TemporaryDirectory() as tmp:
+    ...     [png] = draw_all(data, tmp, "0123abcd", stems=["fig04_body_rates_15deg"])
+    ...     png.name, read_digest(png)
+    ('fig04_body_rates_15deg.png', '0123abcd')
     """
     from .files import atomic_write
 
@@ -220,7 +258,17 @@ def draw_all(data: list[FigureData], out_dir, digest: str, stems=None) -> list[P
 
 def read_digest(png, prefix: str = DIGEST_PREFIX) -> str | None:
     """The data digest stored in a figure written by :func:`draw_all` (or by
-    :func:`palette_png` with ``prefix``), or None."""
+    :func:`palette_png` with ``prefix``), or None.
+
+    Examples
+    --------
+    >>> from matplotlib.figure import Figure
+    >>> png = io.BytesIO(palette_png(Figure(figsize=(1, 1)), DIGEST_PREFIX + "0123abcd"))
+    >>> read_digest(png)
+    '0123abcd'
+    >>> read_digest(png, prefix="another prefix ") is None
+    True
+    """
     from PIL import Image
 
     with Image.open(png) as im:

@@ -441,6 +441,14 @@ class Scene:
         Number of integration steps; steps between output samples.
     exact : str or None
         Which exact solution applies (:attr:`exact_reason` says why not, when None).
+
+    Examples
+    --------
+    >>> s = load_scene("spinning_disk")
+    >>> s
+    Scene('spinning_disk', free, 10000 steps)
+    >>> s.body.moments, s.exact, s.paths
+    ((0.0028125, 0.0028125, 0.005625), 'symmetric_top', ['rotor', 'quaternion', 'euler'])
     """
 
     def __init__(self, data: Mapping, *, file: str = "<dict>", base_dir=None):

@@ -35,7 +35,19 @@ __all__ = ["Report", "extrema", "hermite_at", "invariant_series", "report", "zer
 
 @dataclass
 class Report:
-    """A run's summary: ``lines`` to print and ``values`` (name -> number) to test."""
+    """A run's summary: ``lines`` to print and ``values`` (name -> number) to test.
+
+    :func:`report` fills one from a simulated scene; ``str`` joins the lines.
+
+    Examples
+    --------
+    >>> rep = Report("demo", ["scene demo: rk4", "  energy drift 1e-15"], {"energy": 1e-15})
+    >>> print(rep)
+    scene demo: rk4
+      energy drift 1e-15
+    >>> rep.values["energy"]
+    1e-15
+    """
 
     scene: str
     lines: list[str] = field(default_factory=list)

@@ -51,6 +51,17 @@ class Exact:
     ``model`` is the reference object (times from the initial state, and for the heavy
     top a space frame with gravity along −z); ``frame`` is G, the rotation taking the
     scene's space frame to the model's (None: the same).
+
+    Examples
+    --------
+    >>> scene = load_scene("spinning_disk")
+    >>> exact = exact_solution(scene)
+    >>> exact.name, exact.frame, exact.has_orientation
+    ('symmetric_top', None, True)
+    >>> exact.orientation_error([0.0], scene.orientation)  # the initial state itself
+    array([0.])
+    >>> exact_solution(load_scene("heavy_top")).frame  # gravity already along −z
+    array([1., 0., 0., 0.])
     """
 
     name: str

@@ -234,7 +234,15 @@ class TorqueTerm:
 
 @dataclass(frozen=True)
 class PrescribedOmega:
-    """A prescribed body angular velocity ``kernel(t, p) -> (ω1, ω2, ω3)`` and parameters."""
+    """A prescribed body angular velocity ``kernel(t, p) -> (ω1, ω2, ω3)`` and parameters.
+
+    Examples
+    --------
+    >>> from ga_rotors.reference.coning import coning_rate
+    >>> omega = PrescribedOmega(coning_rate, (2.0, 0.5))
+    >>> omega.name, omega.params, Problem(omega=omega).kind
+    ('coning_rate', (2.0, 0.5), 'kinematic')
+    """
 
     kernel: Callable
     params: tuple[float, ...] = ()
@@ -319,6 +327,20 @@ class LoopResult:
     when the state stopped being finite and the run ended early (``t[-1]`` is then the
     last finite sample). ``stats`` holds the path's watch statistics; ``source`` the
     generated module's file (None when compiled in memory).
+
+    Examples
+    --------
+    A spin of 2 rad/s about z for 1 s, 100 steps, a sample every 50:
+
+    >>> r = get("rk4").run(Problem((1.0, 2.0, 3.0)), "quaternion", (1.0, 0.0, 0.0, 0.0),
+    ...                    (0.0, 0.0, 2.0), 0.0, 0.01, 100, 50)
+    >>> r.t, r.complete, r.x.shape, r.w.shape
+    (array([0. , 0.5, 1. ]), True, (3, 4), (3, 3))
+
+    RK4's error per step on this rotation is (h|ω|/2)⁵/5! ≈ 8e-13, about 8e-11 over 100:
+
+    >>> bool(np.allclose(r.x[-1], (np.cos(1.0), 0, 0, np.sin(1.0)), rtol=0, atol=1e-10))
+    True
     """
 
     t: np.ndarray
@@ -330,7 +352,18 @@ class LoopResult:
 
 
 class Integrator(ABC):
-    """What every integrator declares; :meth:`run` integrates one path."""
+    """What every integrator declares; :meth:`run` integrates one path.
+
+    Examples
+    --------
+    >>> rk4 = get("rk4")
+    >>> isinstance(rk4, Integrator), rk4.order, sorted(rk4.paths)
+    (True, 4, ['euler', 'quaternion', 'rotor'])
+    >>> rk4.check(Problem((1.0, 2.0, 3.0)), "matrix")
+    Traceback (most recent call last):
+    ...
+    ga_rotors.errors.InputError: paths: rk4 cannot step the 'matrix' path (supports ...)
+    """
 
     name: str
     order: int
@@ -425,7 +458,19 @@ def any_torque_methods() -> list[str]:
 
 @dataclass(frozen=True, eq=False)
 class TemplateIntegrator(Integrator):
-    """A fixed-step integrator whose steps are templates (see the module docstring)."""
+    """A fixed-step integrator whose steps are templates (see the module docstring).
+
+    Examples
+    --------
+    >>> rk4 = get("rk4")
+    >>> isinstance(rk4, TemplateIntegrator), sorted(rk4.problems), rk4.steps[FREE].__name__
+    (True, ['free', 'kinematic', 'torqued'], 'rk4_step')
+    >>> TemplateIntegrator(name="my euler", order=1, description="", conserves=(),
+    ...                    paths=("quaternion",), steps={})
+    Traceback (most recent call last):
+    ...
+    ga_rotors.errors.InputError: integrator name: expected an identifier, got 'my euler'
+    """
 
     name: str
     order: int
@@ -459,7 +504,21 @@ _loaded = False
 
 
 def register(integrator: Integrator) -> Integrator:
-    """Add ``integrator`` to the registry (names are unique) and return it."""
+    """Add ``integrator`` to the registry (names are unique) and return it.
+
+    Examples
+    --------
+    Registering the same object again changes nothing; another under a taken name is refused:
+
+    >>> import dataclasses
+    >>> rk4 = get("rk4")
+    >>> register(rk4) is rk4
+    True
+    >>> register(dataclasses.replace(rk4, description="my RK4"))
+    Traceback (most recent call last):
+    ...
+    ga_rotors.errors.InputError: register: an integrator named 'rk4' already exists
+    """
     if not isinstance(integrator, Integrator):
         raise InputError(f"register: expected an Integrator, got {integrator!r}")
     existing = _REGISTRY.get(integrator.name)

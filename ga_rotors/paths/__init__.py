@@ -38,6 +38,14 @@ class Path:
         Column names of that array.
     on_unit_sphere : bool
         The state is a unit quaternion/rotor (``o_normalize``, ``o_from_quat`` exist).
+
+    Examples
+    --------
+    >>> p = PATHS["euler"]
+    >>> p.array, p.components, p.dim, p.on_unit_sphere
+    ('euler', ('psi', 'theta', 'phi'), 3, False)
+    >>> p.load().__name__
+    'ga_rotors.paths.euler'
     """
 
     name: str

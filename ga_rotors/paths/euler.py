@@ -119,12 +119,26 @@ def report(stats: np.ndarray) -> dict:
 
 
 def initial_state(angles: np.ndarray) -> np.ndarray:
-    """The path's state: the ZYZ angles (ψ, θ, φ) themselves."""
+    """The path's state: the ZYZ angles (ψ, θ, φ) themselves.
+
+    Examples
+    --------
+    >>> initial_state((0.1, 0.2, 0.3))
+    array([0.1, 0.2, 0.3])
+    """
     return np.array(angles, dtype=np.float64)
 
 
 def quaternions(states: np.ndarray) -> np.ndarray:
-    """Unit quaternions (..., 4) of ZYZ angle arrays (..., 3)."""
+    """Unit quaternions (..., 4) of ZYZ angle arrays (..., 3).
+
+    Examples
+    --------
+    θ = 90° alone is a quarter turn about y: q = (cos 45°, 0, sin 45°, 0).
+
+    >>> quaternions([0.0, np.pi / 2, 0.0])
+    array([0.70710678, 0.        , 0.70710678, 0.        ])
+    """
     from ..euler import to_quaternion
 
     return to_quaternion("ZYZ", states)

@@ -66,10 +66,25 @@ def watch(t, x, w, h, stats):
 
 
 def initial_state(q0: np.ndarray) -> np.ndarray:
-    """The path's state for the unit quaternion ``q0``."""
+    """The path's state for the unit quaternion ``q0``: a float64 copy of it.
+
+    Examples
+    --------
+    >>> q0 = np.array([0.5, 0.5, 0.5, 0.5])
+    >>> x = initial_state(q0)
+    >>> x, x is q0
+    (array([0.5, 0.5, 0.5, 0.5]), False)
+    """
     return np.array(q0, dtype=np.float64)
 
 
 def quaternions(states: np.ndarray) -> np.ndarray:
-    """Unit quaternions (..., 4) of path states (..., 4)."""
+    """Unit quaternions (..., 4) of path states (..., 4): the states themselves.
+
+    Examples
+    --------
+    >>> quaternions([[1, 0, 0, 0], [0, 0, 0, 1]])
+    array([[1., 0., 0., 0.],
+           [0., 0., 0., 1.]])
+    """
     return np.asarray(states, dtype=np.float64)

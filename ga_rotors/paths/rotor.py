@@ -77,10 +77,27 @@ def _signed_permutation(kernel) -> np.ndarray:
 
 
 def initial_state(q0: np.ndarray) -> np.ndarray:
-    """The rotor coefficients of the unit quaternion ``q0``."""
+    """The rotor coefficients of the unit quaternion ``q0``.
+
+    Examples
+    --------
+    q = (w, x, y, z) is R = w − x e23 + y e13 − z e12: on the blades (1, e12, e13, e23),
+
+    >>> initial_state([0.5, 0.5, 0.5, 0.5])
+    array([ 0.5, -0.5,  0.5, -0.5])
+    """
     return np.asarray(q0, dtype=np.float64) @ _signed_permutation(rotor_from_quat)
 
 
 def quaternions(states: np.ndarray) -> np.ndarray:
-    """Unit quaternions (..., 4) of rotor coefficient arrays (..., 4)."""
+    """Unit quaternions (..., 4) of rotor coefficient arrays (..., 4).
+
+    Examples
+    --------
+    The inverse of :func:`initial_state`:
+
+    >>> quaternions(initial_state([[0.5, 0.5, 0.5, 0.5], [0.0, 1.0, 0.0, 0.0]]))
+    array([[0.5, 0.5, 0.5, 0.5],
+           [0. , 1. , 0. , 0. ]])
+    """
     return np.asarray(states, dtype=np.float64) @ _signed_permutation(quat_from_rotor)

@@ -88,6 +88,15 @@ class State:
         Body angular velocity in the principal frame.
     error : ndarray, shape (n,)
         Bound on the geodesic error of ``q`` from floating-point rounding, radians.
+
+    Examples
+    --------
+    >>> top = AsymmetricTop((1.0, 2.0, 3.0), (1.0, 0.0, 0.0, 0.0), (1.0, 0.5, 0.2))
+    >>> s = top.state([0.0, 1.0, 2.0])
+    >>> s.q.shape, s.w.shape, s.error.shape
+    ((3, 4), (3, 3), (3,))
+    >>> bool(Q.distance(s.q[0], (1.0, 0.0, 0.0, 0.0)) <= s.error[0])  # q(0) = q0, to the bound
+    True
     """
 
     q: np.ndarray

@@ -46,7 +46,21 @@ SOURCES = {
 
 @dataclass(frozen=True)
 class Audit:
-    """All findings, and the derivations they rest on."""
+    """All findings, and the derivations they rest on.
+
+    :func:`run_audit` builds it (once per process); ``ga-rotors verify`` prints
+    :meth:`table`, and ``docs/audit.md`` is :meth:`markdown`.
+
+    Examples
+    --------
+    >>> audit = run_audit()
+    >>> audit.ok  # no derivation the numeric package depends on failed
+    True
+    >>> audit.find("n9").label, audit.find("n9") in audit.wrong()
+    ('N9', True)
+    >>> len(audit.wrong()) == audit.counts()[Verdict.WRONG]
+    True
+    """
 
     findings: tuple[Finding, ...]
     derivations: tuple[Derivation, ...]
@@ -148,5 +162,16 @@ def run_audit() -> Audit:
 
 
 def find(label: str) -> Finding:
-    """The finding with this label ('(12)', '12', 'N9', '(19) singular set', ...)."""
+    """The finding with this label ('(12)', '12', 'N9', '(19) singular set', ...).
+
+    Examples
+    --------
+    >>> f = find("12")
+    >>> f.label, f.source, f.verdict.value
+    ('(12)', 'paper', 'wrong')
+    >>> find("(99)")
+    Traceback (most recent call last):
+    ...
+    KeyError: '(99)'
+    """
     return run_audit().find(label)
