@@ -58,3 +58,13 @@ class SceneError(InputError):
         self.key = key
         where = f"{self.file}: {key}: " if key else f"{self.file}: "
         super().__init__(where + message)
+
+
+class StepLimitWarning(UserWarning):
+    """A fixed-step run starts past its integrator's declared step limit.
+
+    Past it the method still returns numbers, but they degrade in a known way (a
+    Runge–Kutta method damps the wobble, Lie–Euler amplifies it, a splitting loses the
+    thin axis): the message names the integrator, the limit's quantity, its value and the
+    limit, and what happens. See the step-limit table in ``docs/stability.md``.
+    """

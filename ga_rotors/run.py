@@ -12,6 +12,7 @@ from __future__ import annotations
 import argparse
 import sys
 import time
+import warnings
 
 __all__ = ["ProgressBar", "add_arguments", "run"]
 
@@ -107,6 +108,7 @@ class ProgressBar:
 def run(args: argparse.Namespace) -> int:
     from pathlib import Path
 
+    from .errors import StepLimitWarning
     from .scene import load_scene
     from .scene_output import write_outputs
     from .scene_report import report
@@ -115,10 +117,17 @@ def run(args: argparse.Namespace) -> int:
     start = time.perf_counter()
     scene = load_scene(args.scene)
     bar = ProgressBar(sys.stderr, args.progress)
-    try:
-        trajectory = simulate(scene, progress=bar)
-    finally:
-        bar.close()
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always", StepLimitWarning)
+        try:
+            trajectory = simulate(scene, progress=bar)
+        finally:
+            bar.close()
+    for w in caught:
+        if issubclass(w.category, StepLimitWarning):  # one line, no source excerpt
+            print(f"ga-rotors: warning: {w.message}", file=sys.stderr)
+        else:
+            warnings.warn_explicit(w.message, w.category, w.filename, w.lineno)
     summary = str(report(scene, trajectory)) if scene.data["output"]["summary"] else None
     if summary is not None:
         print(summary)

@@ -194,6 +194,7 @@ def simulate(scene, *, progress=None) -> Trajectory:
             sample_every=scene.sample_every,
             t0=scene.data["time"]["start"],
             progress=progress,
+            step_limit_key=f"{scene.file}: integrator.step",
         )
     except Exception as exc:
         from numba.core.errors import NumbaError

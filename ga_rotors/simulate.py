@@ -21,7 +21,7 @@ import numpy as np
 from . import paths as _paths
 from ._validate import as_float_array, require_unit
 from .body import RigidBody
-from .errors import InputError, IntegrationStoppedWarning
+from .errors import InputError, IntegrationStoppedWarning, StepLimitWarning
 from .integrators import base
 from .trajectory import Trajectory
 
@@ -91,6 +91,7 @@ def simulate(
     sample_every: int = 1,
     t0: float = 0.0,
     progress=None,
+    step_limit_key: str = "step",
 ) -> Trajectory:
     """Integrate the motion and return the requested paths and outputs.
 
@@ -134,6 +135,12 @@ def simulate(
         ``progress(done, total)``, steps over all paths, called as the compiled loops
         advance in chunks (integrators whose ``run`` takes no ``progress`` report once
         per path).
+    step_limit_key : str
+        What a run past the integrator's step limit names first (scenes pass
+        ``"<file>: integrator.step"``). Past the limit (``catalogue()`` column
+        ``step_limit``, judged on the initial state; a torqued problem by its torque-free
+        rate) the run warns with :class:`~ga_rotors.errors.StepLimitWarning`, or, for
+        ``lgvi``, which has no step there, raises InputError.
 
     Returns
     -------
@@ -209,6 +216,10 @@ def simulate(
         q0 = _q.multiply(q0, principal)
         w0 = _q.rotate(_q.conjugate(principal), w0)
 
+    # The step limit, judged once on the initial state (principal frame); the loops below
+    # would judge it again per path, so their copies of the warning are silenced.
+    method.check_step(problem, w0, step, nsteps, where=step_limit_key)
+
     starts = {}
     for p in requested:
         module = _paths.get(p).load()
@@ -230,16 +241,18 @@ def simulate(
     for n, p in enumerate(requested):
         spec = _paths.get(p)
         args = (problem, p, starts[p], w0, float(t0), h, nsteps, sample_every)
-        if chunked:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", StepLimitWarning)
+            if chunked:
 
-            def report(done, n=n):
-                progress(n * nsteps + done, total)
+                def report(done, n=n):
+                    progress(n * nsteps + done, total)
 
-            result = method.run(*args, progress=report)
-        else:
-            result = method.run(*args)
-            if progress is not None:
-                progress((n + 1) * nsteps, total)
+                result = method.run(*args, progress=report)
+            else:
+                result = method.run(*args)
+                if progress is not None:
+                    progress((n + 1) * nsteps, total)
         if not result.complete:
             warnings.warn(
                 f"paths: the {p} path of {method.name} stopped at t = {float(result.t[-1]):g} s "

@@ -20,7 +20,7 @@ import pytest
 
 from ga_rotors import quaternion as Q
 from ga_rotors import shapes
-from ga_rotors.errors import IntegrationStoppedWarning, PrecisionError
+from ga_rotors.errors import InputError, IntegrationStoppedWarning, PrecisionError
 from ga_rotors.integrators import Problem, get
 from ga_rotors.paths import get as get_path
 from ga_rotors.reference import elliptic
@@ -291,13 +291,13 @@ def test_fast_spin_splitting_stays_bounded(name):
         assert Q.distance(exact, Q.normalize(run.x)).max() <= walk(24, FAST_N) * 1000.0
 
 
-def test_fast_spin_lgvi_past_its_step_limit_stops_and_warns():
+def test_fast_spin_lgvi_past_its_step_limit_is_refused():
     # h|ω₃| = 1 is the discrete Moser–Veselov limit (sin θ = hω₃ has no solution beyond):
-    # before the fix Newton's unconverged iterate went on for 32 steps, then a NaN.
-    with pytest.warns(IntegrationStoppedWarning, match="quaternion path of lgvi"):
-        tr = simulate(FAST_BODY, (1.0, 0, 0, 0), FAST_W, duration=1.0, step=FAST_H,
-                      paths="quaternion", integrator="lgvi")  # fmt: skip
-    assert tr.meta["paths"]["quaternion"]["ended_at"] == 0.0 and np.isfinite(tr.q).all()
+    # before the fix Newton's unconverged iterate went on for 32 steps, then a NaN; then the
+    # run stopped at t = 0; now lgvi's declared step limit refuses it before any step.
+    with pytest.raises(InputError, match=r"step: lgvi cannot step h·\|ω\| = 1 \(limit 1\)"):
+        simulate(FAST_BODY, (1.0, 0, 0, 0), FAST_W, duration=1.0, step=FAST_H,
+                 paths="quaternion", integrator="lgvi")  # fmt: skip
     # Just inside the limit (hω₃ = 0.9) it runs, conserving |L| by construction.
     run = get("lgvi").run(Problem(FAST_BODY), "quaternion", (1.0, 0, 0, 0), (5.0, 3.0, 900.0),
                           0.0, FAST_H, FAST_N, 1)  # fmt: skip

@@ -103,6 +103,7 @@ gives it the same compiled, specialised right-hand side.
 from __future__ import annotations
 
 import importlib
+import warnings
 from abc import ABC, abstractmethod
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
@@ -371,6 +372,10 @@ class Integrator(ABC):
     conserves: frozenset[str]
     paths: frozenset[str]
     torques: str = ANY_TORQUE
+    #: ``step_limit(inertia, w0, h, nsteps) -> limits.StepLimit``, or None (no limit).
+    step_limit: Callable | None = None
+    #: What a run past the limit does: ``"warn"`` (StepLimitWarning) or ``"raise"``.
+    step_limit_action: str = "warn"
 
     @property
     @abstractmethod
@@ -408,6 +413,39 @@ class Integrator(ABC):
                     "first order explicitly (accept_lower_order=True)"
                 )
 
+    def check_step(self, problem: Problem, w0, h: float, nsteps: int, where: str = "step"):
+        """Evaluate the declared step limit on the initial state; past it, warn
+        (:class:`~ga_rotors.errors.StepLimitWarning`) or raise InputError, the message
+        starting with ``where``. Returns the evaluated limit (None: no limit, or a
+        prescribed-ω problem). A torqued problem is judged by its torque-free ν.
+
+        Examples
+        --------
+        >>> import warnings
+        >>> lim = get("rk4").check_step(Problem((1.0, 1.5, 2.0)), (0.0, 0.0, 1.0), 0.01, 100)
+        >>> lim.quantity, lim.exceeded
+        ('N·|ln|R(ihν)|²|', False)
+        >>> get("lgvi").check_step(Problem((1.0, 1.5, 2.0)), (0.0, 0.0, 200.0), 0.01, 100)
+        Traceback (most recent call last):
+        ...
+        ga_rotors.errors.InputError: step: lgvi cannot step h·|ω| = 2 (limit 1): ...
+        """
+        if self.step_limit is None or problem.inertia is None or w0 is None:
+            return None
+        limit = self.step_limit(problem.inertia, tuple(float(c) for c in w0), float(h), nsteps)
+        if not limit.exceeded:
+            return limit
+        message = (
+            f"{where}: {self.name} cannot step {limit.quantity} = {limit.value:.3g} "
+            f"(limit {limit.limit:g}): {limit.effect}"
+        )
+        if self.step_limit_action == "raise":
+            raise InputError(message + "; take a smaller step")
+        from ..errors import StepLimitWarning
+
+        warnings.warn(message + "; take a smaller step", StepLimitWarning, stacklevel=3)
+        return limit
+
     def _validate_declaration(self) -> None:
         if not self.name or not self.name.replace("_", "").isalnum():
             raise InputError(f"integrator name: expected an identifier, got {self.name!r}")
@@ -416,6 +454,11 @@ class Integrator(ABC):
             raise InputError(f"{self.name}: unknown conserved properties {sorted(unknown)}")
         if not set(self.problems) <= set(PROBLEM_KINDS):
             raise InputError(f"{self.name}: unknown problem kinds {sorted(self.problems)}")
+        if self.step_limit_action not in ("warn", "raise"):
+            raise InputError(
+                f"{self.name}: step_limit_action must be 'warn' or 'raise', "
+                f"got {self.step_limit_action!r}"
+            )
         if self.torques not in TORQUE_SUPPORT:
             raise InputError(
                 f"{self.name}: torques must be one of {TORQUE_SUPPORT}, got {self.torques!r}"
@@ -480,6 +523,8 @@ class TemplateIntegrator(Integrator):
     steps: Mapping[str, Callable]
     helpers: tuple[Callable, ...] = field(default=())
     torques: str = ANY_TORQUE
+    step_limit: Callable | None = None
+    step_limit_action: str = "warn"
 
     def __post_init__(self):
         object.__setattr__(self, "conserves", frozenset(self.conserves))
@@ -496,6 +541,7 @@ class TemplateIntegrator(Integrator):
         from . import _codegen
 
         self.check(problem, path)
+        self.check_step(problem, w0, h, nsteps, where="h")
         return _codegen.run_loop(self, problem, path, x0, w0, t0, h, nsteps, every, progress)
 
 
@@ -569,6 +615,14 @@ def names() -> list[str]:
     return sorted(_REGISTRY)
 
 
+def _limit_row(integrator: Integrator) -> str:
+    """``"quantity < limit (action)"``, or ``"none"``."""
+    if integrator.step_limit is None:
+        return "none"
+    lim = integrator.step_limit((1.0, 2.0, 3.0), (0.0, 0.0, 0.0), 0.0, 0)
+    return f"{lim.quantity} < {lim.limit:g} ({integrator.step_limit_action})"
+
+
 def catalogue() -> list[dict]:
     """One row per integrator: name, order, conserves, problems, torques, paths, description.
 
@@ -590,6 +644,7 @@ def catalogue() -> list[dict]:
             "problems": sorted(i.problems),
             "torques": i.torques if TORQUED in i.problems else "none",
             "paths": sorted(i.paths),
+            "step_limit": _limit_row(i),
             "description": i.description,
         }
         for i in (_REGISTRY[n] for n in sorted(_REGISTRY))

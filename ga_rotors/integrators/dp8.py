@@ -7,6 +7,10 @@ a fixed step, compiled and specialised like every other method. Its use is the
 high-accuracy end of the work-precision study: order 8 reaches 1e-12 rad in a few hundred
 steps, so far less rounding accumulates than in the tens of thousands of steps an
 order-4 method needs there. Conserves nothing exactly.
+
+Step limit (warn), as for RK4: a step scales the linearised wobble by R(ihν), R the
+tableau's own stability polynomial 1 + z bᵀ(I − zA)⁻¹𝟙 (degree 12; |R(iy)| < 1 for small
+y); N·|ln |R(ihν)|²| ≥ 1 warns (ν with |ω|/2, q being stepped by the same tableau).
 """
 
 from __future__ import annotations
@@ -15,6 +19,7 @@ import numpy as np
 
 from ._arith import axpy3
 from .base import FREE, TORQUED, TemplateIntegrator, register
+from .limits import stability_polynomial, wobble_damping
 from .slots import accel, o_axpy, o_load, o_rate
 
 STAGES = 12
@@ -121,5 +126,7 @@ DP8 = register(
         conserves=frozenset(),
         paths=frozenset({"rotor", "quaternion", "euler"}),
         steps={FREE: dp8_step, TORQUED: dp8_step},
+        # R from the tableau itself (degree 12, not e^z's Taylor polynomial past z⁸).
+        step_limit=wobble_damping(stability_polynomial(A, B), steps_q=True),
     )
 )

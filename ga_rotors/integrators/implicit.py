@@ -9,6 +9,10 @@ than :data:`STALLED` after 60 sweeps returns NaN, so the loop stops and reports 
 It preserves every quadratic invariant exactly (Cooper 1987): |q|² and |R|² of the
 kinematics, and for the free body the energy ½ ωᵀIω and |L|² = |Iω|², up to the
 iteration's tolerance and rounding.
+
+Step limit (warn): the sweep's map has derivative (h/2)·∂f(ω, q), spectral radius hν/2
+with ν the larger of the wobble's rate and |ω|/2; it contracts only while hν < 2
+(:func:`ga_rotors.integrators.limits.fixed_point_sweep`).
 """
 
 from __future__ import annotations
@@ -17,6 +21,7 @@ import math
 
 from ._arith import axpy3
 from .base import FREE, TORQUED, TemplateIntegrator, register
+from .limits import fixed_point_sweep
 from .slots import accel, o_axpy, o_rate
 
 #: Relative change of the slope below which a sweep that ran out of iterations is accepted:
@@ -62,5 +67,6 @@ MIDPOINT = register(
         conserves=frozenset({"unit_norm", "energy", "momentum_norm", "time_reversible"}),
         paths=frozenset({"rotor", "quaternion"}),
         steps={FREE: midpoint_step, TORQUED: midpoint_step},
+        step_limit=fixed_point_sweep,
     )
 )

@@ -20,6 +20,12 @@ space, where every method reduces to its underlying Runge–Kutta tableau.
   c = (0, 3/4, 17/24)). Order 3.
 * ``magnus4``   — fourth-order Magnus for a prescribed ω(t): two Gauss points and one
   commutator, Ω = h/2 (ω₁ + ω₂) + (√3/12) h² ω₁ × ω₂. Order 4 (kinematic problems).
+
+Step limits (warn): q moves by exact exponentials, but ω is stepped by a Runge–Kutta
+formula whose stability polynomial R scales the linearised wobble by |R(ihν)|² per step:
+1 + (hν)² for Lie–Euler (its energy grows: at hν = 1 it doubles every step), Taylor to z⁴
+for RKMK4 and CF4, and CG3's tableau (Taylor to z³) for CG3. A run warns once
+N·|ln |R(ihν)|²| ≥ 1 (:func:`ga_rotors.integrators.limits.wobble_damping`).
 """
 
 from __future__ import annotations
@@ -28,6 +34,7 @@ from .._kernels import cross
 from ._arith import axpy3, rk4_sum3
 from ._rigid import turn
 from .base import FREE, KINEMATIC, TORQUED, TemplateIntegrator, register
+from .limits import stability_polynomial, wobble_damping
 from .slots import accel, o_from_quat, o_quat, omega
 
 # Crouch–Grossman 3 (Crouch & Grossman, J. Nonlinear Sci. 3 (1993) 1).
@@ -157,7 +164,17 @@ def magnus4_kinematic_step(t, x, h, params):
 _SPHERE = frozenset({"rotor", "quaternion"})
 
 
-def _lie(name, order, description, steps, helpers=()):
+#: The stability polynomials of the ω update (q moves by exact exponentials, so only the
+#: wobble of ω is damped or amplified): Lie–Euler is explicit Euler, 1 + z; RKMK4 and CF4
+#: reduce to 4-stage order-4 methods on a vector space (Taylor to z⁴); CG3 is 3-stage order 3.
+LIE_EULER_POLYNOMIAL = (1.0, 1.0)
+ORDER4_POLYNOMIAL = (1.0, 1.0, 1.0 / 2.0, 1.0 / 6.0, 1.0 / 24.0)
+CG3_POLYNOMIAL = stability_polynomial(
+    ((0.0, 0.0, 0.0), (CG3_A21, 0.0, 0.0), (CG3_A31, CG3_A32, 0.0)), CG3_B
+)
+
+
+def _lie(name, order, description, steps, helpers=(), polynomial=None):
     """Register a Lie-group method: unit norm by construction, sphere paths only."""
     return register(
         TemplateIntegrator(
@@ -168,6 +185,7 @@ def _lie(name, order, description, steps, helpers=()):
             paths=_SPHERE,
             steps=steps,
             helpers=helpers,
+            step_limit=None if polynomial is None else wobble_damping(polynomial, steps_q=False),
         )
     )
 
@@ -177,6 +195,7 @@ LIE_EULER = _lie(
     1,
     "Lie–Euler: q ⊗ Exp(hω), ω + hω̇",
     {FREE: lie_euler_step, TORQUED: lie_euler_step, KINEMATIC: lie_euler_kinematic_step},
+    polynomial=LIE_EULER_POLYNOMIAL,
 )
 RKMK4 = _lie(
     "rkmk4",
@@ -184,6 +203,7 @@ RKMK4 = _lie(
     "Runge–Kutta–Munthe-Kaas with RK4's tableau and a truncated dexp⁻¹",
     {FREE: rkmk4_step, TORQUED: rkmk4_step},
     (dexpinv,),
+    polynomial=ORDER4_POLYNOMIAL,
 )
 CF4 = _lie(
     "cf4",
@@ -191,12 +211,14 @@ CF4 = _lie(
     "commutator-free Lie group method of order 4 (Celledoni–Marthinsen–Owren)",
     {FREE: cf4_step, TORQUED: cf4_step},
     (tuple_combo,),
+    polynomial=ORDER4_POLYNOMIAL,
 )
 CG3 = _lie(
     "cg3",
     3,
     "Crouch–Grossman order 3: products of exponentials of frozen rates",
     {FREE: cg3_step, TORQUED: cg3_step},
+    polynomial=CG3_POLYNOMIAL,
 )
 MAGNUS4 = _lie(
     "magnus4",

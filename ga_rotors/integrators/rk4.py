@@ -9,12 +9,19 @@ Order 4; it conserves nothing exactly: the norm of q or R, the energy and |L| dr
 O(h⁴) per unit time (the tests measure the constants by step halving). ``rk4_renorm``
 projects q or R back to unit norm after each step, which makes the norm exact and leaves
 the order at 4 (the projection moves the state by O(h⁵), the size of the step's error).
+
+Step limit (warn): on the linearised wobble ẏ = iνy a step multiplies y by R(ihν),
+R(z) = 1 + z + z²/2 + z³/6 + z⁴/24, and |R(iy)|² = 1 − y⁶/72 + y⁸/576 < 1 for 0 < y < 2√2:
+the wobble's energy decays (and for ``rk4`` |q|, whose rate is |ω|/2) with no sign of it in
+the state. A run warns once N·|ln |R(ihν)|²| ≥ 1, the energy changed by a factor e
+(:func:`ga_rotors.integrators.limits.wobble_damping`).
 """
 
 from __future__ import annotations
 
 from ._arith import axpy3, rk4_sum3
 from .base import FREE, KINEMATIC, TORQUED, TemplateIntegrator, register
+from .limits import wobble_damping
 from .slots import accel, o_axpy, o_normalize, o_rate, o_rk4, omega
 
 
@@ -60,6 +67,9 @@ def rk4_renorm_kinematic_step(t, x, h, params):
     return o_normalize(rk4_kinematic_step(t, x, h, params))
 
 
+#: RK4's stability polynomial: any 4-stage explicit method of order 4 has R(z) = Σ_{k≤4} z^k/k!.
+RK4_POLYNOMIAL = (1.0, 1.0, 1.0 / 2.0, 1.0 / 6.0, 1.0 / 24.0)
+
 RK4 = register(
     TemplateIntegrator(
         name="rk4",
@@ -68,6 +78,8 @@ RK4 = register(
         conserves=frozenset(),
         paths=frozenset({"rotor", "quaternion", "euler"}),
         steps={FREE: rk4_step, TORQUED: rk4_step, KINEMATIC: rk4_kinematic_step},
+        # |R(iy)|² = 1 − y⁶/72 + y⁸/576 < 1: the wobble and |q| (q̇ has rate |ω|/2) decay.
+        step_limit=wobble_damping(RK4_POLYNOMIAL, steps_q=True),
     )
 )
 
@@ -84,5 +96,7 @@ RK4_RENORM = register(
             KINEMATIC: rk4_renorm_kinematic_step,
         },
         helpers=(rk4_step, rk4_kinematic_step),
+        # |q| is projected back each step: only the wobble of ω is damped by |R(ihν)|².
+        step_limit=wobble_damping(RK4_POLYNOMIAL, steps_q=False),
     )
 )

@@ -28,6 +28,12 @@ properties hold, except the space-frame L, which the torque changes. A torque th
 ratios 1.0 for every splitting under isotropic damping), so these methods declare
 ``torques = ORIENTATION_TORQUES`` and refuse such a torque unless the problem accepts
 the lower order.
+
+Step limits (warn): a sub-flow turns L about axis i by h·L_i/I_i ≤ h|L|/I_min, and the
+compositions' error terms are nested commutators of these turns; from 1 rad per step the
+leading term no longer bounds them, and the thin axis (whose rate is L_i/I_min) is lost.
+The axis splittings warn from h|L|/I_min = 1; ``split_sym``, whose only approximation is
+its remainder rotation h·L_r(1/I_r − 1/I_p), from h|L|·|1/I_r − 1/I_p| = 1.
 """
 
 from __future__ import annotations
@@ -35,6 +41,7 @@ from __future__ import annotations
 from .._kernels import qmul_exp
 from ._rigid import momenta, rates, rotate_about
 from .base import FREE, ORIENTATION_TORQUES, TORQUED, TemplateIntegrator, register
+from .limits import principal_rotation_angle, symmetric_remainder_angle
 from .slots import o_from_quat, o_quat, torque
 
 SUZUKI4 = (
@@ -182,6 +189,7 @@ def _splitting(name, order, description, free_step, torqued_step=None):
             steps=steps,
             helpers=_HELPERS,
             torques=ORIENTATION_TORQUES,
+            step_limit=principal_rotation_angle,
         )
     )
 
@@ -220,5 +228,6 @@ SPLIT_SYM = register(
         steps={FREE: split_sym_step},
         helpers=(symmetric_pair, symmetric_flow),
         torques=ORIENTATION_TORQUES,  # no torqued step yet; a kick would need this too
+        step_limit=symmetric_remainder_angle,
     )
 )

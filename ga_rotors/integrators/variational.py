@@ -23,6 +23,10 @@ so the loop ends and reports the run incomplete instead of returning a wrong rot
 Order 2, symplectic, time-reversible; for the free body |Π| and the space-frame momentum
 q Π q* are conserved exactly (Π only ever turns by F*·F, and q by ⊗F), up to the Newton
 tolerance and rounding, and the energy error stays bounded.
+
+Step limit (raise): h|ω| < 1, the step at which sin θ = h ω_k loses its solution about a
+principal axis; a run starting past it is refused with an InputError (there is no
+degraded answer to give: it would stop at its first step).
 """
 
 from __future__ import annotations
@@ -33,6 +37,7 @@ from math import sqrt
 from .._kernels import cross, qconj, qmul, qrotate
 from ._rigid import momenta, rates, solve3
 from .base import FREE, ORIENTATION_TORQUES, TORQUED, TemplateIntegrator, register
+from .limits import moser_veselov
 from .slots import o_from_quat, o_quat, torque
 
 #: Newton's last correction (relative) below which 30 iterations are accepted: quadratic
@@ -148,5 +153,7 @@ LGVI = register(
         steps={FREE: lgvi_free_step, TORQUED: lgvi_torqued_step},
         helpers=(discrete_rotation,),
         torques=ORIENTATION_TORQUES,  # M(q): with M(ω) the explicit M_{k+1} makes it order 1
+        step_limit=moser_veselov,
+        step_limit_action="raise",  # no step exists past it: refuse rather than stop at t0
     )
 )

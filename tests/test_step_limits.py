@@ -1,0 +1,94 @@
+"""Every fixed-step integrator declares its step limit; a run past it warns (or, for lgvi,
+is refused), and one just inside it does not."""
+
+from __future__ import annotations
+
+import math
+import warnings
+
+import numpy as np
+import pytest
+
+from ga_rotors.errors import InputError, StepLimitWarning
+from ga_rotors.integrators import Problem, catalogue, get
+from ga_rotors.simulate import simulate
+
+BODY = (1.0, 1.5, 2.0)
+W0 = (5.0, 3.0, 100.0)
+N = 100
+LIMITED = [c["name"] for c in catalogue() if c["step_limit"] != "none"]
+
+
+def _step_at(name: str, fraction: float) -> float:
+    """The step h at which the declared quantity is ``fraction`` of its limit (bisection on
+    h: every quantity grows monotonically with h over [0, h_hi])."""
+    from scipy.optimize import brentq
+
+    lim = get(name).step_limit
+
+    def gap(h):
+        q = lim(BODY, W0, h, N)
+        return q.value - fraction * q.limit
+
+    hi = 1e-4
+    while gap(hi) < 0:
+        hi *= 2
+    return brentq(gap, 0.0, hi, xtol=1e-15, rtol=1e-12)
+
+
+def test_every_fixed_step_method_declares_a_limit():
+    assert set(LIMITED) == {c["name"] for c in catalogue()} - {"dop853", "magnus4"}
+
+
+@pytest.mark.parametrize("name", LIMITED)
+def test_step_limit_warns_just_past_and_not_just_below(name):
+    # 1% either side of the limit, the step solved from the declared quantity itself.
+    method, problem = get(name), Problem(BODY)
+    below, past = _step_at(name, 0.99), _step_at(name, 1.01)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", StepLimitWarning)
+        assert not method.check_step(problem, W0, below, N).exceeded
+    if method.step_limit_action == "raise":
+        with pytest.raises(InputError, match=f"h: {name} cannot step"):
+            method.run(problem, "quaternion", (1.0, 0, 0, 0), W0, 0.0, past, 1, 1)
+    else:
+        with pytest.warns(StepLimitWarning, match=f"step: {name} cannot step"):
+            method.check_step(problem, W0, past, N)
+
+
+def test_fast_spin_rk4_warns_by_how_much_the_wobble_is_damped():
+    # docs/stability.md's fast disk: ω⊥ turns at ν = 1000 rad/s, hν = 1, and each step
+    # scales it by |R(i)| = sqrt(0.987847); the warning's factor is that to the 1000th power,
+    # which the run reproduces (ω⊥ obeys a linear equation: to rounding, 1000 steps × 8u).
+    with pytest.warns(StepLimitWarning, match=r"rk4 cannot step .* damped × 0.00221") as rec:
+        tr = simulate((1.0, 1.0, 2.0), (1.0, 0, 0, 0), (5.0, 3.0, 1000.0), duration=1.0,
+                      step=1e-3, paths="quaternion", integrator="rk4")  # fmt: skip
+    assert len(rec) == 1
+    measured = np.hypot(*tr.w[-1, :2]) / math.hypot(5.0, 3.0)
+    assert abs(measured / 0.00221 - 1) < 0.5e-2 / 0.221  # the message's 3 digits
+
+
+def test_lgvi_refuses_a_step_past_h_omega_1():
+    with pytest.raises(InputError, match=r"lgvi cannot step h·\|ω\| = 1.1 \(limit 1\)"):
+        simulate(BODY, (1.0, 0, 0, 0), (0.0, 0.0, 110.0), duration=0.1, step=0.01,
+                 paths="quaternion", integrator="lgvi")  # fmt: skip
+
+
+def test_scene_and_cli_name_the_file_and_integrator_step(tmp_path, capsys):
+    from ga_rotors.cli import main
+    from ga_rotors.scene import load_scene
+    from ga_rotors.scene_run import simulate as run_scene
+
+    # 500 steps at hν = 0.846: N·|ln|R|²| = 500 × 0.00465 = 2.3, past 1.
+    scene = load_scene("fast_spinner").replace(
+        {"integrator.step": 1e-3, "time.duration": 0.5, "time.output_step": 1e-3}
+    )
+    path = tmp_path / "coarse.toml"
+    path.write_text(scene.to_toml())
+    with pytest.warns(StepLimitWarning, match=r"coarse.toml: integrator.step: rk4 cannot"):
+        run_scene(str(path))
+    assert main(["run", str(path), "--out", str(tmp_path / "out")]) == 0
+    err = capsys.readouterr().err
+    lines = [line for line in err.splitlines() if "StepLimit" in line or "cannot step" in line]
+    assert len(lines) == 1 and lines[0].startswith("ga-rotors: warning: ")
+    assert "Traceback" not in err
