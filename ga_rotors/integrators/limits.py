@@ -177,6 +177,11 @@ def moser_veselov(inertia, w, h, nsteps) -> StepLimit:
     )
 
 
+def _momentum(inertia, w) -> float:
+    """|L| = |I ω| (principal frame)."""
+    return math.sqrt(sum((float(i) * float(c)) ** 2 for i, c in zip(inertia, w, strict=True)))
+
+
 def principal_rotation_angle(inertia, w, h, nsteps) -> StepLimit:
     """An axis splitting turns L about axis i by h·L_i/I_i ≤ h|L|/I_min per sub-flow; its
     error terms are nested commutators of those turns, powers of that angle times |L|/I_i:
@@ -187,7 +192,7 @@ def principal_rotation_angle(inertia, w, h, nsteps) -> StepLimit:
     >>> principal_rotation_angle((1.0, 1.0, 1e-6), (1.0, 0.5, 0.3), 0.01, 1000).exceeded
     True
     """
-    momentum = math.sqrt(sum((float(i) * float(c)) ** 2 for i, c in zip(inertia, w)))
+    momentum = _momentum(inertia, w)
     y = h * momentum / min(float(i) for i in inertia)
     return StepLimit(
         "h·|L|/I_min",
@@ -211,7 +216,7 @@ def symmetric_remainder_angle(inertia, w, h, nsteps) -> StepLimit:
 
     inertia = tuple(float(i) for i in inertia)
     _, p, r = symmetric_pair(inertia)
-    momentum = math.sqrt(sum((i * float(c)) ** 2 for i, c in zip(inertia, w)))
+    momentum = _momentum(inertia, w)
     y = h * momentum * abs(1.0 / inertia[r] - 1.0 / inertia[p])
     return StepLimit(
         "h·|L|·|1/I_r − 1/I_p|",
