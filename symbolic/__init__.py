@@ -15,3 +15,5 @@ Modules, each with one job:
 * :mod:`symbolic.audit`: every equation of the two source documents, checked
 * :mod:`symbolic.verify`: the ``ga-rotors verify`` command
 """
+
+__all__: list[str] = []  # a namespace of submodules: nothing defined here

@@ -46,6 +46,9 @@ from itertools import combinations
 
 import sympy
 
+__all__ = ["Blade", "CliffordAlgebra", "Multivector", "blade_name", "blade_product"]
+
+
 Blade = tuple[int, ...]
 
 

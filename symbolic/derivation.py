@@ -28,6 +28,8 @@ from dataclasses import dataclass, field
 
 import sympy
 
+__all__ = ["Derivation", "Step", "show", "step"]
+
 
 @dataclass(frozen=True)
 class Step:
@@ -46,7 +48,21 @@ class Step:
 
 @dataclass(frozen=True)
 class Derivation:
-    """A titled sequence of checked steps."""
+    """A titled sequence of checked steps.
+
+    ``critical`` marks the derivations the numeric package relies on; ``details`` are
+    extra lines printed after the steps.
+
+    Examples
+    --------
+    >>> import sympy
+    >>> x = sympy.Symbol("x", real=True)
+    >>> holds = sympy.expand((1 + x) ** 2 - (1 + 2 * x + x**2)) == 0
+    >>> checks = (step("expands", show(sympy.expand((1 + x) ** 2)), holds),)
+    >>> d = Derivation("square", "(1 + x)² = 1 + 2x + x²", checks)
+    >>> d.ok, d.critical, d.failures()
+    (True, True, [])
+    """
 
     title: str
     statement: str

@@ -21,6 +21,29 @@ from collections.abc import Sequence
 
 import sympy
 
+__all__ = [
+    "UNITS",
+    "UNIT_TABLE",
+    "Quat",
+    "add",
+    "conj",
+    "is_equal",
+    "left_matrix",
+    "mul",
+    "norm2",
+    "pure",
+    "quat",
+    "right_matrix",
+    "rotate",
+    "rotation_matrix",
+    "scale",
+    "sub",
+    "symbols",
+    "unit",
+    "vector",
+]
+
+
 Quat = tuple[sympy.Expr, sympy.Expr, sympy.Expr, sympy.Expr]
 
 UNITS = ("1", "i", "j", "k")

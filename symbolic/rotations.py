@@ -31,6 +31,23 @@ import sympy
 
 from . import hamilton
 
+__all__ = [
+    "AXES",
+    "SEQUENCES",
+    "axis_matrix",
+    "axis_quaternion",
+    "body_rates_by_axes",
+    "body_rates_from_matrix",
+    "body_rates_from_quaternion",
+    "euler_matrix",
+    "euler_quaternion",
+    "rate_jacobian",
+    "skew",
+    "time_derivative",
+    "unskew",
+]
+
+
 AXES = "xyz"
 
 #: The 12 axis orders (6 proper Euler, first axis = third; 6 Tait-Bryan, all different).

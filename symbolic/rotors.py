@@ -29,6 +29,25 @@ from . import hamilton, trig
 from .derivation import Derivation, show, step
 from .isomorphisms import CL3, quaternion_to_rotor, rotor_to_quaternion
 
+__all__ = [
+    "E1",
+    "E2",
+    "E3",
+    "PSEUDOSCALAR",
+    "Kinematics",
+    "Sandwich",
+    "axis_angle",
+    "dual_bivector",
+    "rodrigues_matrix",
+    "rotor_kinematics",
+    "rotor_sandwich",
+    "spherical_unit",
+    "unit_rotation_matrix",
+    "vector",
+    "vector_part",
+]
+
+
 E1, E2, E3 = CL3.basis_vectors()
 PSEUDOSCALAR = CL3.pseudoscalar()
 

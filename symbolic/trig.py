@@ -30,6 +30,8 @@ import sympy
 from sympy.polys.domains import EX, QQ
 from sympy.polys.rings import ring
 
+__all__ = ["all_identities", "is_identity", "is_zero", "matrices_equal", "reduce_on_circles"]
+
 
 @cache
 def _circle_symbols(angle: sympy.Expr) -> tuple[sympy.Symbol, sympy.Symbol]:

@@ -28,8 +28,18 @@ from enum import StrEnum
 
 from ..derivation import Step
 
+__all__ = ["Finding", "Reading", "Verdict", "verdict_of"]
+
 
 class Verdict(StrEnum):
+    """The three verdicts; :attr:`short` is the table's column.
+
+    Examples
+    --------
+    >>> Verdict("wrong") is Verdict.WRONG, Verdict.CONVENTION.short
+    (True, 'convention')
+    """
+
     CORRECT = "correct"
     CONVENTION = "correct under a stated convention"
     WRONG = "wrong"
@@ -44,7 +54,25 @@ class Verdict(StrEnum):
 
 
 def verdict_of(holds_as_printed: bool, holds_under_convention: bool = False) -> Verdict:
-    """The verdict from the two checks an entry makes."""
+    """The verdict from the two checks an entry makes.
+
+    Examples
+    --------
+    A reading that fails as printed but holds once a convention is fixed: (q v q*)
+    rotates v actively; the printed matrix is its transpose (the passive reading).
+
+    >>> import sympy
+    >>> from symbolic import hamilton
+    >>> q, v = hamilton.symbols("q"), sympy.symbols("v1:4")
+    >>> active = sympy.Matrix(hamilton.rotate(q, v))
+    >>> m = hamilton.rotation_matrix(q)
+    >>> as_printed = sympy.expand(m.T * sympy.Matrix(v) - active) == sympy.zeros(3, 1)
+    >>> transposed = sympy.expand(m * sympy.Matrix(v) - active) == sympy.zeros(3, 1)
+    >>> as_printed, transposed
+    (False, True)
+    >>> verdict_of(as_printed, transposed)
+    <Verdict.CONVENTION: 'correct under a stated convention'>
+    """
     if holds_as_printed:
         return Verdict.CORRECT
     if holds_under_convention:
@@ -54,7 +82,14 @@ def verdict_of(holds_as_printed: bool, holds_under_convention: bool = False) -> 
 
 @dataclass(frozen=True)
 class Reading:
-    """One way of reading damaged text, and what the check found under it."""
+    """One way of reading damaged text, and what the check found under it.
+
+    Examples
+    --------
+    >>> r = Reading("q⁻¹ = q*/|q|²", "holds exactly", tested=True)
+    >>> r.tested, r.outcome
+    (True, 'holds exactly')
+    """
 
     text: str
     outcome: str
@@ -63,7 +98,35 @@ class Reading:
 
 @dataclass(frozen=True)
 class Finding:
-    """The audit of one equation or claim."""
+    """The audit of one equation or claim.
+
+    Examples
+    --------
+    The conjugate has the same norm, checked exactly:
+
+    >>> import sympy
+    >>> from symbolic import hamilton
+    >>> from symbolic.derivation import step
+    >>> q = hamilton.symbols("q")
+    >>> holds = sympy.expand(hamilton.norm2(hamilton.conj(q)) - hamilton.norm2(q)) == 0
+    >>> f = Finding(
+    ...     "notes", "N0", "norm of the conjugate", printed="|q^*| = |q|",
+    ...     reading="|q*| = |q|", reconstruction="nothing lost.", verdict=verdict_of(holds),
+    ...     evidence="both sides expand to q0² + q1² + q2² + q3²",
+    ...     checks=(step("|q*|² = |q|²", "expanded exactly", holds),),
+    ... )
+    >>> f.verdict.value, f.checks_ok
+    ('correct', True)
+    >>> print(f.report())
+    notes N0: norm of the conjugate
+      printed (as extracted): |q^*| = |q|
+      read as: |q*| = |q|
+      reconstruction: nothing lost.
+      verdict: correct
+      evidence: both sides expand to q0² + q1² + q2² + q3²
+      [ok] |q*|² = |q|²
+           expanded exactly
+    """
 
     source: str  # "paper" or "notes"
     label: str  # "(12)", "(19) singular set", "N9"

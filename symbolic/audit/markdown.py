@@ -4,6 +4,9 @@ from __future__ import annotations
 
 from .core import Finding, Verdict
 
+__all__ = ["HEADER", "render", "sympy_series"]
+
+
 HEADER = """\
 # Audit of the source documents
 
@@ -73,13 +76,32 @@ def _finding(f: Finding) -> list[str]:
 
 
 def sympy_series() -> str:
-    """SymPy's major.minor: how expressions print can change between series, not within one."""
+    """SymPy's major.minor: how expressions print can change between series, not within one.
+
+    Examples
+    --------
+    >>> import re, sympy
+    >>> series = sympy_series()
+    >>> bool(re.fullmatch(r"\\d+\\.\\d+", series)), sympy.__version__.startswith(series + ".")
+    (True, True)
+    """
     import sympy
 
     return ".".join(sympy.__version__.split(".")[:2])
 
 
 def render(audit) -> str:
+    """The Markdown page ``docs/audit.md`` for ``audit``: summary, table, every finding.
+
+    Examples
+    --------
+    >>> from symbolic.audit import run_audit
+    >>> page = render(run_audit())
+    >>> page.splitlines()[0]
+    '# Audit of the source documents'
+    >>> '### notes N9: inverse (**wrong**)' in page
+    True
+    """
     from . import SOURCES
 
     lines = [HEADER.format(sympy=sympy_series()), "## Summary", ""]

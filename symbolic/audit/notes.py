@@ -28,6 +28,10 @@ from .common import (
 )
 from .core import Finding, Reading, verdict_of
 
+# The entries are rows of the audit, reached through ENTRIES (or symbolic.audit.find):
+# each builds one Finding and is not an API of its own.
+__all__ = ["ENTRIES", "SOURCE"]
+
 SOURCE = "notes"
 Q0, Q1, Q2, Q3 = Q
 P0, P1, P2, P3 = P

@@ -13,6 +13,10 @@ from ..algebra import CliffordAlgebra, blade_product
 from ..derivation import step
 from .core import Finding, Reading, verdict_of
 
+# The entries are rows of the audit, reached through ENTRIES (or symbolic.audit.find):
+# each builds one Finding and is not an API of its own.
+__all__ = ["ENTRIES", "SOURCE"]
+
 SOURCE = "paper"
 
 

@@ -38,6 +38,10 @@ from .common import (
 from .core import Finding, Reading, verdict_of
 from .paper_quaternions import _printed_q12
 
+# The entries are rows of the audit, reached through ENTRIES (or symbolic.audit.find):
+# each builds one Finding and is not an API of its own.
+__all__ = ["ENTRIES", "SOURCE"]
+
 SOURCE = "paper"
 WX, WY, WZ = OMEGA
 Q0, Q1, Q2, Q3 = Q

@@ -26,6 +26,10 @@ from .common import (
 )
 from .core import Finding, Reading, verdict_of
 
+# The entries are rows of the audit, reached through ENTRIES (or symbolic.audit.find):
+# each builds one Finding and is not an API of its own.
+__all__ = ["ENTRIES", "SOURCE"]
+
 SOURCE = "paper"
 
 
