@@ -16,4 +16,6 @@ Conventions (scalar-first Hamilton quaternions, active rotations, scipy's Euler 
 are fixed once in ``docs/conventions.md``.
 """
 
+__all__ = ["__version__"]  # the subpackages and modules are imported by name
+
 __version__ = "0.1.0"

@@ -59,6 +59,16 @@ def free_euler_rates(inertia, w):
 
     Written ((I₂ − I₃)/I₁)·ω₂·ω₃ so the inertia ratios depend on loop invariants only: a
     compiled loop computes them once instead of dividing in every stage.
+
+    Examples
+    --------
+    >>> free_euler_rates((1.0, 2.0, 3.0), (1.0, 1.0, 1.0))  # ((2-3)/1, (3-1)/2, (1-2)/3)
+    (-1.0, 1.0, -0.3333333333333333)
+
+    About a principal axis the body spins steadily: ω̇ = 0.
+
+    >>> free_euler_rates((1.0, 2.0, 3.0), (0.0, 5.0, 0.0))
+    (0.0, 0.0, 0.0)
     """
     i1, i2, i3 = inertia
     w1, w2, w3 = w
@@ -74,6 +84,13 @@ def euler_rates(inertia, w, tau):
     """ω̇ from Euler's equations: I ω̇ = (I ω) × ω + τ, principal frame, tuples in and out.
 
     τ/I is taken as τ·(1/I) (hoisted out of loops, ≤ 1 ulp more rounding).
+
+    Examples
+    --------
+    The free rates of :func:`free_euler_rates` plus τ/I:
+
+    >>> euler_rates((1.0, 2.0, 3.0), (1.0, 1.0, 1.0), (1.0, 2.0, 3.0))
+    (0.0, 2.0, 0.6666666666666667)
     """
     g = free_euler_rates(inertia, w)
     return (

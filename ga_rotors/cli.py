@@ -17,6 +17,8 @@ import sys
 
 from .errors import GaRotorsError
 
+__all__ = ["COMMANDS", "build_parser", "main"]
+
 #: sub-command name -> module implementing it.
 COMMANDS: dict[str, str] = {
     "paper": "ga_rotors.paper",
@@ -31,6 +33,16 @@ COMMANDS: dict[str, str] = {
 
 
 def build_parser() -> argparse.ArgumentParser:
+    """The ``ga-rotors`` argument parser: one sub-parser per entry of :data:`COMMANDS`.
+
+    Each parsed namespace carries the command's ``run`` as ``args._run``.
+
+    Examples
+    --------
+    >>> args = build_parser().parse_args(["verify", "--details", "12", "N9"])
+    >>> args.command, args.details, args._run.__module__
+    ('verify', ['12', 'N9'], 'symbolic.verify')
+    """
     parser = argparse.ArgumentParser(
         prog="ga-rotors",
         description="Rotations in geometric algebra: rotors, quaternions, rigid bodies.",
@@ -51,7 +63,31 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 def main(argv: list[str] | None = None) -> int:
-    """Entry point of the ``ga-rotors`` console script."""
+    """Entry point of the ``ga-rotors`` console script.
+
+    Parameters
+    ----------
+    argv : list of str, optional
+        The arguments after ``ga-rotors`` (default: ``sys.argv[1:]``).
+
+    Returns
+    -------
+    int
+        The exit status: the command's, 2 for an error the user caused (printed as one
+        line on stderr, no traceback), 130 when interrupted.
+
+    Examples
+    --------
+    >>> main(["scenes"])
+    damped_top ...
+    0
+    >>> import contextlib, io
+    >>> err = io.StringIO()
+    >>> with contextlib.redirect_stderr(err):
+    ...     status = main(["show", "no_such_scene"])
+    >>> status, err.getvalue().split(";")[0]
+    (2, 'ga-rotors: error: no_such_scene: no such file, and no bundled scene of that name')
+    """
     args = build_parser().parse_args(argv)
     try:
         return int(args._run(args) or 0)

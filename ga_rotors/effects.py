@@ -79,21 +79,49 @@ STANDARD_GRAVITY = 9.80665
 
 @jit
 def gravity(t, q, w, p):
-    """Torque of the weight about the pivot: r × (q* F q), F = m g (space), r = p[3:6]."""
+    """Torque of the weight about the pivot: r × (q* F q), F = m g (space), r = p[3:6].
+
+    Examples
+    --------
+    m = 2 kg, g = 9.81 m/s² down, centre of mass 0.1 m up the body axis, tilted by
+    θ = 0.5 rad about y: the torque is m g l sin θ about the body y axis.
+
+    >>> import math
+    >>> p = np.array([0.0, 0.0, -2.0 * 9.81, 0.0, 0.0, 0.1])
+    >>> tilted = (math.cos(0.25), 0.0, math.sin(0.25), 0.0)
+    >>> tau = gravity(0.0, tilted, (0.0, 0.0, 0.0), p)
+    >>> tau[0] == tau[2] == 0.0, math.isclose(tau[1], 2.0 * 9.81 * 0.1 * math.sin(0.5))
+    (True, True)
+    >>> gravity(0.0, (1.0, 0.0, 0.0, 0.0), (0.0, 0.0, 0.0), p)  # upright: balanced
+    (-0.0, 0.0, 0.0)
+    """
     f = qrotate(qconj(q), (p[0], p[1], p[2]))
     return cross((p[3], p[4], p[5]), f)
 
 
 @jit
 def isotropic_damping(t, q, w, p):
-    """τ = −c ω, c = p[0]."""
+    """τ = −c ω, c = p[0].
+
+    Examples
+    --------
+    >>> isotropic_damping(0.0, (1.0, 0.0, 0.0, 0.0), (1.0, 2.0, 3.0), np.array([0.5]))
+    (-0.5, -1.0, -1.5)
+    """
     c = p[0]
     return (-c * w[0], -c * w[1], -c * w[2])
 
 
 @jit
 def damping(t, q, w, p):
-    """τ = −C ω with C = p[0:9] row-major (principal frame)."""
+    """τ = −C ω with C = p[0:9] row-major (principal frame).
+
+    Examples
+    --------
+    >>> c = np.diag([1.0, 2.0, 3.0]).ravel()
+    >>> damping(0.0, (1.0, 0.0, 0.0, 0.0), (1.0, 2.0, 3.0), c)
+    (-1.0, -4.0, -9.0)
+    """
     return (
         -(p[0] * w[0] + p[1] * w[1] + p[2] * w[2]),
         -(p[3] * w[0] + p[4] * w[1] + p[5] * w[2]),
@@ -103,13 +131,32 @@ def damping(t, q, w, p):
 
 @jit
 def body_torque(t, q, w, p):
-    """A constant body-frame torque p[0:3]."""
+    """A constant body-frame torque p[0:3].
+
+    Examples
+    --------
+    Whatever the orientation and ω:
+
+    >>> body_torque(0.0, (0.0, 1.0, 0.0, 0.0), (1.0, 2.0, 3.0), np.array([0.0, 0.0, 1e-3]))
+    (0.0, 0.0, 0.001)
+    """
     return (p[0], p[1], p[2])
 
 
 @jit
 def space_torque(t, q, w, p):
-    """A constant space-frame torque p[0:3], in body components q* τ q."""
+    """A constant space-frame torque p[0:3], in body components q* τ q.
+
+    Examples
+    --------
+    A body turned 90° about z feels the space x axis along its own −y:
+
+    >>> import math
+    >>> q = (math.cos(math.pi / 4), 0.0, 0.0, math.sin(math.pi / 4))
+    >>> tau = space_torque(0.0, q, (0.0, 0.0, 0.0), np.array([1.0, 0.0, 0.0]))
+    >>> [round(c, 12) for c in tau]
+    [0.0, -1.0, 0.0]
+    """
     return qrotate(qconj(q), (p[0], p[1], p[2]))
 
 

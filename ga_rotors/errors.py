@@ -7,18 +7,65 @@ arguments are also :class:`ValueError`, so ``except ValueError`` keeps working.
 
 from __future__ import annotations
 
+__all__ = [
+    "GaRotorsError",
+    "GimbalLockWarning",
+    "InputError",
+    "IntegrationStoppedWarning",
+    "PrecisionError",
+    "SceneError",
+]
+
 
 class GaRotorsError(Exception):
-    """Base class of the errors ga_rotors reports to users."""
+    """Base class of the errors ga_rotors reports to users.
+
+    Examples
+    --------
+    One ``except`` catches every error a user can cause:
+
+    >>> from ga_rotors import quaternion
+    >>> try:
+    ...     quaternion.normalize([0.0, 0.0, 0.0, 0.0])
+    ... except GaRotorsError as exc:
+    ...     print(type(exc).__name__, "-", exc)
+    InputError - q: expected nonzero values, got zero at index ()
+    """
 
 
 class InputError(GaRotorsError, ValueError):
-    """An argument has the wrong shape, type or value; the message names it."""
+    """An argument has the wrong shape, type or value; the message names it.
+
+    Examples
+    --------
+    >>> from ga_rotors import quaternion
+    >>> quaternion.normalize([1.0, 2.0, 3.0])
+    Traceback (most recent call last):
+    ...
+    ga_rotors.errors.InputError: q: expected ...
+    >>> issubclass(InputError, ValueError)  # ``except ValueError`` keeps working
+    True
+    """
 
 
 class PrecisionError(GaRotorsError, ArithmeticError):
     """A computation cannot reach the accuracy it promises (an exact reference whose
-    rounding-error bound exceeds the requested limit); raised instead of a degraded answer."""
+    rounding-error bound exceeds the requested limit); raised instead of a degraded answer.
+
+    Examples
+    --------
+    The heavy top's exact solution, asked for a time so far off that its rounding-error
+    bound exceeds the default ``max_error``:
+
+    >>> import math
+    >>> from ga_rotors.reference.heavy_top import HeavyTop
+    >>> tilted = (math.cos(0.25), 0.0, math.sin(0.25), 0.0)  # θ = 0.5 rad about y
+    >>> top = HeavyTop((1.0, 1.0, 0.5), 1.0, tilted, (0.0, 0.0, 10.0))
+    >>> top.state([1e8])
+    Traceback (most recent call last):
+    ...
+    ga_rotors.errors.PrecisionError: heavy top reference: rounding-error bound ... exceeds ...
+    """
 
 
 class GimbalLockWarning(UserWarning):
@@ -26,6 +73,18 @@ class GimbalLockWarning(UserWarning):
 
     The free angle is set by a documented rule (see ``docs/conventions.md``);
     the rotation the angles describe is still exact.
+
+    Examples
+    --------
+    The identity in z-y'-z'' has θ = 0, where only ψ + φ is defined (φ is set to 0):
+
+    >>> import warnings
+    >>> from ga_rotors import euler
+    >>> with warnings.catch_warnings(record=True) as caught:
+    ...     warnings.simplefilter("always")
+    ...     angles = euler.from_quaternion([1.0, 0.0, 0.0, 0.0], "ZYZ")
+    >>> angles.tolist(), [w.category.__name__ for w in caught]
+    ([0.0, 0.0, 0.0], ['GimbalLockWarning'])
     """
 
 
@@ -34,6 +93,25 @@ class IntegrationStoppedWarning(UserWarning):
     (the Euler-angle path at sin θ = 0, an explicit method blowing up, an implicit step
     with no solution or no convergence at this step size). The trajectory holds the
     samples up to then; ``meta["paths"][path]["ended_at"]`` says when.
+
+    Examples
+    --------
+    The Euler-angle path cannot start at θ = 0 (sin θ = 0 divides its rates):
+
+    >>> import warnings
+    >>> from ga_rotors import shapes
+    >>> from ga_rotors.simulate import simulate
+    >>> with warnings.catch_warnings(record=True) as caught:
+    ...     warnings.simplefilter("always")
+    ...     tr = simulate(shapes.disk(2.0, 0.075), [1.0, 0, 0, 0], [0.02, 0.03, 15.7],
+    ...                   duration=1.0, step=1e-3, paths=("rotor", "euler"),
+    ...                   euler_angles=(0.0, 0.0, 0.0))
+    >>> [w.category.__name__ for w in caught]
+    ['IntegrationStoppedWarning']
+    >>> tr.meta["paths"]["euler"]["complete"], tr.meta["paths"]["euler"]["ended_at"]
+    (False, 0.0)
+    >>> tr.meta["paths"]["rotor"]["complete"]
+    True
     """
 
 
@@ -51,6 +129,15 @@ class SceneError(InputError):
         The scene's file name (``<dict>`` for a scene built in Python).
     key : str
         Dotted path of the offending key (empty when the whole file is at fault).
+
+    Examples
+    --------
+    >>> from ga_rotors.scene import Scene
+    >>> try:
+    ...     Scene({"body": {"moments": [1, 2, 3]}, "time": {"duration": -1.0}})
+    ... except SceneError as exc:
+    ...     print(exc.file, exc.key, isinstance(exc, InputError))
+    <dict> time.duration True
     """
 
     def __init__(self, file: str, key: str, message: str):

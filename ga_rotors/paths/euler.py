@@ -71,19 +71,43 @@ _INITIAL_STATS = (0.0, np.inf, np.inf, 0.0, 0.0, 0.0)
 
 @jit
 def rate(x, w):
-    """(ψ̇, θ̇, φ̇) from the angles and body ω."""
+    """(ψ̇, θ̇, φ̇) from the angles and body ω (:func:`ga_rotors.kinematics.zyz_rates`).
+
+    Examples
+    --------
+    >>> rate((0.1, 0.5, 0.3), (0.0, 0.0, 10.0))
+    (0.0, 0.0, 10.0)
+    """
     return zyz_rates(x, w)
 
 
 @jit
 def to_quat(x):
-    """q = q_z(ψ) ⊗ q_y(θ) ⊗ q_z(φ), the convention that defines the angles."""
+    """q = q_z(ψ) ⊗ q_y(θ) ⊗ q_z(φ), the convention that defines the angles.
+
+    Examples
+    --------
+    >>> to_quat((0.0, np.pi / 2, 0.0))  # a quarter turn about y
+    (0.7071067811865476, 0.0, 0.7071067811865475, 0.0)
+    """
     return quat_from_euler(2, 1, 2, x[0], x[1], x[2])
 
 
 @jit
 def watch(t, x, w, h, stats):
-    """Record how close the step starts to sin θ = 0 and whether h resolves the rates."""
+    """Record how close the step starts to sin θ = 0 and whether h resolves the rates.
+
+    Examples
+    --------
+    A step of 10 ms at θ = 0.01 rad with ω = (1, 0, 10) turns ψ by h|ψ̇| ≈ 1 rad, more
+    than :data:`UNRESOLVED_TURN`:
+
+    >>> stats = initial_stats()
+    >>> watch(0.0, (0.0, 0.01, 0.0), (1.0, 0.0, 10.0), 1e-2, stats)
+    >>> report(stats)  # doctest: +NORMALIZE_WHITESPACE
+    {'unresolved_steps': 1, 'first_unresolved': 0.0, 'min_abs_sin_theta': 0.00999983,
+     'pole_crossings': 0, 'max_turn': 1.00002}
+    """
     st = sin(x[1])
     num = abs(w[1] * sin(x[2]) - w[0] * cos(x[2]))  # |ψ̇ sin θ|
     den = abs(st)

@@ -37,32 +37,66 @@ NSTATS = 0
 
 @jit
 def rate(x, w):
-    """q̇ = ½ q ⊗ (0, ω)."""
+    """q̇ = ½ q ⊗ (0, ω).
+
+    Examples
+    --------
+    >>> rate((1.0, 0.0, 0.0, 0.0), (0.0, 0.0, 2.0))  # ½ (0, 0, 0, 2)
+    (-0.0, 0.0, 0.0, 1.0)
+    """
     d = qmul_pure(x, w)
     return (0.5 * d[0], 0.5 * d[1], 0.5 * d[2], 0.5 * d[3])
 
 
 @jit
 def normalize(x):
-    """Back onto the unit sphere."""
+    """Back onto the unit sphere.
+
+    Examples
+    --------
+    >>> normalize((0.0, 3.0, 0.0, 4.0))
+    (0.0, 0.6, 0.0, 0.8)
+    """
     return qnormalize(x)
 
 
 @jit
 def to_quat(x):
-    """The state is the quaternion."""
+    """The state is the quaternion.
+
+    Examples
+    --------
+    >>> to_quat((0.5, 0.5, 0.5, 0.5))
+    (0.5, 0.5, 0.5, 0.5)
+    """
     return x
 
 
 @jit
 def from_quat(q):
-    """The state is the quaternion."""
+    """The state is the quaternion.
+
+    Examples
+    --------
+    >>> from_quat((0.5, 0.5, 0.5, 0.5))
+    (0.5, 0.5, 0.5, 0.5)
+    """
     return q
 
 
 @jit
 def watch(t, x, w, h, stats):
-    """Nothing to watch: a quaternion has no coordinate singularity."""
+    """Nothing to watch: a quaternion has no coordinate singularity.
+
+    Examples
+    --------
+    No statistics (NSTATS = 0), nothing recorded:
+
+    >>> stats = np.zeros(NSTATS)
+    >>> watch(0.0, (1.0, 0.0, 0.0, 0.0), (0.0, 0.0, 2.0), 1e-3, stats)
+    >>> stats.size
+    0
+    """
 
 
 def initial_state(q0: np.ndarray) -> np.ndarray:

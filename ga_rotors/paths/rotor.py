@@ -42,31 +42,72 @@ COMPONENTS = ("1", "e12", "e13", "e23")
 
 @jit
 def rate(x, w):
-    """Ṙ = ½ R Ω."""
+    """Ṙ = ½ R Ω.
+
+    Examples
+    --------
+    At R = 1, ω = (0, 0, 2): Ω = −2 e12 and Ṙ = −e12, on the blades (1, e12, e13, e23).
+    (The quaternion path's q̇ there is k: k <-> −e12.)
+
+    >>> rate((1.0, 0.0, 0.0, 0.0), (0.0, 0.0, 2.0))
+    (0.0, -1.0, 0.0, -0.0)
+    """
     return rotor_rate(x, w)
 
 
 @jit
 def normalize(x):
-    """R / |R|: R ~R = |R|² on the even subalgebra, the Euclidean norm of the coefficients."""
+    """R / |R|: R ~R = |R|² on the even subalgebra, the Euclidean norm of the coefficients.
+
+    Examples
+    --------
+    >>> normalize((0.0, 3.0, 0.0, 4.0))
+    (0.0, 0.6, 0.0, 0.8)
+    """
     return qnormalize(x)
 
 
 @jit
 def to_quat(x):
-    """The unit quaternion of the rotor."""
+    """The unit quaternion of the rotor.
+
+    Examples
+    --------
+    R = w − x e23 + y e13 − z e12, read back:
+
+    >>> to_quat((0.5, -0.5, 0.5, -0.5))
+    (0.5, 0.5, 0.5, 0.5)
+    """
     return quat_from_rotor(x)
 
 
 @jit
 def from_quat(q):
-    """The rotor of a unit quaternion."""
+    """The rotor of a unit quaternion.
+
+    Examples
+    --------
+    k (a half turn about z) is −e12:
+
+    >>> from_quat((0.0, 0.0, 0.0, 1.0))
+    (0.0, -1.0, 0.0, -0.0)
+    """
     return rotor_from_quat(q)
 
 
 @jit
 def watch(t, x, w, h, stats):
-    """Nothing to watch: a rotor has no coordinate singularity."""
+    """Nothing to watch: a rotor has no coordinate singularity.
+
+    Examples
+    --------
+    No statistics (NSTATS = 0), nothing recorded:
+
+    >>> stats = np.zeros(NSTATS)
+    >>> watch(0.0, (1.0, 0.0, 0.0, 0.0), (0.0, 0.0, 2.0), 1e-3, stats)
+    >>> stats.size
+    0
+    """
 
 
 def _signed_permutation(kernel) -> np.ndarray:

@@ -6,3 +6,5 @@
 * :mod:`ga_rotors.reference.heavy_top`: the heavy symmetric (Lagrange) top.
 * :mod:`ga_rotors.reference.elliptic`: the elliptic functions and integrals they share.
 """
+
+__all__: list[str] = []  # a namespace of submodules: nothing defined here

@@ -21,7 +21,15 @@ __all__ = ["Coning", "coning_rate"]
 
 @jit
 def coning_rate(t, p):
-    """Body ω(t) = (b, a sin bt, a cos bt) with p = (a, b)."""
+    """Body ω(t) = (b, a sin bt, a cos bt) with p = (a, b).
+
+    Examples
+    --------
+    >>> coning_rate(0.0, (0.2, 2.0))
+    (2.0, 0.0, 0.2)
+    >>> [round(c, 12) for c in coning_rate(np.pi / 4, (0.2, 2.0))]  # b t = π/2
+    [2.0, 0.2, 0.0]
+    """
     a, b = p[0], p[1]
     return (b, a * sin(b * t), a * cos(b * t))
 
