@@ -14,6 +14,7 @@ __all__ = [
     "IntegrationStoppedWarning",
     "PrecisionError",
     "SceneError",
+    "StepLimitWarning",
 ]
 
 
@@ -154,4 +155,19 @@ class StepLimitWarning(UserWarning):
     Runge–Kutta method damps the wobble, Lie–Euler amplifies it, a splitting loses the
     thin axis): the message names the integrator, the limit's quantity, its value and the
     limit, and what happens. See the step-limit table in ``docs/stability.md``.
+
+    Examples
+    --------
+    RK4 at h = 2 s on a body whose wobble frequency is ν = 0.58 rad/s, for 1000 steps
+    (checked before any loop runs):
+
+    >>> import warnings
+    >>> from ga_rotors.integrators import Problem, get
+    >>> with warnings.catch_warnings(record=True) as caught:
+    ...     warnings.simplefilter("always")
+    ...     limit = get("rk4").check_step(Problem((1.0, 2.0, 3.0)), (1.0, 0.1, 0.1), 2.0, 1000)
+    >>> limit.exceeded, [w.category.__name__ for w in caught]
+    (True, ['StepLimitWarning'])
+    >>> print(str(caught[0].message)[:48])
+    step: rk4 cannot step N·|ln|R(ihν)|²| = 29.5 (li
     """
