@@ -16,6 +16,8 @@ import numpy as np
 from ..errors import InputError
 from .base import FREE, KINEMATIC, TORQUED, Integrator, LoopResult, register
 
+__all__ = ["DOP853", "Dop853"]
+
 
 class Dop853(Integrator):
     """scipy ``solve_ivp(method="DOP853")`` on (orientation, ω) with a compiled right-hand side.

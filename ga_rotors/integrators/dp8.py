@@ -22,6 +22,11 @@ from .base import FREE, TORQUED, TemplateIntegrator, register
 from .limits import stability_polynomial, wobble_damping
 from .slots import accel, o_axpy, o_load, o_rate
 
+# The step templates below are not in __all__: they are source the code generator
+# specialises (ga_rotors.integrators._codegen), not functions to call; the public entry
+# is the registered integrator, run through Integrator.run.
+__all__ = ["DP8", "STAGES", "A", "B", "C"]
+
 STAGES = 12
 # A[i * 12 + j], row-major, 12 x 12 (lower triangular).
 # The tableau is laid out by hand; ruff would put one number per line.

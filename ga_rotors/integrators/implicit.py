@@ -24,6 +24,11 @@ from .base import FREE, TORQUED, TemplateIntegrator, register
 from .limits import fixed_point_sweep
 from .slots import accel, o_axpy, o_rate
 
+# The step templates below are not in __all__: they are source the code generator
+# specialises (ga_rotors.integrators._codegen), not functions to call; the public entry
+# is the registered integrator, run through Integrator.run.
+__all__ = ["MIDPOINT", "STALLED"]
+
 #: Relative change of the slope below which a sweep that ran out of iterations is accepted:
 #: rounding in f (a few ulps, amplified by 1/(1 − contraction)) can keep the change above
 #: the 2-ulp target without the iteration being wrong; 64 ulps is the floor of that noise.

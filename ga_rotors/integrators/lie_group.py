@@ -37,6 +37,24 @@ from .base import FREE, KINEMATIC, TORQUED, TemplateIntegrator, register
 from .limits import stability_polynomial, wobble_damping
 from .slots import accel, o_from_quat, o_quat, omega
 
+# The step templates below are not in __all__: they are source the code generator
+# specialises (ga_rotors.integrators._codegen), not functions to call; the public entry
+# is the registered integrator, run through Integrator.run.
+__all__ = [
+    "CF4",
+    "CG3",
+    "CG3_A21",
+    "CG3_A31",
+    "CG3_A32",
+    "CG3_B",
+    "LIE_EULER",
+    "MAGNUS4",
+    "MAGNUS_C1",
+    "MAGNUS_C2",
+    "MAGNUS_K",
+    "RKMK4",
+]
+
 # Crouch–Grossman 3 (Crouch & Grossman, J. Nonlinear Sci. 3 (1993) 1).
 CG3_A21 = 0.75
 CG3_A31 = 119.0 / 216.0

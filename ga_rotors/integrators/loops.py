@@ -22,6 +22,10 @@ from __future__ import annotations
 from ._arith import finite_row, store3
 from .slots import accel, o_load, o_rate, o_store, o_watch, omega, step
 
+# Templates only (consumed by ga_rotors.integrators._codegen, never called as Python):
+# nothing here is an API of its own.
+__all__: list[str] = []
+
 
 def fixed_step_loop(x0, w0, t0, h, nsteps, every, inertia, params, out_t, out_x, out_w, stats):
     """Dynamics: ``x, w = step(t, x, w, h, inertia, params)`` repeated ``nsteps`` times."""

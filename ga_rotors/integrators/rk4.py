@@ -24,6 +24,11 @@ from .base import FREE, KINEMATIC, TORQUED, TemplateIntegrator, register
 from .limits import wobble_damping
 from .slots import accel, o_axpy, o_normalize, o_rate, o_rk4, omega
 
+# The step templates below are not in __all__: they are source the code generator
+# specialises (ga_rotors.integrators._codegen), not functions to call; the public entry
+# is the registered integrator, run through Integrator.run.
+__all__ = ["RK4", "RK4_RENORM"]
+
 
 def rk4_step(t, x, w, h, inertia, params):
     """One RK4 step of the dynamics (ω̇ from ``accel``, ẋ from the path's kinematics)."""

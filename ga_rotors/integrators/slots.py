@@ -42,9 +42,77 @@ from __future__ import annotations
 
 from ..errors import GaRotorsError
 
+__all__ = [
+    "ALL_SLOTS",
+    "GENERATED_SLOTS",
+    "PATH_SLOTS",
+    "TemplateSlotError",
+    "accel",
+    "o_axpy",
+    "o_from_quat",
+    "o_load",
+    "o_normalize",
+    "o_quat",
+    "o_rate",
+    "o_rk4",
+    "o_store",
+    "o_watch",
+    "omega",
+    "step",
+    "torque",
+]
+
+
+#: Slot name -> the attribute of an orientation-path module that binds it.
+PATH_SLOTS = {
+    "o_rate": "rate",
+    "o_axpy": "axpy",
+    "o_rk4": "rk4_sum",
+    "o_normalize": "normalize",
+    "o_quat": "to_quat",
+    "o_from_quat": "from_quat",
+    "o_load": "load",
+    "o_store": "store",
+    "o_watch": "watch",
+}
+
+#: Slots whose definition the code generator writes.
+GENERATED_SLOTS = ("torque", "accel", "omega", "step")
+
 
 class TemplateSlotError(GaRotorsError, RuntimeError):
-    """A template slot was called outside a generated module."""
+    """A template slot was called outside a generated module.
+
+    Examples
+    --------
+    A step template run as plain Python reaches its first slot:
+
+    >>> from ga_rotors.integrators.rk4 import rk4_step
+    >>> rk4_step(0.0, (1.0, 0.0, 0.0, 0.0), (0.0, 0.0, 1.0), 0.1, (1.0, 1.0, 2.0), ())
+    Traceback (most recent call last):
+    ...
+    ga_rotors.integrators.slots.TemplateSlotError: template slot 'o_rate' called directly; ...
+    """
+
+
+def _slot_examples(name: str) -> str:
+    # Each slot's Examples: what binds it, and what calling it unbound does.
+    if name in PATH_SLOTS:
+        bound = (
+            f"    >>> PATH_SLOTS[{name!r}]  # each path module's kernel of this name binds it\n"
+            f"    {PATH_SLOTS[name]!r}\n"
+        )
+    else:
+        bound = (
+            f"    >>> {name!r} in GENERATED_SLOTS  # the code generator writes its definition\n"
+            "    True\n"
+        )
+    return (
+        "\n\n    Examples\n    --------\n" + bound + f"    >>> {name}()\n"
+        "    Traceback (most recent call last):\n    ...\n"
+        f"    ga_rotors.integrators.slots.TemplateSlotError: template slot {name!r} called "
+        "directly; ...\n"
+    )
 
 
 def _slot(name: str, doc: str):
@@ -55,7 +123,7 @@ def _slot(name: str, doc: str):
         )
 
     slot.__name__ = slot.__qualname__ = name
-    slot.__doc__ = doc
+    slot.__doc__ = doc + _slot_examples(name)
     slot.__module__ = __name__
     return slot
 
@@ -73,21 +141,5 @@ o_from_quat = _slot("o_from_quat", "x = o_from_quat(q): a unit quaternion in pat
 o_load = _slot("o_load", "x = o_load(array): read a state.")
 o_store = _slot("o_store", "o_store(out, row, x): write a state.")
 o_watch = _slot("o_watch", "o_watch(t, x, w, h, stats): path diagnostics.")
-
-#: Slot name -> the attribute of an orientation-path module that binds it.
-PATH_SLOTS = {
-    "o_rate": "rate",
-    "o_axpy": "axpy",
-    "o_rk4": "rk4_sum",
-    "o_normalize": "normalize",
-    "o_quat": "to_quat",
-    "o_from_quat": "from_quat",
-    "o_load": "load",
-    "o_store": "store",
-    "o_watch": "watch",
-}
-
-#: Slots whose definition the code generator writes.
-GENERATED_SLOTS = ("torque", "accel", "omega", "step")
 
 ALL_SLOTS = frozenset(PATH_SLOTS) | frozenset(GENERATED_SLOTS)

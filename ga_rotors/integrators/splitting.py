@@ -44,6 +44,20 @@ from .base import FREE, ORIENTATION_TORQUES, TORQUED, TemplateIntegrator, regist
 from .limits import principal_rotation_angle, symmetric_remainder_angle
 from .slots import o_from_quat, o_quat, torque
 
+# The step templates below are not in __all__: they are source the code generator
+# specialises (ga_rotors.integrators._codegen), not functions to call; the public entry
+# is the registered integrator, run through Integrator.run.
+__all__ = [
+    "SPLIT2",
+    "SPLIT4",
+    "SPLIT4_YOSHIDA",
+    "SPLIT6",
+    "SPLIT_SYM",
+    "SUZUKI4",
+    "YOSHIDA4",
+    "YOSHIDA6",
+]
+
 SUZUKI4 = (
     1.0 / (4.0 - 4.0 ** (1.0 / 3.0)),
     1.0 / (4.0 - 4.0 ** (1.0 / 3.0)),

@@ -40,6 +40,11 @@ from .base import FREE, ORIENTATION_TORQUES, TORQUED, TemplateIntegrator, regist
 from .limits import moser_veselov
 from .slots import o_from_quat, o_quat, torque
 
+# The step templates below are not in __all__: they are source the code generator
+# specialises (ga_rotors.integrators._codegen), not functions to call; the public entry
+# is the registered integrator, run through Integrator.run.
+__all__ = ["LGVI", "NEWTON_STALLED", "RESIDUAL_ROUNDING"]
+
 #: Newton's last correction (relative) below which 30 iterations are accepted: quadratic
 #: convergence leaves only rounding once a correction is this small (the Jacobian's
 #: conditioning near the step limit can hold the correction above the 1e-15 target).
