@@ -1,10 +1,13 @@
-"""The docstring standard, enforced: every public module says what it holds, and every
-public function or class (in a module's ``__all__``, defined there) has a numpydoc
-Examples section with at least one doctest (which ``pytest --doctest-modules`` runs).
+"""The docstring standard, enforced: every public module says what it holds and declares
+its public API in ``__all__``, and every public function or class (in a module's
+``__all__``, defined there) has a numpydoc Examples section with at least one doctest
+(which ``pytest --doctest-modules`` runs).
 
 Public modules: every module of ``ga_rotors`` and ``symbolic`` whose dotted name has no
-part starting with "_". The sub-command modules of :data:`ga_rotors.cli.COMMANDS` are
-exempt for ``add_arguments`` and ``run``: the protocol the CLI calls, not user API.
+part starting with "_". Compiled kernels (numba dispatchers) and cached functions
+(``functools.cache``) are checked through to the Python function they wrap. The
+sub-command modules of :data:`ga_rotors.cli.COMMANDS` are exempt for ``add_arguments``
+and ``run``: the protocol the CLI calls, not user API.
 """
 
 from __future__ import annotations
@@ -38,12 +41,18 @@ def public_modules() -> list[str]:
 MODULES = public_modules()
 
 
+def documented_object(obj):
+    """The Python function or class whose docstring documents ``obj``: a numba
+    dispatcher's ``py_func``, a cached function's ``__wrapped__``, else ``obj``."""
+    return inspect.unwrap(getattr(obj, "py_func", obj))
+
+
 def undocumented(module_name: str) -> list[str]:
     """Names in ``module_name.__all__`` defined there whose docstring lacks Examples."""
     module = importlib.import_module(module_name)
     missing = []
-    for name in getattr(module, "__all__", ()):
-        obj = getattr(module, name)
+    for name in module.__all__:
+        obj = documented_object(getattr(module, name))
         if not (inspect.isfunction(obj) or inspect.isclass(obj)):
             continue
         if getattr(obj, "__module__", None) != module_name:
@@ -58,6 +67,15 @@ def undocumented(module_name: str) -> list[str]:
 def test_the_walk_finds_the_packages_and_skips_private_modules():
     assert {"ga_rotors.quaternion", "ga_rotors.integrators.base", "symbolic.audit"} <= set(MODULES)
     assert not [m for m in MODULES if "._" in m]
+
+
+def test_compiled_and_cached_functions_are_checked_through_to_their_python_function():
+    from ga_rotors import body
+    from symbolic import rotors
+
+    assert documented_object(body.euler_rates) is body.euler_rates.py_func
+    assert inspect.isfunction(documented_object(rotors.rotor_sandwich))
+    assert "ga_rotors.body.euler_rates" not in undocumented("ga_rotors.body")
 
 
 def test_the_examples_pattern_needs_a_header_and_a_doctest():
@@ -78,3 +96,13 @@ def test_every_public_function_and_class_has_examples():
 def test_every_public_module_says_what_it_holds(module_name):
     doc = (importlib.import_module(module_name).__doc__ or "").strip()
     assert doc, f"{module_name} has no module docstring"
+
+
+@pytest.mark.parametrize("module_name", MODULES)
+def test_every_public_module_declares_its_api(module_name):
+    module = importlib.import_module(module_name)
+    assert isinstance(getattr(module, "__all__", None), list | tuple), (
+        f"{module_name} has no __all__"
+    )
+    absent = [name for name in module.__all__ if not hasattr(module, name)]
+    assert not absent, f"{module_name}.__all__ names what it does not define: {absent}"
