@@ -20,7 +20,12 @@ import pytest
 
 from ga_rotors import quaternion as Q
 from ga_rotors import shapes
-from ga_rotors.errors import InputError, IntegrationStoppedWarning, PrecisionError
+from ga_rotors.errors import (
+    InputError,
+    IntegrationStoppedWarning,
+    PrecisionError,
+    StepLimitWarning,
+)
 from ga_rotors.integrators import Problem, get
 from ga_rotors.paths import get as get_path
 from ga_rotors.reference import elliptic
@@ -218,9 +223,20 @@ def test_intermediate_axis_flip_invariants_within_method_bound(name):
 FAST_BODY, FAST_W, FAST_H, FAST_N = (1.0, 1.0, 2.0), (5.0, 3.0, 1000.0), 1e-3, 1000
 
 
+# Methods this run takes past their declared step limit (docs/stability.md, step limits):
+# the run must say so (StepLimitWarning); the others must stay silent.
+FAST_PAST_LIMIT = {"rk4", "rk4_renorm", "rkmk4", "cf4", "cg3", "lie_euler", "split2", "split4",
+                   "split6"}  # fmt: skip
+
+
 def _fast(name):
-    return get(name).run(Problem(FAST_BODY), "quaternion", (1.0, 0, 0, 0), FAST_W, 0.0,
-                         FAST_H, FAST_N, 1)  # fmt: skip
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always", StepLimitWarning)
+        run = get(name).run(Problem(FAST_BODY), "quaternion", (1.0, 0, 0, 0), FAST_W, 0.0,
+                            FAST_H, FAST_N, 1)  # fmt: skip
+    said = [w for w in caught if issubclass(w.category, StepLimitWarning)]
+    assert len(said) == (name in FAST_PAST_LIMIT), (name, [str(w.message) for w in said])
+    return run
 
 
 @pytest.mark.parametrize(
@@ -308,10 +324,12 @@ def test_fast_spin_lgvi_past_its_step_limit_is_refused():
 def test_fast_spin_midpoint_that_cannot_converge_stops_instead_of_garbage():
     # Fixed-point sweeps contract by ~h|ω|/4: at h|ω| = 4 they do not converge. Before the
     # fix the step returned the unconverged iterate: |q| = 9e34 after 0.1 s, complete=True.
-    run = get("midpoint").run(Problem(FAST_BODY), "quaternion", (1.0, 0, 0, 0), (0, 0, 4000.0),
-                              0.0, FAST_H, 100, 1)  # fmt: skip
+    with pytest.warns(StepLimitWarning, match=r"midpoint.*h·ν = 4"):
+        run = get("midpoint").run(Problem(FAST_BODY), "quaternion", (1.0, 0, 0, 0),
+                                  (0, 0, 4000.0), 0.0, FAST_H, 100, 1)  # fmt: skip
     assert not run.complete and np.isfinite(run.x).all() and np.isfinite(run.w).all()
-    ok = get("midpoint").run(Problem(FAST_BODY), "quaternion", (1.0, 0, 0, 0), (0, 0, 2000.0),
+    # Inside its declared limit (hν = 1.5 < 2: the sweep contracts by 0.75) it runs, silently.
+    ok = get("midpoint").run(Problem(FAST_BODY), "quaternion", (1.0, 0, 0, 0), (0, 0, 1500.0),
                              0.0, FAST_H, 100, 1)  # fmt: skip
     assert ok.complete and abs(np.linalg.norm(ok.x[-1]) - 1) <= walk(40, 100)
 
