@@ -68,6 +68,27 @@ def test_fast_spin_rk4_warns_by_how_much_the_wobble_is_damped():
     assert abs(measured / 0.00221 - 1) < 0.5e-2 / 0.221  # the message's 3 digits
 
 
+@pytest.mark.parametrize("name", ["rk4", "rk4_renorm"])
+def test_fast_spin_rk4_warns_that_the_orientation_lags_the_spin(name):
+    # On (1, 1.5, 2) at 1000 rad/s the wobble changes by less than a factor e (0.49 < 1) but
+    # q̇ = ½ q ⊗ ω turns by arg R(iy) instead of y = h|ω|/2 = 0.5 per step: the predicted lag
+    # 2N·|arg R(iy)e^(−iy)| = 0.475 rad is the run's orientation error (docs/stability.md,
+    # fast spin: 0.48 rad for both), up to the wobble's own contribution, O(|ω⊥|/|ω|) = 6e-3
+    # relative. Renormalising |q| (rk4_renorm) does not touch the phase.
+    from ga_rotors.reference.asymmetric_top import AsymmetricTop
+
+    w0 = (5.0, 3.0, 1000.0)
+    with pytest.warns(StepLimitWarning, match=r"lags its spin by 0.475 rad") as rec:
+        tr = simulate(BODY, (1.0, 0, 0, 0), w0, duration=1.0, step=1e-3, paths="quaternion",
+                      integrator=name)  # fmt: skip
+    assert len(rec) == 1
+    exact = AsymmetricTop(BODY, (1.0, 0, 0, 0), w0).at([1.0])[0][0]
+    from ga_rotors import quaternion as Q
+
+    error = Q.distance(exact, Q.normalize(tr.q[-1]))
+    assert abs(error / 0.4752 - 1) < 2 * math.hypot(5.0, 3.0) / 1000.0, error
+
+
 def test_lgvi_refuses_a_step_past_h_omega_1():
     with pytest.raises(InputError, match=r"lgvi cannot step h·\|ω\| = 1.1 \(limit 1\)"):
         simulate(BODY, (1.0, 0, 0, 0), (0.0, 0.0, 110.0), duration=0.1, step=0.01,

@@ -102,6 +102,6 @@ RK4_RENORM = register(
         },
         helpers=(rk4_step, rk4_kinematic_step),
         # |q| is projected back each step: only the wobble of ω is damped by |R(ihν)|².
-        step_limit=wobble_damping(RK4_POLYNOMIAL, steps_q=False),
+        step_limit=wobble_damping(RK4_POLYNOMIAL, steps_q=False, phase_on_q=True),
     )
 )
