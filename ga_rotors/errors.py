@@ -169,5 +169,5 @@ class StepLimitWarning(UserWarning):
     >>> limit.exceeded, [w.category.__name__ for w in caught]
     (True, ['StepLimitWarning'])
     >>> print(str(caught[0].message)[:48])
-    step: rk4 cannot step N·|ln|R(ihν)|²| = 29.5 (li
+    step: rk4 cannot step 2N·|arg R(iy)e^(−iy)| = 11
     """

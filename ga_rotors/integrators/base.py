@@ -424,7 +424,7 @@ class Integrator(ABC):
         >>> import warnings
         >>> lim = get("rk4").check_step(Problem((1.0, 1.5, 2.0)), (0.0, 0.0, 1.0), 0.01, 100)
         >>> lim.quantity, lim.exceeded
-        ('N·|ln|R(ihν)|²|', False)
+        ('2N·|arg R(iy)e^(−iy)|', False)
         >>> get("lgvi").check_step(Problem((1.0, 1.5, 2.0)), (0.0, 0.0, 200.0), 0.01, 100)
         Traceback (most recent call last):
         ...
