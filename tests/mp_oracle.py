@@ -48,9 +48,10 @@ def _rigid_body_coefficient(series, k, inertia, mgl):
     return dq + dw
 
 
-def integrate(inertia, q0, w0, times, mgl=0.0):
-    """States (q, ω) at the given increasing non-negative times, as lists of mpf 7-tuples."""
-    with mp.workdps(DIGITS):
+def integrate(inertia, q0, w0, times, mgl=0.0, digits=DIGITS, order=ORDER):
+    """States (q, ω) at the given increasing non-negative times, as lists of mpf 7-tuples
+    (``digits`` significant digits, truncation ~4^-``order`` relative per step)."""
+    with mp.workdps(digits):
         inertia = [mp.mpf(x) for x in inertia]
         mgl = mp.mpf(mgl)
         y = [mp.mpf(x) for x in (*q0, *w0)]
@@ -60,12 +61,12 @@ def integrate(inertia, q0, w0, times, mgl=0.0):
             target = mp.mpf(target)
             while t < target:
                 series = [[v] for v in y]
-                for k in range(ORDER):
+                for k in range(order):
                     coef = _rigid_body_coefficient(series, k, inertia, mgl)
                     for s, d in zip(series, coef, strict=True):
                         s.append(d / (k + 1))
                 tail = max(max(abs(s[-1]), abs(s[-2])) for s in series)
-                radius = (tail / max(1, max(abs(v) for v in y))) ** (-mp.mpf(1) / ORDER)
+                radius = (tail / max(1, max(abs(v) for v in y))) ** (-mp.mpf(1) / order)
                 h = min(radius / 4, target - t)
                 y = [mp.polyval(s[::-1], h) for s in series]
                 t += h

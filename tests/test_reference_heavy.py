@@ -10,6 +10,7 @@ import pytest
 from mp_oracle import integrate
 
 from ga_rotors import _kernels as K
+from ga_rotors import quaternion as Q
 from ga_rotors.errors import InputError, PrecisionError
 from ga_rotors.reference.heavy_top import HeavyTop
 
@@ -92,3 +93,122 @@ def test_guards():
     top = HeavyTop((1.0, 1.0, 0.5), 1.0, _qy(0.5), (0, 0, 10.0))
     with pytest.raises(PrecisionError, match="exceeds max_error"):
         top.state([1e8])
+
+
+# Next to the separatrix (1 − m → 0: u₂ and u₃ meet at u = 1, the top rises towards the
+# unstable upright position). Bodies (1, 1, 0.5), mgl = 1 (β = 2), roots u₁ = 0,
+# u₂,₃ = 1 ∓ D/2 with D/(u₃ − u₁) = 1 − m.
+SEPARATRIX_BODY, SEPARATRIX_MGL = (1.0, 1.0, 0.5), 1.0
+SEPARATRIX_PHASE = {"lower_turning_point": 0, "upper_turning_point": 1, "mid_way": 0.5}
+
+
+def _separatrix_start(m1, start):
+    """(q0, ω0, nutation period) starting at r₀ = SEPARATRIX_PHASE[start] · K: at u₁, at u₂
+    (next to the upright position), or half-way in time between them, rising; built in 60
+    digits and rounded."""
+    import mpmath as mp
+
+    with mp.workdps(60 - int(math.log10(m1))):  # 60 digits beyond those of m = 1 − m1
+        m1, beta = mp.mpf(m1), 2 * mp.mpf(SEPARATRIX_MGL) / SEPARATRIX_BODY[0]
+        d = m1 / (1 - m1 / 2)  # u₃ − u₂ with u₃ − u₁ = 1 + D/2
+        u1, u2, u3 = mp.mpf(0), 1 - d / 2, 1 + d / 2
+        # f = (1 − u²)(α − βu) − (b − au)² = β Π(u − uᵢ): (a ± b)² from f(∓1)
+        apb = mp.sqrt(beta * (1 + u1) * (1 + u2) * (1 + u3))
+        amb = mp.sqrt(beta * (1 - u1) * (1 - u2) * (u3 - 1))
+        a, b = (apb + amb) / 2, (apb - amb) / 2
+        m, k = 1 - m1, mp.ellipk(1 - m1)
+        u0 = u1 + (u2 - u1) * mp.ellipfun("sn", SEPARATRIX_PHASE[start] * k, m=m) ** 2
+        theta = mp.acos(u0)
+        thetadot = -mp.sqrt(max(beta * (u0 - u1) * (u0 - u2) * (u0 - u3), 0)) / mp.sin(theta)
+        psidot = (b - a * u0) / (1 - u0**2)
+        psi, phi = mp.mpf("0.3"), mp.mpf("0.2")
+        w = (
+            -psidot * mp.sin(theta) * mp.cos(phi) + thetadot * mp.sin(phi),
+            psidot * mp.sin(theta) * mp.sin(phi) + thetadot * mp.cos(phi),
+            a * SEPARATRIX_BODY[0] / SEPARATRIX_BODY[2],
+        )
+        q = Q.multiply(Q.multiply(_mp_axis(2, psi), _mp_axis(1, theta)), _mp_axis(2, phi))
+        period = 2 * k / (mp.sqrt(beta * (u3 - u1)) / 2)
+        return tuple(float(x) for x in q), tuple(float(x) for x in w), float(period)
+
+
+def _mp_axis(axis, angle):
+    import mpmath as mp
+
+    q = [mp.cos(angle / 2), 0.0, 0.0, 0.0]
+    q[1 + axis] = mp.sin(angle / 2)
+    return np.array([float(x) for x in q])
+
+
+def _unit_mp(q0):
+    """The float q0 normalised in 40 digits: the oracle integrates the rotation q0/|q0| the
+    reference solves (a non-unit q would scale its gravity by |q0|², and next to the
+    separatrix 1 ulp of mgl moves 1 − m by ~ε/(1 − m) relative)."""
+    import mpmath as mp
+
+    with mp.workdps(40):
+        norm = mp.sqrt(mp.fsum(mp.mpf(x) ** 2 for x in q0))
+        return [mp.mpf(x) / norm for x in q0]
+
+
+@pytest.mark.parametrize("start", list(SEPARATRIX_PHASE))
+@pytest.mark.parametrize("m1", [1e-3, 1e-6, 1e-9, 1e-12, 1e-14])
+def test_separatrix_error_within_bound_from_turning_points_and_mid_way(m1, start):
+    # Before the fix (error / bound at the worst of P/4, P/2, 3P/4, rad): from u₁ the root
+    # pair u₂,₃ came from the expansion about u₀ and moved by ~ε/(u₃ − u₂) (2.6e-10 / 2.7e-13
+    # at 1 − m = 1e-3, 3.7e-6 at 1e-6, a ValueError or PrecisionError from 1e-9 on), as
+    # from mid-way (1.5e-2 at 1e-14); from u₂ the phase F(atan2(sn₀, cn₀) | m) carried
+    # ulp(π/2)/√(1 − m) (1.2e-9 / 1.0e-12 at 1e-14). Over P/4, P/2, 3P/4 (each start passes
+    # the upright position or the far turning point) every orientation must lie within its
+    # bound.
+    q0, w0, period = _separatrix_start(m1, start)
+    top = HeavyTop(SEPARATRIX_BODY, SEPARATRIX_MGL, q0, w0)
+    # Rounding the state moves 1 − m by ~ε/(1 − m) relative from u₁ (measured 2e-2 at 1e-14).
+    assert top.m1 == pytest.approx(m1, rel=0.1)
+    times = [0.25 * period, 0.5 * period, 0.75 * period]
+    s = top.state(times)
+    # The oracle's truncation, 4^-order per step, is amplified up to ~1/(1 − m) by the pass
+    # next to the unstable upright position (measured: 9e-8 rad at 1 − m = 1e-12 with the
+    # default 32 terms); order ≥ log₄(1e16/(1 − m)) keeps it at 1e-16 rad.
+    order = math.ceil(math.log(1e16 / m1, 4)) + 2
+    ref = integrate(SEPARATRIX_BODY, _unit_mp(q0), w0, times, SEPARATRIX_MGL, order, order)
+    errors = []
+    for i, state in enumerate(ref):
+        state = np.array([float(x) for x in state])
+        errors.append(K.geodesic_angle(tuple(state[:4]), tuple(s.q[i])))
+        assert errors[-1] <= s.error[i], (times[i], errors[-1], s.error[i])
+    # A worst-case sum: measured max bound / max error 32-295x at every 1 − m and start.
+    # 1000 is that measurement, not a derivation: it catches a bound that scales with
+    # 1/√(1 − m) (1e7x at 1e-14).
+    assert s.error.max() <= 1000 * max(errors)
+
+
+def test_separatrix_refuses_where_it_cannot_be_accurate():
+    # Started next to the upright position with u₃ − u₂ ≈ 1e-310 (subnormal): a subnormal
+    # 1 − m would give a wrong period. With u₃ − u₂ ≈ 1e-300 the axis rises to 1e-150 rad
+    # of the vertical and n₊ = 1 − (1 − u₂)/(1 − u₁) rounds to 1 (the precession integral's
+    # pole; a bare ValueError from pi_integral before). Both refuse with PrecisionError.
+    q0, w0, _ = _separatrix_start(1e-310, "upper_turning_point")
+    with pytest.raises(PrecisionError, match="not a normal float"):
+        HeavyTop(SEPARATRIX_BODY, SEPARATRIX_MGL, q0, w0)
+    q0, w0, _ = _separatrix_start(1e-300, "upper_turning_point")
+    with pytest.raises(PrecisionError, match="upright vertical"):
+        HeavyTop(SEPARATRIX_BODY, SEPARATRIX_MGL, q0, w0)
+    # From the far turning point the rounded state is itself ~ε from the separatrix
+    # (1 − m = 2.9e-16 for a target of 1e-300): a valid motion, solved for those floats.
+    q0, w0, _ = _separatrix_start(1e-300, "lower_turning_point")
+    assert 1e-17 < HeavyTop(SEPARATRIX_BODY, SEPARATRIX_MGL, q0, w0).m1 < 1e-15
+
+
+def test_separatrix_state_raises_where_its_bound_crosses_max_error():
+    # At 1 − m = 1e-14 the bound grows ~1e-12 per period (the phase's ulps times the
+    # rates); past max_error the state refuses instead of returning a degraded answer.
+    q0, w0, period = _separatrix_start(1e-14, "upper_turning_point")
+    top = HeavyTop(SEPARATRIX_BODY, SEPARATRIX_MGL, q0, w0)
+    times = np.linspace(0.0, 200 * period, 201)
+    bound = top.state(times, max_error=np.inf).error
+    limit = 0.5 * (bound[0] + bound[-1])
+    inside = times[bound <= limit]
+    top.state(inside, max_error=limit)
+    with pytest.raises(PrecisionError, match="exceeds max_error"):
+        top.state(times, max_error=limit)

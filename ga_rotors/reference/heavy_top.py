@@ -22,18 +22,30 @@ Solution. ω₃ = L₃/I₃ and L_Z are constant; with u = cos θ, a = L₃/I⊥
 and 1 ∓ u = (1 ∓ u₁)(1 − n_± sn²) with n₊ = (u₂ − u₁)/(1 − u₁), n₋ = −(u₂ − u₁)/(1 + u₁), so
 ∫ dt/(1 ∓ u) is :func:`ga_rotors.reference.elliptic.pi_integral` in closed form.
 
-Precision. The roots are found for the cubic in x = u − u₀ whose coefficients come
-straight from the initial state (u̇₀², f′(u₀), f″(u₀)/2, β): near steady precession u₁ and u₂
-nearly coincide, and the textbook route (roots of f from α, β, a, b) loses half the digits
-of u₂ − u₁, while here the nutation amplitude keeps an absolute error at the ulp level.
+Precision. The coefficients of the cubic are computed exactly (rational arithmetic on the
+float inputs, the orientation taken as the rotation q/|q|) and rounded once, in two
+expansions: about u₀, f(u₀ + x) = u̇₀² + f′(u₀) x + ½f″(u₀) x² + β x³, and about the upright
+vertical, f(1 − v) = −(b − a)² + (2(α − β) − 2a(b − a)) v + (2β − (α − β) − a²) v² − β v³.
+Each root is taken from the nearer centre, so u₂ − u₁ (steady precession, m → 0) and
+u₃ − u₂ (the separatrix, m → 1: the top rising to within (u₃ − u₂)^½ of the unstable
+upright position) are sums of roots known to a few ulps of their own size: the textbook route
+(roots of f from α, β, a, b in floats) loses half the digits of u₂ − u₁, and even the
+expansion about u₀ alone moved u₃ − u₂ by ~ε/(u₃ − u₂) next to the separatrix (relative
+error 1e-4 in 1 − m at 1e-6, 1.8e-4 rad after one period). The starting phase r₀ is read
+from sn r₀ ∝ √(u₀ − u₁), cn r₀ ∝ √(u₂ − u₀) by
+:func:`ga_rotors.reference.elliptic.jacobi_argument` (through the amplitude, F(φ₀ | m) would
+multiply the rounding of φ₀ by 1/dn(r₀) ≈ 1/√(1 − m) next to u₂: 1.2e-9 rad at 1 − m = 1e-14).
 Every state carries a rounding-error bound (:attr:`State.error`) and
-:meth:`HeavyTop.state` raises :class:`ga_rotors.errors.PrecisionError` above ``max_error``.
+:meth:`HeavyTop.state` raises :class:`ga_rotors.errors.PrecisionError` above ``max_error``;
+the constructor raises it when 1 − m is not a normal float (u₃ − u₂ within rounding of the
+separatrix) or the motion reaches a vertical exactly.
 """
 
 from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from fractions import Fraction
 
 import numpy as np
 from scipy.optimize import brentq
@@ -50,6 +62,17 @@ from .asymmetric_top import State, _orientation_error, _times, axis_rotation
 __all__ = ["HeavyTop", "State", "gravity_torque"]
 
 _EPS = float(np.finfo(float).eps)
+
+
+def _root(g, lo, hi):
+    """A root of g in [lo, hi]; an end point when g has one sign there (the root is within
+    the rounding of g from it)."""
+    g_lo, g_hi = g(lo), g(hi)
+    if g_lo == 0.0 or ((g_lo > 0.0) == (g_hi > 0.0) and abs(g_lo) <= abs(g_hi)):
+        return lo
+    if g_hi == 0.0 or (g_lo > 0.0) == (g_hi > 0.0):
+        return hi
+    return brentq(g, lo, hi, xtol=1e-300, rtol=4 * _EPS, maxiter=500)
 
 
 def gravity_torque(mgl: float) -> TorqueTerm:
@@ -130,13 +153,18 @@ class HeavyTop:
         if not (math.isfinite(mgl) and mgl > 0):
             raise InputError(f"mgl: expected a positive finite number, got {mgl!r}")
         w = as_float_array(angular_velocity, "angular_velocity", last=3)
-        q = require_unit(as_float_array(orientation, "orientation", last=4), "orientation")
+        given = as_float_array(orientation, "orientation", last=4)
+        q = require_unit(given, "orientation")
         if w.shape != (3,) or q.shape != (4,):
             raise InputError("orientation, angular_velocity: expected shapes (4,) and (3,)")
         self.moments = tuple(float(x) for x in inertia)
         self.mgl = float(mgl)
         self.w0 = tuple(float(x) for x in w)
         self.q0 = tuple(float(x) for x in q)
+        # The solution is computed for the rotation given/|given| exactly: renormalising in
+        # floats turns it by an ulp, which next to the separatrix moves 1 − m by ~ε/(1 − m)
+        # relative (2.8e-10 at 1 − m = 1e-14).
+        self._given = tuple(float(x) for x in given)
         self._setup()
 
     def energy(self, q, w):
@@ -146,84 +174,127 @@ class HeavyTop:
         return 0.5 * (w * w * np.asarray(self.moments)).sum(-1) + self.mgl * zz
 
     def _setup(self):
-        ip, _, i3 = self.moments
-        w1, w2, w3 = self.w0
-        qw, qx, qy, qz = self.q0
-        zx, zy = 2.0 * (qx * qz - qw * qy), 2.0 * (qy * qz + qw * qx)
-        one_minus = 2.0 * (qx * qx + qy * qy)  # 1 − u₀ and 1 + u₀ without cancellation
-        one_plus = 2.0 * (qw * qw + qz * qz)
-        if one_minus == 0.0 or one_plus == 0.0:
+        ip, i3, mgl = Fraction(self.moments[0]), Fraction(self.moments[2]), Fraction(self.mgl)
+        w1, w2, w3 = (Fraction(x) for x in self.w0)
+        qw, qx, qy, qz = (Fraction(x) for x in self._given)
+        # Exact rational arithmetic on the float inputs (the rotation q/|q|): next to the
+        # separatrix the coefficients below are O(1) terms cancelling to O(u₃ − u₂), and any
+        # rounding here would move the nearly double root pair by ~ulp/(u₃ − u₂).
+        rho = qw * qw + qx * qx + qy * qy + qz * qz
+        zx, zy = 2 * (qx * qz - qw * qy) / rho, 2 * (qy * qz + qw * qx) / rho
+        v0 = 2 * (qx * qx + qy * qy) / rho  # 1 − u₀
+        p0 = 2 * (qw * qw + qz * qz) / rho  # 1 + u₀
+        if v0 == 0 or p0 == 0:
             raise InputError(
                 "orientation: the symmetry axis is vertical (θ0 = 0 or π), where the z–y′–z″ "
                 "angles of the heavy-top solution are singular; tilt it"
             )
-        u0 = 0.5 * (one_plus - one_minus)
-        s0 = zx * zx + zy * zy  # sin²θ₀
+        u0 = (p0 - v0) / 2
         wp2 = w1 * w1 + w2 * w2
         h0 = w1 * zx + w2 * zy  # b − a u₀
         a = i3 * w3 / ip
-        beta = 2.0 * self.mgl / ip
+        beta = 2 * mgl / ip
         udot = zx * w2 - zy * w1
-        # f(u₀ + x) = c0 + c1 x + c2 x² + β x³, each coefficient from the state directly.
-        c0 = udot * udot
-        c1 = -2.0 * u0 * wp2 - beta * s0 + 2.0 * a * h0
-        c2 = -wp2 + 2.0 * beta * u0 - a * a
-        scale = abs(c0) + abs(c1) + abs(c2) + beta
-
-        def f(x):
-            return c0 + x * (c1 + x * (c2 + beta * x))
-
-        x1, x2, x3 = self._roots(f, c0, c1, c2, beta, one_plus, one_minus)
-        d21, d31, d32 = x2 - x1, x3 - x1, x3 - x2
-        self._u = (u0 + x1, u0 + x2, u0 + x3)
+        bma, bpa = h0 - a * v0, h0 + a * p0  # b − a, b + a: f(±1) = −(b ∓ a)²
+        for value, name in ((bpa, "lower"), (bma, "upper")):
+            if value == 0:
+                raise PrecisionError(
+                    f"heavy top: the motion reaches the {name} vertical (|cos θ| = 1); the "
+                    "z–y′–z″ solution is singular there"
+                )
+        # f(u₀ + x) = c0 + c1 x + c2 x² + β x³ and f(1 − v) = e0 + e1 v + e2 v² − β v³:
+        # u₁ is nearest u₀, u₃ nearest 1, u₂ is taken from whichever centre is nearer.
+        c = (udot * udot, -2 * u0 * wp2 - beta * v0 * p0 + 2 * a * h0, -wp2 + 2 * beta * u0 - a * a)
+        big_a = wp2 - beta * v0  # α − β
+        e = (-bma * bma, 2 * big_a - 2 * a * bma, 2 * beta - big_a - a * a)
+        x1, x2, v2, v3 = self._roots(c, e, float(beta), v0, p0)
+        one_minus, one_plus = float(v0), float(p0)
+        if x2 is None:
+            x2 = one_minus - v2
+        if v2 is None:
+            v2 = one_minus - x2
+        d21, d32 = x2 - x1, v2 - v3  # sums of non-negative terms: no cancellation
+        d31 = d21 + d32
+        self._d21 = d21
         self.m = d21 / d31
         self.m1 = d32 / d31
-        self.rate = 0.5 * math.sqrt(beta * d31)
-        if self.m1 <= 0.0:
+        self.rate = 0.5 * math.sqrt(float(beta) * d31)
+        if not self.m1 >= np.finfo(float).tiny:
             raise PrecisionError(
-                "heavy top: u₂ = u₃ (the unstable vertical separatrix); no periodic solution"
+                f"heavy top: 1 − m = {self.m1:.3g} is not a normal float (u₃ − u₂ within "
+                "rounding of the unstable vertical separatrix); no periodic solution to this "
+                "precision"
             )
         self._om1 = one_minus - x1  # 1 − u₁
         self._op1 = one_plus + x1  # 1 + u₁
-        self._n_plus, self._n1_plus = d21 / self._om1, (one_minus - x2) / self._om1
+        self._om2 = v2  # 1 − u₂
+        self._n_plus, self._n1_plus = d21 / self._om1, v2 / self._om1
+        if self._n_plus >= 1.0:
+            raise PrecisionError(
+                f"heavy top: the symmetry axis rises to {math.sqrt(2.0 * v2):.3g} rad of the "
+                "upright vertical (1 − u₂ < ε(1 − u₁)/2: n₊ = 1 in floats), where the "
+                "z–y′–z″ solution's precession integral is singular to this precision"
+            )
         self._n_minus = -d21 / self._op1
         self._n1_minus = (one_plus + x2) / self._op1
-        sgn = 1.0 if udot >= 0.0 else -1.0
-        amp = math.atan2(sgn * math.sqrt(max(-x1, 0.0)), math.sqrt(max(x2, 0.0)))
-        self._r0 = float(elliptic.incomplete_first(amp, self.m, self.m1))
-        self._a = a
-        self._w3 = w3
-        self._b_minus_a = h0 - a * one_minus
-        self._b_plus_a = h0 + a * one_plus
+        # sn²r₀ = (u₀ − u₁)/(u₂ − u₁), cn²r₀ = (u₂ − u₀)/(u₂ − u₁), sn r₀ with the sign of u̇₀:
+        # read straight into Carlson's R_F (jacobi_argument), not through the amplitude,
+        # whose rounding F(φ | m) multiplies by 1/dn(r₀) ≈ 1/√(1 − m) next to u₂.
+        sn0 = math.copysign(math.sqrt(-x1), 1.0 if udot >= 0 else -1.0)
+        self._r0 = elliptic.jacobi_argument(sn0, math.sqrt(x2), self.m, self.m1) if d21 else 0.0
+        self._a = float(a)
+        self._w3 = float(w3)
+        self._b_minus_a = float(bma)
+        self._b_plus_a = float(bpa)
         self._p0 = (self._pi_plus(self._r0), self._pi_minus(self._r0))
         # ψ₀, φ₀ from q0 = q_z(ψ₀) q_y(θ₀) q_z(φ₀): (ψ+φ)/2 = atan2(z, w), (ψ−φ)/2 = atan2(−x, y).
+        qw, qx, qy, qz = self._given
         s, d = math.atan2(qz, qw), math.atan2(-qx, qy)
         self._psi0, self._phi0 = s + d, s - d
-        self._scale = scale
         self._sin_min = math.sqrt(min(self._om1 * (2 - self._om1), self._op1 * (2 - self._op1)))
 
     @staticmethod
-    def _roots(f, c0, c1, c2, beta, one_plus, one_minus):
-        """Roots x₁ ≤ 0 ≤ x₂ ≤ x₃ of f(u₀ + x), x₁ ≥ −(1 + u₀), x₂ ≤ 1 − u₀ ≤ x₃."""
-        if c0 == 0.0:
-            # θ̇₀ = 0: x = 0 is a turning point; deflate to β x² + c2 x + c1 = 0 (stable form).
-            disc = math.sqrt(max(c2 * c2 - 4.0 * beta * c1, 0.0))
-            qq = -0.5 * (c2 + math.copysign(disc, c2))
-            others = [qq / beta, c1 / qq if qq else 0.0]
-            return tuple(sorted([0.0, *others]))
-        for end, name in ((-one_plus, "lower"), (one_minus, "upper")):
-            if f(end) > 0.0:
-                raise PrecisionError(
-                    f"heavy top: the motion reaches the {name} vertical (|cos θ| = 1) within "
-                    "rounding; the z–y′–z″ solution is singular there"
-                )
-        x1 = brentq(f, -one_plus, 0.0, xtol=1e-300, rtol=4 * _EPS, maxiter=500)
-        x2 = brentq(f, 0.0, one_minus, xtol=1e-300, rtol=4 * _EPS, maxiter=500)
-        hi = 2.0 * one_minus + 1.0
-        while f(hi) < 0.0:
+    def _roots(c, e, beta, v0, p0):
+        """u₁ = u₀ + x₁, u₂ = u₀ + x₂ = 1 − v₂, u₃ = 1 − v₃ from the exact coefficients.
+
+        Returns (x₁, x₂, v₂, v₃) with one of x₂, v₂ None (the centre u₂ was not taken
+        from). Each root comes from the expansion about the nearer centre, whose rounded
+        coefficients (relative error ε/2 each) fix it to a few ulps of its distance from
+        that centre: x₁ ≤ 0 from u₀, v₃ ≤ 0 from 1, and u₂ ∈ [u₀, 1] from u₀ if f at the
+        midpoint (evaluated exactly) is ≤ 0, else from 1.
+        """
+        c0, c1, c2 = c
+        mid = v0 / 2
+        f_mid = c0 + mid * (c1 + mid * (c2 + Fraction(beta) * mid))
+        c0, c1, c2 = (float(x) for x in c)
+        e0, e1, e2 = (float(x) for x in e)
+        v0, p0, mid = float(v0), float(p0), float(mid)
+
+        def fx(x):
+            return c0 + x * (c1 + x * (c2 + beta * x))
+
+        def gx(x):  # f(u₀ + x)/x when x = 0 is a root (θ̇₀ = 0)
+            return c1 + x * (c2 + beta * x)
+
+        def fv(v):
+            return e0 + v * (e1 + v * (e2 - beta * v))
+
+        turning = c0 == 0.0
+        if turning and c1 == 0.0:  # steady precession: u₁ = u₂ = u₀
+            x1, x2, v2 = 0.0, 0.0, None
+        elif turning and c1 < 0.0:  # released at u₂ = u₀
+            x1, x2, v2 = _root(gx, -p0, 0.0), 0.0, None
+        else:
+            x1 = 0.0 if turning else _root(fx, -p0, 0.0)
+            if f_mid <= 0:
+                x2, v2 = _root(gx if turning else fx, 0.0, mid), None
+            else:
+                x2, v2 = None, _root(fv, 0.0, mid)
+        hi = 1.0
+        while fv(-hi) < 0.0:
             hi = 2.0 * hi
-        x3 = brentq(f, one_minus, hi, xtol=1e-300, rtol=4 * _EPS, maxiter=500)
-        return x1, x2, x3
+        v3 = _root(fv, -hi, 0.0)
+        return x1, x2, v2, v3
 
     def _pi_plus(self, r):
         return elliptic.pi_integral(r, self._n_plus, self.m, self.m1, self._n1_plus)
@@ -284,7 +355,7 @@ class HeavyTop:
         sin_t = np.sqrt(one_minus * one_plus)
         psidot = half_bma / one_minus + half_bpa / one_plus
         # θ̇ = −u̇ / sin θ, u̇ = 2 (u₂ − u₁) λ sn cn dn
-        udot = 2.0 * (self._u[1] - self._u[0]) * self.rate * sn * cn * dn
+        udot = 2.0 * self._d21 * self.rate * sn * cn * dn
         thetadot = -udot / sin_t
         cphi, sphi = np.cos(phi), np.sin(phi)
         w = np.stack(
@@ -295,13 +366,19 @@ class HeavyTop:
             ],
             axis=-1,
         )
+        # A few ulps of the phase r (|r| + |r₀| + 1) move ψ and φ at most by the largest of
+        # their rates over λ: ½|b − a|/(1 − u) peaks at u₂ (1 − u₂, not 1 − u₁: they differ
+        # most next to the separatrix), ½|b + a|/(1 + u) at u₁; the Π-integrals carry a
+        # few ulps of |Π(n₊; r)| ≤ |r|/(1 − n₊) = |r| (1 − u₁)/(1 − u₂), the same term.
+        # Measured errors against a 34-54-digit oracle are 22-290x below this bound, next to
+        # the separatrix (1 − m down to 1e-14) as far from it (tests/test_reference_heavy.py).
         err = (
             16.0
             * _EPS
             * (
                 1.0
                 + (np.abs(r) + abs(self._r0) + 1.0)
-                * (1.0 + abs(half_bma) / self._om1 + abs(half_bpa) / self._op1)
+                * (1.0 + abs(half_bma) / self._om2 + abs(half_bpa) / self._op1)
                 / self.rate
                 + np.abs(psi)
                 + np.abs(phi)
