@@ -353,14 +353,34 @@ class CacheFile:
     mtime: float
 
 
-def cached_modules(directory: Path | None = None) -> list[CacheFile]:
+def cached_modules(
+    directory: Path | None = None, *, other_than: str | None = None, before: float | None = None
+) -> list[CacheFile]:
     """Every generated module in ``directory`` (default: :func:`cache_location`).
 
     ``version`` is the package digest the module was made by (:func:`version_tag`),
-    ``files`` the module and its compiled files under ``__pycache__``.
+    ``files`` the module and its compiled files under ``__pycache__``. ``other_than`` keeps
+    only modules of other versions, ``before`` only modules written before that time (a
+    ``time.time()`` value): both are decided from the module's name and its own mtime,
+    before the compiled files (several per module, tens of thousands in a full cache) are
+    listed and measured, so pruning costs little when nothing is stale.
     """
     directory = cache_location() if directory is None else Path(directory)
     if directory is None or not directory.is_dir():
+        return []
+    chosen = []
+    for f in directory.glob("gen_*.py"):
+        parts = f.name[:-3].rsplit("_", 2)
+        version = parts[1] if len(parts) == 3 else ""
+        if other_than is not None and version == other_than:
+            continue
+        try:
+            mtime = f.stat().st_mtime
+        except OSError:  # deleted meanwhile by another process
+            continue
+        if before is None or mtime < before:
+            chosen.append((f, version, mtime))
+    if not chosen:
         return []
     compiled: dict[str, list[Path]] = {}
     pycache = directory / "__pycache__"
@@ -368,17 +388,13 @@ def cached_modules(directory: Path | None = None) -> list[CacheFile]:
         for f in pycache.iterdir():
             compiled.setdefault(f.name.split(".", 1)[0], []).append(f)
     out = []
-    for f in directory.glob("gen_*.py"):
-        stem = f.name[:-3]
-        files = (f, *compiled.get(stem, ()))
+    for f, version, mtime in chosen:
+        files = (f, *compiled.get(f.name[:-3], ()))
         try:
-            stats = [g.stat() for g in files]
-        except OSError:  # deleted meanwhile by another process
+            size = sum(g.stat().st_size for g in files)
+        except OSError:
             continue
-        parts = stem.rsplit("_", 2)
-        version = parts[1] if len(parts) == 3 else ""
-        size = sum(st.st_size for st in stats)
-        out.append(CacheFile(f, version, files, size, stats[0].st_mtime))
+        out.append(CacheFile(f, version, files, size, mtime))
     return sorted(out, key=lambda c: c.path.name)
 
 
@@ -409,8 +425,7 @@ def prune_cache(max_age_days: float = PRUNE_AFTER_DAYS, now: float | None = None
     import time
 
     limit = (time.time() if now is None else now) - max_age_days * 86400.0
-    mine = version_tag()
-    return _delete(c for c in cached_modules() if c.version != mine and c.mtime < limit)
+    return _delete(cached_modules(other_than=version_tag(), before=limit))
 
 
 _PRUNED = False
