@@ -152,7 +152,7 @@ def wobble_damping(coeffs: Sequence[float], steps_q: bool, phase_on_q: bool | No
         damping = StepLimit("N·|ln|R(ihν)|²|", abs(total), 1.0, effect)
         if not (steps_q if phase_on_q is None else phase_on_q):
             return damping
-        y = 0.5 * h * math.sqrt(sum(float(c) ** 2 for c in w))
+        y = 0.5 * h * _speed(w)
         r = sum(c * (1j * y) ** k for k, c in enumerate(coeffs))
         per_step = abs(cmath.phase(r * cmath.exp(-1j * y))) if r != 0 else math.pi
         lag = 2.0 * nsteps * per_step
@@ -197,7 +197,7 @@ def moser_veselov(inertia, w, h, nsteps) -> StepLimit:
     >>> moser_veselov((1.0, 2.0, 3.0), (0.0, 0.0, 2.0), 0.5, 1).exceeded
     True
     """
-    y = h * math.sqrt(sum(float(c) ** 2 for c in w))
+    y = h * _speed(w)
     return StepLimit(
         "h·|ω|",
         y,
@@ -207,9 +207,14 @@ def moser_veselov(inertia, w, h, nsteps) -> StepLimit:
     )
 
 
+def _speed(w) -> float:
+    """|ω| (or the length of any 3-vector), without overflow or underflow."""
+    return math.hypot(*(float(c) for c in w))
+
+
 def _momentum(inertia, w) -> float:
     """|L| = |I ω| (principal frame)."""
-    return math.sqrt(sum((float(i) * float(c)) ** 2 for i, c in zip(inertia, w, strict=True)))
+    return _speed([float(i) * float(c) for i, c in zip(inertia, w, strict=True)])
 
 
 def principal_rotation_angle(inertia, w, h, nsteps) -> StepLimit:
