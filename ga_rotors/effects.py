@@ -52,9 +52,9 @@ import numpy as np
 
 from ._jit import jit
 from ._kernels import cross, qconj, qrotate
-from ._schema import Reader, join
 from .errors import InputError
 from .integrators.base import TorqueTerm
+from .scene.reader import Reader, join
 
 __all__ = [
     "EFFECTS",

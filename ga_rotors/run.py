@@ -109,10 +109,7 @@ def run(args: argparse.Namespace) -> int:
     from pathlib import Path
 
     from .errors import StepLimitWarning
-    from .scene import load_scene
-    from .scene_output import write_outputs
-    from .scene_report import report
-    from .scene_run import simulate
+    from .scene import load_scene, report, run_scene, write_outputs
 
     start = time.perf_counter()
     scene = load_scene(args.scene)
@@ -120,7 +117,7 @@ def run(args: argparse.Namespace) -> int:
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always", StepLimitWarning)
         try:
-            trajectory = simulate(scene, progress=bar)
+            trajectory = run_scene(scene, progress=bar)
         finally:
             bar.close()
     for w in caught:

@@ -25,7 +25,7 @@ from .errors import InputError, IntegrationStoppedWarning, StepLimitWarning
 from .integrators import base
 from .trajectory import Trajectory
 
-__all__ = ["OUTPUTS", "PATH_ORDER", "simulate"]
+__all__ = ["OUTPUTS", "PATH_ORDER", "simulate", "whole_steps"]
 
 #: Paths in order of precedence for the primary path.
 PATH_ORDER = ("rotor", "quaternion", "euler")
@@ -46,7 +46,21 @@ def _body(body) -> RigidBody:
     return RigidBody(tuple(as_float_array(body, "body", last=3)))
 
 
-def _steps(duration, step) -> int:
+def whole_steps(duration, step) -> int:
+    """How many steps of ``step`` seconds make ``duration``; the step must divide it.
+
+    A few ulps of the quotient are representation error and are forgiven
+    (0.3 / 0.1 = 2.9999999999999996 is 3 steps).
+
+    Examples
+    --------
+    >>> whole_steps(0.3, 0.1), whole_steps(10.0, 1e-3)
+    (3, 10000)
+    >>> whole_steps(1.0, 0.3)
+    Traceback (most recent call last):
+    ...
+    ga_rotors.errors.InputError: step: 0.3 s does not divide duration 1.0 s into whole steps ...
+    """
     for name, value in (("duration", duration), ("step", step)):
         if isinstance(value, bool) or not isinstance(value, int | float | np.floating):
             raise InputError(f"{name}: expected a number of seconds, got {value!r}")
@@ -170,7 +184,7 @@ def simulate(
     """
     method = integrator if isinstance(integrator, base.Integrator) else base.get(integrator)
     requested = _requested(paths)
-    nsteps = _steps(duration, step)
+    nsteps = whole_steps(duration, step)
     if isinstance(sample_every, bool) or not isinstance(sample_every, int) or sample_every < 1:
         raise InputError(f"sample_every: expected a positive integer, got {sample_every!r}")
     if isinstance(t0, bool) or not isinstance(t0, int | float) or not math.isfinite(t0):

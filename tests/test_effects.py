@@ -9,8 +9,7 @@ from scipy.spatial.transform import Rotation
 from ga_rotors import effects, shapes
 from ga_rotors import quaternion as Q
 from ga_rotors.errors import SceneError
-from ga_rotors.scene import Scene
-from ga_rotors.scene_run import simulate
+from ga_rotors.scene import Scene, run_scene
 
 RNG = np.random.default_rng(11)
 
@@ -100,7 +99,7 @@ def test_off_axis_pivot_conserves_total_energy_at_rk4_order():
     for h in (4e-3, 2e-3):
         s = _off_axis_gravity_scene(h)
         assert s.principal_rotation != (1.0, 0.0, 0.0, 0.0)
-        e = simulate(s).total_energy
+        e = run_scene(s).total_energy
         drifts.append(np.abs(e - e[0]).max() / np.abs(e).max())
     assert drifts[0] > 1e-12  # far above rounding: the truncation error is what we measure
     assert 12.0 < drifts[0] / drifts[1] < 20.0
@@ -116,7 +115,7 @@ def test_space_torque_changes_the_space_momentum_linearly():
         "effects": [{"type": "space_torque", "torque": tau.tolist()}],
         "output": {"quantities": ["L_space"]},
     })  # fmt: skip
-    tr = simulate(s)
+    tr = run_scene(s)
     free = tr.L_space - tr.t[:, None] * tau
     # RK4 error model: orientation error ~ T|ω|(|ω|h)⁴/1920 ≈ 2·5.5·(5.5e-3)⁴/1920 ≈ 5e-12
     # rad, times |L| ≈ 0.13: ~1e-12 in L. Allow 1e-11 (next-order terms, ω not constant).
@@ -134,7 +133,7 @@ def test_body_torque_spins_up_a_sphere_exactly():
         "integrator": {"step": 1e-3, "paths": ["quaternion"]},
         "effects": [{"type": "body_torque", "torque": tau.tolist()}],
     })  # fmt: skip
-    tr = simulate(s)
+    tr = run_scene(s)
     assert np.allclose(tr.w, tr.t[:, None] * tau / inertia, rtol=0, atol=1e-13)
     angle = np.linalg.norm(tau) * tr.t**2 / (2 * inertia)
     exact = Q.from_axis_angle(tau, angle)
@@ -211,7 +210,7 @@ def test_user_torque_from_the_scene_directory_runs(user_scene):
     make, where = user_scene
     s = make("spin_up", params=(0.4,))
     assert not (where / "imported").exists()  # loading a scene imports nothing
-    tr = simulate(s)
+    tr = run_scene(s)
     inertia = 0.4  # ⅖ m R²
     assert np.allclose(tr.w[:, 2], 0.4 * tr.t / inertia, rtol=0, atol=1e-14)
     assert tr.meta["torques"] == ["spin_up"]
@@ -232,7 +231,7 @@ def test_bad_user_torques_fail_with_the_key(user_scene, function, message):
     make, _ = user_scene
     s = make(function)
     with pytest.raises(SceneError) as info:
-        simulate(s)
+        run_scene(s)
     assert info.value.key == "effects[0].function" and message in str(info.value)
 
 
@@ -241,6 +240,6 @@ def test_unimportable_user_module_is_a_scene_error():
                "integrator": {"step": 0.5},
                "effects": [{"type": "user", "function": "no_such_pkg.torques:f"}]})  # fmt: skip
     with pytest.raises(SceneError) as info:
-        simulate(s)
+        run_scene(s)
     assert info.value.key == "effects[0].function"
     assert "cannot import module 'no_such_pkg.torques'" in str(info.value)

@@ -471,7 +471,7 @@ def test_docs_describe_every_key_of_the_schema():
     from pathlib import Path
 
     from ga_rotors import effects
-    from ga_rotors.scene import DATA_FORMATS, PLOTS, QUANTITIES, SECTIONS
+    from ga_rotors.scene.schema import DATA_FORMATS, PLOTS, QUANTITIES, SECTIONS
     from ga_rotors.shapes import SHAPES
 
     text = (Path(__file__).resolve().parent.parent / "docs" / "scenes.md").read_text()

@@ -12,10 +12,10 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from ga_rotors import scene_output
 from ga_rotors.cli import main
 from ga_rotors.run import ProgressBar
 from ga_rotors.scene import Scene, bundled, load_scene
+from ga_rotors.scene import output as scene_output
 
 ROOT = Path(__file__).resolve().parent.parent
 

@@ -12,11 +12,11 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from ga_rotors import effects, scene_run
+from ga_rotors import effects
 from ga_rotors.integrators import Problem, _codegen, get
 from ga_rotors.integrators.base import TemplateIntegrator
-from ga_rotors.scene import Scene, load_scene
-from ga_rotors.scene_run import simulate
+from ga_rotors.scene import Scene, load_scene, run_scene
+from ga_rotors.scene import run as scene_run
 
 ROOT = Path(__file__).resolve().parent.parent
 
@@ -88,7 +88,7 @@ def test_undeclared_effects_are_never_evaluated_uncompiled(tmp_path):
         import sys
         import ga_rotors.effects as E
         from ga_rotors.scene import Scene
-        from ga_rotors.scene_run import simulate
+        from ga_rotors.scene import run_scene
 
         def tripwire(name):
             def kernel(t, q, w, p):
@@ -114,7 +114,7 @@ def test_undeclared_effects_are_never_evaluated_uncompiled(tmp_path):
             "integrator": {"step": 0.01, "paths": ["rotor", "quaternion"]},
             "effects": [{"type": "space_torque", "torque": [0.0, 0.0, 1.0]}],
         })
-        tr = simulate(s)
+        tr = run_scene(s)
         print(len(calls), tr.names)
         """
     )
@@ -147,7 +147,7 @@ def test_undeclared_paths_are_never_integrated(monkeypatch):
         s = load_scene("spinning_disk").replace(
             {"time.duration": 0.05, "integrator.paths": paths, "output.quantities": []}
         )
-        tr = simulate(s)
+        tr = run_scene(s)
         assert sorted(ran) == sorted(paths)
         assert set(tr.meta["paths"]) == set(paths)
 
@@ -162,14 +162,14 @@ def test_nothing_is_computed_for_outputs_nobody_asked_for(monkeypatch):
     import ga_rotors.crosscheck as crosscheck
 
     monkeypatch.setattr(crosscheck, "orientations", tripwire)
-    tr = simulate(s)
+    tr = run_scene(s)
     assert tr.names == ("t", "w", "R", "q")
 
     # Asking for one quantity computes that one: energy comes from simulate itself, and the
     # exact solution is still not touched.
     monkeypatch.undo()
     monkeypatch.setattr(scene_run, "exact_solution", tripwire)
-    tr = simulate(s.replace({"output.quantities": ["energy", "potential_energy"]}))
+    tr = run_scene(s.replace({"output.quantities": ["energy", "potential_energy"]}))
     assert tr.names == ("t", "w", "R", "q", "energy", "potential_energy")
 
 
@@ -181,7 +181,7 @@ def test_quantities_are_what_they_say():
         "output.quantities": ["energy", "potential_energy", "total_energy", "L", "L_space",
                               "omega_space", "angles", "error", "omega_error"],
     })  # fmt: skip
-    tr = simulate(s)
+    tr = run_scene(s)
     q = Q.normalize(tr.q)
     weight, r = scene_run.gravity_terms(s)
     assert np.allclose(tr.potential_energy, -(Q.rotate(q, r) @ weight), rtol=0, atol=1e-15)
@@ -197,10 +197,10 @@ def test_chunked_loops_give_the_same_samples(monkeypatch):
     # Progress runs the compiled loop in chunks restarted from the stored samples; the
     # states and the Euler path's watch statistics must be identical to one call.
     s = load_scene("paper_0.001deg").replace({"time.duration": 2.0, "output.quantities": []})
-    whole = simulate(s)
+    whole = run_scene(s)
     monkeypatch.setattr(_codegen, "CHUNK_STEPS", 300)  # 7 chunks of 300 steps (30 samples)
     calls = []
-    chunked = simulate(s, progress=lambda done, total: calls.append((done, total)))
+    chunked = run_scene(s, progress=lambda done, total: calls.append((done, total)))
     for name in whole.names:
         assert np.array_equal(whole[name], chunked[name]), name
     a, b = whole.meta["paths"]["euler"]["watch"], chunked.meta["paths"]["euler"]["watch"]
@@ -226,7 +226,7 @@ def test_numba_failure_of_a_user_kernel_names_the_effect(tmp_path, monkeypatch):
     from ga_rotors.errors import SceneError
 
     with pytest.raises(SceneError, match=r"effects\[0\]\.function: numba could not compile"):
-        simulate(s)
+        run_scene(s)
 
 
 def test_effects_table_kernels_are_module_level_and_documented():
@@ -237,7 +237,7 @@ def test_effects_table_kernels_are_module_level_and_documented():
 
 
 def test_an_adaptive_scene_runs_at_its_tolerance():
-    from ga_rotors.scene_report import report
+    from ga_rotors.scene import report
 
     errors = {}
     for tol in (1e-8, 1e-11):
@@ -245,7 +245,7 @@ def test_an_adaptive_scene_runs_at_its_tolerance():
             "integrator.method": "dop853", "integrator.tolerance": tol, "time.duration": 3.0,
             "integrator.step": 0.005, "output.quantities": [],
         })  # fmt: skip
-        rep = report(s, simulate(s))
+        rep = report(s, run_scene(s))
         assert rep.lines[0].startswith(f"scene intermediate_axis_flip: dop853, adaptive at "
                                        f"tolerance {tol:g}")  # fmt: skip
         errors[tol] = rep.values["error_rotor"]

@@ -17,25 +17,24 @@ from __future__ import annotations
 
 import math
 from functools import cache
+from pathlib import Path
 
 import numpy as np
 import pytest
 
 from ga_rotors import _generate_paper_scenes as gen
 from ga_rotors import paper_figures, paper_scenes
-from ga_rotors.scene import bundled, bundled_path, load_scene
-from ga_rotors.scene_output import DIGEST_PREFIX, data_digest
-from ga_rotors.scene_report import report
-from ga_rotors.scene_run import exact_solution, simulate
+from ga_rotors.scene import bundled, bundled_path, exact_solution, load_scene, report, run_scene
+from ga_rotors.scene.figures import DIGEST_PREFIX, data_digest
 
 EPS = np.finfo(float).eps
-FIGURES = bundled_path("heavy_top").parents[2] / "docs" / "figures" / "scenes"
+FIGURES = Path(__file__).resolve().parents[1] / "docs" / "figures" / "scenes"
 
 
 @cache
 def run(name: str):
     scene = load_scene(name)
-    tr = simulate(scene)
+    tr = run_scene(scene)
     return scene, tr, report(scene, tr)
 
 
@@ -144,7 +143,7 @@ def test_heavy_top_converges_to_the_lagrange_solution_at_fourth_order():
     for h in (4e-4, 2e-4):
         scene = load_scene("heavy_top").replace({"time.duration": 1.0, "integrator.step": h,
                                                  "time.output_step": 2e-3})  # fmt: skip
-        errors.append(report(scene, simulate(scene)).values["error_rotor"])
+        errors.append(report(scene, run_scene(scene)).values["error_rotor"])
     assert errors[1] > 1e3 * EPS  # well above rounding
     assert 12.0 < errors[0] / errors[1] < 20.0
 

@@ -97,8 +97,7 @@ def test_lgvi_refuses_a_step_past_h_omega_1():
 
 def test_scene_and_cli_name_the_file_and_integrator_step(tmp_path, capsys):
     from ga_rotors.cli import main
-    from ga_rotors.scene import load_scene
-    from ga_rotors.scene_run import simulate as run_scene
+    from ga_rotors.scene import load_scene, run_scene
 
     # 500 steps at hν = 0.846: N·|ln|R|²| = 500 × 0.00465 = 2.3, past 1.
     scene = load_scene("fast_spinner").replace(

@@ -1,6 +1,6 @@
 """List the bundled scenes; run one with ga-rotors run NAME, print it with ga-rotors show NAME.
 
-The scenes are TOML files shipped in this package (ga_rotors/scenes/*.toml); their schema
+The scenes are TOML files shipped in this package (ga_rotors/scene/bundled/*.toml); their schema
 is in docs/scenes.md. With --figures DIR every bundled scene is run and its figure written
 to DIR/<name>.png (how docs/figures/scenes/ is made).
 """
@@ -34,9 +34,7 @@ def run(args: argparse.Namespace) -> int:
 
     from ..errors import InputError
     from ..files import atomic_write
-    from ..scene import load_scene
-    from ..scene_output import figure_png
-    from ..scene_run import simulate
+    from ..scene import figure_png, load_scene, run_scene
 
     out = Path(args.figures)
     if not out.is_dir():
@@ -45,7 +43,7 @@ def run(args: argparse.Namespace) -> int:
         scene = load_scene(name)
         if not scene.data["output"]["plots"]:
             continue
-        png = figure_png(scene, simulate(scene))
+        png = figure_png(scene, run_scene(scene))
         path = atomic_write(out / f"{name}.png", lambda fh, b=png: fh.write(b))
         print(f"wrote {path} ({len(png) // 1024} KiB)")
     return 0

@@ -1,4 +1,4 @@
-"""Scenes: a rigid-body simulation described as data, validated, resolved with its defaults.
+"""The Scene: a validated scene and the values derived from it, each computed once.
 
 A scene is a TOML file (read with the standard library's :mod:`tomllib`; scene files are
 data and are never evaluated) or the same nested dictionary built in Python. The schema,
@@ -47,364 +47,38 @@ from __future__ import annotations
 
 import copy
 import itertools
-import json
-import math
 import re
 import tomllib
 from collections.abc import Mapping
-from importlib import resources
 from pathlib import Path
 
 import numpy as np
 
-from . import effects as _effects
-from . import paths as _paths
-from ._schema import Reader, join, suggest
-from .body import RigidBody
-from .errors import InputError, SceneError
-from .shapes import SHAPES
+from .. import effects as _effects
+from ..body import RigidBody
+from ..errors import InputError, SceneError
+from ..shapes import SHAPES
+from .reader import Reader, join
+from .schema import (
+    ANGLE_UNITS,
+    NAME,
+    ORIENTATION_FORMS,
+    RATE_UNITS,
+    ROTOR_BLADES,
+    adaptive,
+    resolve,
+)
+from .toml_io import dumps_toml
 
-__all__ = [
-    "ANGLE_UNITS",
-    "DATA_FORMATS",
-    "PLOTS",
-    "QUANTITIES",
-    "RATE_UNITS",
-    "SECTIONS",
-    "Scene",
-    "adaptive",
-    "bundled",
-    "bundled_path",
-    "load_scene",
-]
-
-#: Top-level tables, in the order a resolved scene lists them.
-SECTIONS = ("scene", "body", "initial", "time", "integrator", "effects", "output")
-
-#: Angle units -> radians per unit.
-ANGLE_UNITS = {"rad": 1.0, "deg": math.pi / 180.0}
-#: Angular-rate units -> rad/s per unit.
-RATE_UNITS = {"rad/s": 1.0, "deg/s": math.pi / 180.0, "rpm": 2.0 * math.pi / 60.0}
-
-ORIENTATION_FORMS = ("quaternion", "euler", "rotor", "axis")
-ANGULAR_VELOCITY_FORMS = ("body", "space", "euler_rates")
-
-#: Rotor blade names accepted in ``initial.orientation.rotor``: Cl(3) index and sign.
-ROTOR_BLADES = {
-    "1": (0, 1.0),
-    "e12": (4, 1.0),
-    "e21": (4, -1.0),
-    "e13": (5, 1.0),
-    "e31": (5, -1.0),
-    "e23": (6, 1.0),
-    "e32": (6, -1.0),
-}
-
-#: Arrays a scene can add to its trajectory (``output.quantities``).
-QUANTITIES = {
-    "energy": "kinetic energy ½ ω·Iω (J)",
-    "potential_energy": "gravitational energy −m g·r_space about the pivot (J); gravity only",
-    "total_energy": "kinetic plus gravitational energy (J)",
-    "L": "body-frame angular momentum Iω (kg·m²/s)",
-    "L_space": "space-frame angular momentum q (Iω) q* (kg·m²/s)",
-    "omega_space": "space-frame angular velocity q ω q* (rad/s)",
-    "angles": "ZYZ Euler angles (ψ, θ, φ) of the primary path's orientation (rad)",
-    "error": "geodesic angle from the exact orientation, one array per path (rad)",
-    "omega_error": "|ω − ω_exact| of the primary path (rad/s)",
-}
-
-#: Figures ``ga-rotors run`` can draw (``output.plots``).
-PLOTS = {
-    "omega": "body angular velocity components against time",
-    "angles": "nutation θ and precession ψ (ZYZ) of the primary path against time",
-    "momentum": "space-frame angular momentum components against time",
-    "invariants": "drift of the scene's conserved quantities (or their exact decay)",
-    "error": "geodesic error of each path against the exact solution",
-}
-
-#: Data files ``ga-rotors run`` writes (``output.data``).
-DATA_FORMATS = {
-    "csv": "every array as CSV columns, full precision",
-    "npz": "every array in one NumPy .npz archive",
-}
-
-_NAME = re.compile(r"^[A-Za-z0-9][A-Za-z0-9_.-]*$")
-
-
-# ---------------------------------------------------------------------------- resolving
-
-
-def _units(reader: Reader, table: dict, key: str, units: dict, what: str) -> str:
-    if "units" not in table:
-        raise reader.error(
-            join(key, "units"),
-            f"missing; {what} are ambiguous without units: expected one of "
-            + ", ".join(f'"{u}"' for u in units),
-        )
-    return reader.string(table["units"], join(key, "units"), units)
-
-
-def _resolve_scene(reader: Reader, value, default_name: str) -> dict:
-    t = reader.table(value, "scene", ("name", "description"))
-    name = reader.string(t.get("name", default_name), "scene.name")
-    if not _NAME.match(name):
-        raise reader.error(
-            "scene.name", f"expected letters, digits, '_', '.', '-' (a file name), got {name!r}"
-        )
-    return {"name": name, "description": reader.string(t.get("description", ""),
-                                                       "scene.description")}  # fmt: skip
-
-
-def _dimension_keys() -> list[str]:
-    return sorted({d for _, dims in SHAPES.values() for d in dims})
-
-
-def _resolve_body(reader: Reader, value) -> dict:
-    dims = _dimension_keys()
-    t = reader.table(value, "body", ("moments", "tensor", "shape", "mass", *dims))
-    form = reader.one_of(t, "body", ("moments", "tensor", "shape"))
-    out: dict = {}
-    if form == "moments":
-        out["moments"] = list(reader.vector(t["moments"], "body.moments", unit="kg·m²"))
-    elif form == "tensor":
-        out["tensor"] = [list(r) for r in reader.matrix(t["tensor"], "body.tensor")]
-    else:
-        shape = reader.string(t["shape"], "body.shape", SHAPES)
-        out["shape"] = shape
-        needed = SHAPES[shape][1]
-        for d in ("mass", *needed):
-            if d not in t:
-                raise reader.error(
-                    join("body", d),
-                    f"missing; a {shape} needs mass and {', '.join(needed)} (kg, m)",
-                )
-    if "mass" in t:
-        out["mass"] = reader.number(t["mass"], "body.mass", positive=True, unit="kg")
-    for d in dims:
-        if d in t:
-            if form != "shape" or d not in SHAPES[out["shape"]][1]:
-                takes = (
-                    f"a {out['shape']} takes {', '.join(SHAPES[out['shape']][1])}"
-                    if form == "shape"
-                    else "dimensions go with body.shape"
-                )
-                raise reader.error(join("body", d), f"not used here: {takes}")
-            out[d] = reader.number(t[d], join("body", d), positive=True, unit="m")
-    return out
-
-
-def _resolve_orientation(reader: Reader, value) -> dict:
-    key = "initial.orientation"
-    if value is None:
-        return {"quaternion": [1.0, 0.0, 0.0, 0.0]}
-    allowed = {
-        "quaternion": ("quaternion",),
-        "euler": ("euler", "sequence", "units"),
-        "rotor": ("rotor",),
-        "axis": ("axis", "angle", "units"),
-    }
-    every = list(dict.fromkeys(k for keys in allowed.values() for k in keys))
-    t = reader.table(value, key, every)
-    form = reader.one_of(t, key, ORIENTATION_FORMS)
-    reader.table(t, key, allowed[form])
-    if form == "quaternion":
-        return {"quaternion": list(reader.vector(t["quaternion"], join(key, "quaternion"), 4))}
-    if form == "rotor":
-        blades = reader.table(t["rotor"], join(key, "rotor"), ROTOR_BLADES)
-        out = {}
-        seen: dict[int, str] = {}
-        for name, v in blades.items():
-            index = ROTOR_BLADES[name][0]
-            if index in seen:
-                raise reader.error(
-                    join(join(key, "rotor"), name), f"the same blade as {seen[index]!r}; give one"
-                )
-            seen[index] = name
-            out[name] = reader.number(v, join(join(key, "rotor"), name))
-        return {"rotor": out}
-    if form == "euler":
-        if "sequence" not in t:
-            raise reader.error(
-                join(key, "sequence"),
-                'missing; Euler angles need their axis sequence, e.g. "ZYZ" (the paper\'s) or '
-                '"ZYX" (aerospace)',
-            )
-        from .euler import SEQUENCES
-
-        return {
-            "euler": list(reader.vector(t["euler"], join(key, "euler"))),
-            "sequence": reader.string(t["sequence"], join(key, "sequence"), SEQUENCES),
-            "units": _units(reader, t, key, ANGLE_UNITS, "angles"),
-        }
-    for k in ("angle",):
-        if k not in t:
-            raise reader.error(join(key, k), "missing; axis-angle needs axis, angle and units")
-    return {
-        "axis": list(reader.vector(t["axis"], join(key, "axis"))),
-        "angle": reader.number(t["angle"], join(key, "angle")),
-        "units": _units(reader, t, key, ANGLE_UNITS, "angles"),
-    }
-
-
-def _resolve_angular_velocity(reader: Reader, value, orientation: dict) -> dict:
-    key = "initial.angular_velocity"
-    if value is None:
-        return {"body": [0.0, 0.0, 0.0], "units": "rad/s"}
-    t = reader.table(value, key, (*ANGULAR_VELOCITY_FORMS, "units"))
-    form = reader.one_of(t, key, ANGULAR_VELOCITY_FORMS)
-    if form == "euler_rates" and "euler" not in orientation:
-        raise reader.error(
-            join(key, "euler_rates"),
-            "Euler-angle rates need the angles: give initial.orientation as euler (their "
-            "sequence is the orientation's)",
-        )
-    return {
-        form: list(reader.vector(t[form], join(key, form))),
-        "units": _units(reader, t, key, RATE_UNITS, "angular rates"),
-    }
-
-
-def _resolve_initial(reader: Reader, value) -> dict:
-    t = reader.table(value if value is not None else {}, "initial",
-                     ("orientation", "angular_velocity"))  # fmt: skip
-    orientation = _resolve_orientation(reader, t.get("orientation"))
-    return {
-        "orientation": orientation,
-        "angular_velocity": _resolve_angular_velocity(
-            reader, t.get("angular_velocity"), orientation
-        ),
-    }
-
-
-def adaptive(method) -> bool:
-    """Whether an integrator sets its accuracy by a tolerance (``rtol``), not a step.
-
-    Examples
-    --------
-    >>> from ga_rotors.integrators import get
-    >>> adaptive(get("dop853")), adaptive(get("rk4"))
-    (True, False)
-    """
-    return hasattr(method, "rtol")
-
-
-def _resolve_integrator(reader: Reader, value) -> dict:
-    from .integrators import base
-
-    t = reader.table(value if value is not None else {}, "integrator",
-                     ("method", "step", "tolerance", "paths", "accept_lower_order"))  # fmt: skip
-    name = reader.string(t.get("method", "rk4"), "integrator.method", base.names())
-    method = base.get(name)
-    out: dict = {"method": name, "step": None}
-    if "step" in t:
-        out["step"] = reader.number(t["step"], "integrator.step", positive=True, unit="s")
-    if adaptive(method):
-        out["tolerance"] = reader.number(t.get("tolerance", method.rtol), "integrator.tolerance",
-                                         positive=True)  # fmt: skip
-        if out["tolerance"] >= 1.0:
-            raise reader.error("integrator.tolerance", f"expected < 1, got {out['tolerance']!r}")
-    else:
-        if "tolerance" in t:
-            others = [n for n in base.names() if adaptive(base.get(n))]
-            raise reader.error(
-                "integrator.tolerance",
-                f"{name} is a fixed-step method: integrator.step sets its accuracy (a "
-                f"tolerance is for adaptive methods: {', '.join(others)})",
-            )
-        if out["step"] is None:
-            raise reader.error("integrator.step", f"missing; {name} is a fixed-step method")
-    paths = reader.names(t.get("paths", ["rotor"]), "integrator.paths", _paths.PATHS)
-    if not paths:
-        raise reader.error(
-            "integrator.paths", f"expected at least one of {', '.join(_paths.PATHS)}"
-        )
-    out["paths"] = paths
-    # Stored only when set: the resolved default scene (and its figures' digests) is the
-    # same as before the key existed.
-    if reader.boolean(t.get("accept_lower_order", False), "integrator.accept_lower_order"):
-        out["accept_lower_order"] = True
-    return out
-
-
-def _resolve_time(reader: Reader, value) -> dict:
-    t = reader.table(value, "time", ("start", "duration", "output_step"), ("duration",))
-    out = {
-        "start": reader.number(t.get("start", 0.0), "time.start", unit="s"),
-        "duration": reader.number(t["duration"], "time.duration", positive=True, unit="s"),
-        "output_step": None,  # default: the integrator's step, filled in by _resolve
-    }
-    if "output_step" in t:
-        out["output_step"] = reader.number(
-            t["output_step"], "time.output_step", positive=True, unit="s"
-        )
-    return out
-
-
-def _resolve_effects(reader: Reader, value) -> list[dict]:
-    out = []
-    for i, entry in enumerate(reader.array(value if value is not None else [], "effects")):
-        key = join("effects", i)
-        if not isinstance(entry, Mapping):
-            raise reader.error(key, "expected a table ([[effects]] with a type)")
-        if "type" not in entry:
-            raise reader.error(
-                join(key, "type"), f"missing; expected one of {', '.join(_effects.EFFECTS)}"
-            )
-        kind = reader.string(entry["type"], join(key, "type"), _effects.EFFECTS)
-        out.append(_effects.EFFECTS[kind].resolve(reader, dict(entry), key))
-    gravity = [i for i, e in enumerate(out) if e["type"] == "gravity"]
-    if len(gravity) > 1:
-        raise reader.error(
-            join("effects", gravity[1]), "a body has one pivot: declare gravity at most once"
-        )
-    return out
-
-
-def _resolve_output(reader: Reader, value) -> dict:
-    t = reader.table(value if value is not None else {}, "output",
-                     ("quantities", "plots", "data", "summary"))  # fmt: skip
-    return {
-        "quantities": reader.names(t.get("quantities", []), "output.quantities", QUANTITIES),
-        "plots": reader.names(t.get("plots", []), "output.plots", PLOTS),
-        "data": reader.names(t.get("data", []), "output.data", DATA_FORMATS),
-        "summary": reader.boolean(t.get("summary", True), "output.summary"),
-    }
-
-
-def _resolve(reader: Reader, data, default_name: str) -> dict:
-    top = reader.table(data, "", SECTIONS, ("body", "time"))
-    out = {
-        "scene": _resolve_scene(reader, top.get("scene", {}), default_name),
-        "body": _resolve_body(reader, top["body"]),
-        "initial": _resolve_initial(reader, top.get("initial")),
-        "time": _resolve_time(reader, top["time"]),
-        "integrator": _resolve_integrator(reader, top.get("integrator")),
-        "effects": _resolve_effects(reader, top.get("effects")),
-        "output": _resolve_output(reader, top.get("output")),
-    }
-    time, integrator = out["time"], out["integrator"]
-    if integrator["step"] is None:  # an adaptive method: the step only fixes sample times
-        if time["output_step"] is None:
-            raise reader.error(
-                "integrator.step",
-                f"missing; {integrator['method']} is adaptive, but its samples need "
-                "integrator.step or time.output_step",
-            )
-        integrator["step"] = time["output_step"]
-    if time["output_step"] is None:
-        time["output_step"] = integrator["step"]
-    return out
-
-
-# ---------------------------------------------------------------------------- the scene
+__all__ = ["Scene"]
 
 
 def _whole(reader: Reader, span: float, step: float, key: str, message: str) -> int:
     """span / step as a whole number (simulate's rule), or a SceneError at ``key``."""
-    from .simulate import _steps
+    from ..simulate import whole_steps
 
     try:
-        return _steps(span, step)
+        return whole_steps(span, step)
     except InputError:
         raise reader.error(key, message) from None
 
@@ -444,6 +118,7 @@ class Scene:
 
     Examples
     --------
+    >>> from ga_rotors.scene import load_scene
     >>> s = load_scene("spinning_disk")
     >>> s
     Scene('spinning_disk', free, 10000 steps)
@@ -457,9 +132,9 @@ class Scene:
         reader = Reader(self.file)
         self._given = copy.deepcopy(dict(data)) if isinstance(data, Mapping) else data
         default = Path(self.file).stem if self.file != "<dict>" else "scene"
-        if not _NAME.match(default):
+        if not NAME.match(default):
             default = "scene"
-        self.data = _resolve(reader, self._given, default)
+        self.data = resolve(reader, self._given, default)
         self._derive(reader)
 
     # ------------------------------------------------------------------ construction
@@ -489,6 +164,7 @@ class Scene:
 
         Examples
         --------
+        >>> from ga_rotors.scene import load_scene
         >>> s = load_scene("spinning_disk").replace({"time.duration": 0.5})
         >>> s.data["time"]["duration"], s.steps
         (0.5, 500)
@@ -521,14 +197,14 @@ class Scene:
             key = join(join("effects", self.gravity_index), "pivot_to_com")
         self.body, self.principal_rotation = self._principal(reader, tensor, key)
         self.mass = mass
-        self._frame = _effects.Frame(self.principal_rotation, mass, self.base_dir, self.file)
+        self.frame = _effects.Frame(self.principal_rotation, mass, self.base_dir, self.file)
 
         q_user = self._orientation(reader, d["initial"]["orientation"])
-        from . import quaternion as Q
+        from .. import quaternion as Q
 
         self.orientation = Q.multiply(q_user, self.principal_rotation)
         w_user = self._angular_velocity(reader, d["initial"], q_user)
-        self.angular_velocity = np.array(self._frame.to_principal(w_user))
+        self.angular_velocity = np.array(self.frame.to_principal(w_user))
         self.euler_angles = None
         o = d["initial"]["orientation"]
         if "euler" in o and o["sequence"] == "ZYZ" and self.principal_rotation == _IDENTITY:
@@ -606,10 +282,10 @@ class Scene:
 
     @staticmethod
     def _orientation(reader: Reader, o: dict) -> np.ndarray:
-        from . import euler
-        from . import quaternion as Q
-        from ._validate import require_unit
-        from .isomorphism import from_even
+        from .. import euler
+        from .. import quaternion as Q
+        from .._validate import require_unit
+        from ..isomorphism import from_even
 
         key = "initial.orientation"
         try:
@@ -631,8 +307,8 @@ class Scene:
 
     @staticmethod
     def _angular_velocity(reader: Reader, initial: dict, q_user: np.ndarray) -> np.ndarray:
-        from . import quaternion as Q
-        from .kinematics import body_omega_from_euler_rates
+        from .. import quaternion as Q
+        from ..kinematics import body_omega_from_euler_rates
 
         a = initial["angular_velocity"]
         scale = RATE_UNITS[a["units"]]
@@ -649,7 +325,7 @@ class Scene:
     def _check_integrator(self, reader: Reader) -> None:
         from types import SimpleNamespace
 
-        from .integrators import base
+        from ..integrators import base
 
         integ = self.data["integrator"]
         method = base.get(integ["method"])
@@ -688,7 +364,7 @@ class Scene:
                 return "damped_symmetric_top", "isotropic damping of a symmetric top"
             return None, "isotropic damping has an exact solution only for a symmetric top"
         if types == ["gravity"]:
-            r = self._frame.to_principal(effects[0]["pivot_to_com"])
+            r = self.frame.to_principal(effects[0]["pivot_to_com"])
             if i1 == i2 and r[0] == r[1] == 0.0 and r[2] > 0.0:
                 return "heavy_top", "gravity on a symmetric top, centre of mass on its axis"
             return None, (
@@ -749,6 +425,7 @@ class Scene:
 
         Examples
         --------
+        >>> from ga_rotors.scene import load_scene
         >>> [t.name for t in load_scene("heavy_top").torques()]
         ['gravity']
         >>> load_scene("spinning_disk").torques()
@@ -756,7 +433,7 @@ class Scene:
         """
         reader = Reader(self.file)
         return tuple(
-            _effects.EFFECTS[e["type"]].term(e, self._frame, reader, join("effects", i))
+            _effects.EFFECTS[e["type"]].term(e, self.frame, reader, join("effects", i))
             for i, e in enumerate(self.data["effects"])
         )
 
@@ -765,6 +442,7 @@ class Scene:
 
         Examples
         --------
+        >>> from ga_rotors.scene import load_scene
         >>> load_scene("heavy_top").to_dict()["effects"][0]["inertia_about"]
         'com'
         """
@@ -775,6 +453,7 @@ class Scene:
 
         Examples
         --------
+        >>> from ga_rotors.scene import load_scene
         >>> s = load_scene("spinning_disk")
         >>> Scene.from_toml(s.to_toml()).data == s.data
         True
@@ -786,10 +465,11 @@ class Scene:
 
         Examples
         --------
+        >>> from ga_rotors.scene import load_scene
         >>> print(load_scene("heavy_top").describe().splitlines()[0])
         # integration frame: principal moments (0.002225, 0.002225, 0.00125) kg·m² about the pivot
         """
-        from .integrators import base
+        from ..integrators import base
 
         q, w = self.orientation, self.angular_velocity
         method = base.get(self.data["integrator"]["method"])
@@ -822,128 +502,3 @@ _IDENTITY = (1.0, 0.0, 0.0, 0.0)
 
 def _fmt(v) -> str:
     return "(" + ", ".join(f"{float(x):.10g}" for x in v) + ")"
-
-
-# ---------------------------------------------------------------------------- TOML out
-
-_BARE = re.compile(r"^[A-Za-z0-9_-]+$")
-
-
-def _toml_key(k: str) -> str:
-    return k if _BARE.match(k) else json.dumps(k)
-
-
-def _toml_value(v) -> str:
-    if isinstance(v, bool):
-        return "true" if v else "false"
-    if isinstance(v, int | float):
-        return repr(float(v))
-    if isinstance(v, str):
-        if "\n" not in v:
-            return json.dumps(v, ensure_ascii=False)
-        # A multi-line basic string: readable in the file, the same value when parsed.
-        body = "".join(c if c == "\n" else json.dumps(c, ensure_ascii=False)[1:-1] for c in v)
-        return '"""\n' + body + '"""'
-
-    if isinstance(v, Mapping):
-        return "{ " + ", ".join(f"{_toml_key(k)} = {_toml_value(x)}" for k, x in v.items()) + " }"
-    return "[" + ", ".join(_toml_value(x) for x in v) + "]"
-
-
-def dumps_toml(data: Mapping) -> str:
-    """Resolved scene data as TOML: tables, sub-tables and arrays of tables.
-
-    Examples
-    --------
-    >>> print(dumps_toml({"time": {"duration": 1}, "effects": [{"type": "damping"}]}))
-    [time]
-    duration = 1.0
-    <BLANKLINE>
-    [[effects]]
-    type = "damping"
-    <BLANKLINE>
-    """
-    chunks = []
-
-    def table(header: str, t: Mapping) -> None:
-        plain = {k: v for k, v in t.items() if not isinstance(v, Mapping) or k == "rotor"}
-        nested = {k: v for k, v in t.items() if k not in plain}
-        if plain or not nested:
-            chunks.append(f"{header}\n" + "".join(f"{_toml_key(k)} = {_toml_value(v)}\n"
-                                                  for k, v in plain.items()))  # fmt: skip
-        for k, v in nested.items():
-            table(f"[{header[1:-1]}.{_toml_key(k)}]", v)
-
-    for section, value in data.items():
-        if isinstance(value, list):
-            for entry in value:
-                chunks.append(f"[[{section}]]\n" + "".join(
-                    f"{_toml_key(k)} = {_toml_value(v)}\n" for k, v in entry.items()))  # fmt: skip
-        else:
-            table(f"[{_toml_key(section)}]", value)
-    return "\n".join(chunks)
-
-
-# ---------------------------------------------------------------------------- files
-
-
-def bundled() -> dict[str, str]:
-    """Bundled scene names -> their one-line descriptions.
-
-    Examples
-    --------
-    >>> "heavy_top" in bundled()
-    True
-    """
-    out = {}
-    for entry in sorted(resources.files("ga_rotors.scenes").iterdir(), key=lambda p: p.name):
-        if entry.name.endswith(".toml"):
-            data = tomllib.loads(entry.read_text(encoding="utf-8"))
-            description = data.get("scene", {}).get("description", "")
-            out[entry.name[:-5]] = description.strip().splitlines()[0] if description else ""
-    return out
-
-
-def bundled_path(name: str) -> Path:
-    """The file of the bundled scene ``name``.
-
-    Examples
-    --------
-    >>> bundled_path("heavy_top").name
-    'heavy_top.toml'
-    """
-    return Path(str(resources.files("ga_rotors.scenes") / f"{name}.toml"))
-
-
-def load_scene(path_or_name) -> Scene:
-    """Load a scene file, or a bundled scene by name (``ga-rotors scenes`` lists them).
-
-    Examples
-    --------
-    >>> load_scene("spinning_disk").name
-    'spinning_disk'
-    >>> load_scene("spining_disk")
-    Traceback (most recent call last):
-    ...
-    ga_rotors.errors.SceneError: spining_disk: no such file, and no bundled scene of that name ...
-    """
-    if isinstance(path_or_name, Scene):
-        return path_or_name
-    path = Path(path_or_name)
-    if not path.is_file():
-        names = bundled()
-        name = str(path_or_name)
-        if name in names:
-            path = bundled_path(name)
-        else:
-            raise SceneError(
-                name,
-                "",
-                f"no such file, and no bundled scene of that name{suggest(name, names)}; "
-                f"bundled: {', '.join(names)}",
-            )
-    try:
-        text = path.read_text(encoding="utf-8")
-    except (OSError, UnicodeDecodeError) as exc:
-        raise SceneError(str(path), "", f"cannot read the file: {exc}") from None
-    return Scene.from_toml(text, file=str(path), base_dir=path.resolve().parent)

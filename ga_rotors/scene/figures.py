@@ -1,18 +1,10 @@
-"""A scene run's files: data (CSV, NPZ), one figure, the summary and the resolved scene.
+"""A scene run's figure: one panel per entry of ``output.plots``, stamped with a data digest.
 
-:func:`write_outputs` writes, into one directory, exactly what ``output`` declares:
-
-* ``<name>.csv`` / ``<name>.npz`` for ``output.data``;
-* ``<name>.png``, one panel per entry of ``output.plots`` (drawn with matplotlib, a
-  palette PNG carrying a digest of the data it shows);
-* ``<name>.summary.txt`` when ``output.summary`` is on, and ``<name>.scene.toml``, the
-  resolved scene, whenever anything is written (what made these files).
-
-Atomicity: everything is first written into a staging directory on the same file system;
-only when every file is complete are they moved into place (one ``rename`` of the whole
-directory when it did not exist, otherwise one ``os.replace`` per file). A failure at any
-point removes the staging directory, so a failed run leaves no half-written files and
-changes nothing it had not finished.
+:func:`draw` builds a matplotlib Figure (panels in :data:`PANELS`: ω, the ZYZ angles,
+space-frame momentum, invariant drift, error against the exact solution);
+:func:`figure_png` renders it as a palette PNG whose metadata carries
+:func:`data_digest`, a digest of what the figure shows that is robust to round-off, so a
+test can tell whether a committed figure still matches the code.
 """
 
 from __future__ import annotations
@@ -22,10 +14,10 @@ import warnings
 
 import numpy as np
 
-from .scene import Scene
-from .trajectory import Trajectory
+from ..trajectory import Trajectory
+from .model import Scene
 
-__all__ = ["DIGEST_PREFIX", "data_digest", "draw", "figure_png", "write_outputs"]
+__all__ = ["DIGEST_PREFIX", "PANELS", "data_digest", "draw", "figure_png"]
 
 DIGEST_PREFIX = "ga_rotors scene data "
 
@@ -45,12 +37,12 @@ def data_digest(scene: Scene, trajectory: Trajectory, digits: int = 6) -> str:
     Examples
     --------
     >>> from ga_rotors.scene import load_scene
-    >>> from ga_rotors.scene_run import simulate
+    >>> from ga_rotors.scene import run_scene
     >>> s = load_scene("spinning_disk").replace({"time.duration": 0.1})
-    >>> data_digest(s, simulate(s)) == data_digest(s, simulate(s))
+    >>> data_digest(s, run_scene(s)) == data_digest(s, run_scene(s))
     True
     """
-    from . import paths as _paths
+    from .. import paths as _paths
 
     h = hashlib.sha256(scene.to_toml().encode())
     primary = _paths.get(trajectory.meta["primary"]).array
@@ -79,14 +71,14 @@ class _Context:
         return self._cache[name]
 
     def _q(self):
-        from . import quaternion as Q
-        from .crosscheck import orientations
+        from .. import quaternion as Q
+        from ..crosscheck import orientations
 
         return Q.normalize(orientations(self.tr, self.tr.meta["primary"]))[: self.t.shape[0]]
 
     def _angles(self):
-        from . import euler
-        from .errors import GimbalLockWarning
+        from .. import euler
+        from ..errors import GimbalLockWarning
 
         with warnings.catch_warnings():  # a locked sample is still drawn: its rotation is exact
             warnings.simplefilter("ignore", GimbalLockWarning)
@@ -95,7 +87,7 @@ class _Context:
         return np.degrees(a)
 
     def _exact(self):
-        from .scene_run import exact_solution
+        from .run import exact_solution
 
         return exact_solution(self.scene)
 
@@ -117,7 +109,7 @@ def _angles(axes, ctx: _Context) -> None:
 
 
 def _momentum(axes, ctx: _Context) -> None:
-    from . import quaternion as Q
+    from .. import quaternion as Q
 
     (ax,) = axes
     L = Q.rotate(ctx.get("q"), ctx.scene.body.momentum(ctx.tr.w))
@@ -128,7 +120,7 @@ def _momentum(axes, ctx: _Context) -> None:
 
 
 def _invariants(axes, ctx: _Context) -> None:
-    from .scene_report import invariant_series
+    from .summary import invariant_series
 
     (ax,) = axes
     rows = invariant_series(ctx.scene, ctx.tr, ctx.get("q"))
@@ -151,9 +143,9 @@ def _invariants(axes, ctx: _Context) -> None:
 
 
 def _error(axes, ctx: _Context) -> None:
-    from . import paths as _paths
-    from . import quaternion as Q
-    from .crosscheck import orientations
+    from .. import paths as _paths
+    from .. import quaternion as Q
+    from ..crosscheck import orientations
 
     (ax,) = axes
     exact = ctx.get("exact")
@@ -166,7 +158,7 @@ def _error(axes, ctx: _Context) -> None:
     ax.legend(fontsize=7, loc="lower right")
 
 
-#: plot name -> (rows, drawing function); the names are :data:`ga_rotors.scene.PLOTS`.
+#: plot name -> (rows, drawing function); the names are :data:`ga_rotors.scene.schema.PLOTS`.
 #: ``angles`` draws nutation θ and precession ψ (the spin φ, a near-straight line that
 #: would flatten both, is in the data when ``angles`` is a quantity).
 PANELS = {
@@ -184,9 +176,9 @@ def draw(scene: Scene, trajectory: Trajectory):
     Examples
     --------
     >>> from ga_rotors.scene import load_scene
-    >>> from ga_rotors.scene_run import simulate
+    >>> from ga_rotors.scene import run_scene
     >>> scene = load_scene("damped_top").replace({"time.duration": 0.1})
-    >>> len(draw(scene, simulate(scene)).axes)     # omega, invariants
+    >>> len(draw(scene, run_scene(scene)).axes)     # omega, invariants
     2
     """
     from matplotlib.figure import Figure
@@ -217,58 +209,12 @@ def figure_png(scene: Scene, trajectory: Trajectory) -> bytes:
     Examples
     --------
     >>> from ga_rotors.scene import load_scene
-    >>> from ga_rotors.scene_run import simulate
+    >>> from ga_rotors.scene import run_scene
     >>> scene = load_scene("damped_top").replace({"time.duration": 0.1})
-    >>> figure_png(scene, simulate(scene))[1:4]
+    >>> figure_png(scene, run_scene(scene))[1:4]
     b'PNG'
     """
-    from .paper_figures import palette_png
+    from ..paper_figures import palette_png
 
     return palette_png(draw(scene, trajectory), DIGEST_PREFIX + data_digest(scene, trajectory),
                        dpi=_DPI)  # fmt: skip
-
-
-# ---------------------------------------------------------------------------- files
-
-
-def _plan(scene: Scene, tr: Trajectory, summary: str | None) -> list[tuple[str, object]]:
-    name = scene.name
-    out = scene.data["output"]
-    plan: list[tuple[str, object]] = []
-    for fmt in out["data"]:
-        if fmt == "csv":
-            plan.append((f"{name}.csv", lambda p: tr.to_csv(p)))
-        else:
-            plan.append((f"{name}.npz", lambda p: tr.to_npz(p)))
-    if out["plots"]:
-        plan.append((f"{name}.png", lambda p: p.write_bytes(figure_png(scene, tr))))
-    if not plan:
-        return []
-    if summary is not None:
-        plan.append((f"{name}.summary.txt", lambda p: p.write_text(summary + "\n", "utf-8")))
-    plan.append((f"{name}.scene.toml", lambda p: p.write_text(scene.to_toml(), "utf-8")))
-    return plan
-
-
-def write_outputs(scene: Scene, trajectory: Trajectory, out_dir, summary: str | None = None):
-    """Write the declared files into ``out_dir`` atomically; return their paths.
-
-    Nothing is written (and no directory created) when the scene declares no data and
-    no plots.
-
-    Examples
-    --------
-    >>> import tempfile, pathlib
-    >>> from ga_rotors.scene import load_scene
-    >>> from ga_rotors.scene_run import simulate
-    >>> s = load_scene("spinning_disk").replace({"time.duration": 0.1, "output.plots": []})
-    >>> out = pathlib.Path(tempfile.mkdtemp()) / "run"
-    >>> [p.name for p in write_outputs(s, simulate(s), out)]
-    ['spinning_disk.csv', 'spinning_disk.scene.toml']
-    """
-    from .files import write_together
-
-    plan = _plan(scene, trajectory, summary)
-    if not plan:
-        return []
-    return write_together(out_dir, plan, argument="--out")

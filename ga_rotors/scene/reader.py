@@ -15,7 +15,7 @@ import difflib
 import math
 from collections.abc import Iterable, Mapping
 
-from .errors import SceneError
+from ..errors import SceneError
 
 __all__ = ["Reader", "join", "suggest"]
 
@@ -62,7 +62,18 @@ def _describe(value) -> str:
 
 
 class Reader:
-    """Checks for one file's data; every error names ``file`` and the key."""
+    """Checks for one file's data; every error names ``file`` and the key.
+
+    Examples
+    --------
+    >>> reader = Reader("spin.toml")
+    >>> reader.number(2, "time.duration", positive=True)
+    2.0
+    >>> reader.number(-1, "time.duration", positive=True, unit="s")
+    Traceback (most recent call last):
+    ...
+    ga_rotors.errors.SceneError: spin.toml: time.duration: expected a finite positive number (s), ...
+    """
 
     def __init__(self, file: str):
         self.file = str(file)

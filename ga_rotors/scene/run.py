@@ -1,6 +1,6 @@
 """Run a scene: integrate exactly what it declares, add only the quantities it asks for.
 
-:func:`simulate` builds the scene's torques (its declared effects, nothing else), runs
+:func:`run_scene` builds the scene's torques (its declared effects, nothing else), runs
 :func:`ga_rotors.simulate.simulate` on the scene's paths and returns the
 :class:`~ga_rotors.trajectory.Trajectory`, with ``output.quantities`` added. Quantities
 that nobody listed are not computed. :func:`exact_solution` gives the exact reference
@@ -12,7 +12,7 @@ Examples
 >>> scene = load_scene("heavy_top").replace({"time.duration": 0.1})
 >>> scene.data["output"]["quantities"]
 ['angles', 'total_energy', 'error']
->>> simulate(scene).names
+>>> run_scene(scene).names
 ('t', 'w', 'R', 'q', 'angles', 'total_energy', 'error_R', 'error_q')
 """
 
@@ -22,10 +22,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .scene import Scene, load_scene
-from .trajectory import Trajectory
+from ..trajectory import Trajectory
+from .loading import load_scene
+from .model import Scene
 
-__all__ = ["Exact", "exact_solution", "gravity_terms", "simulate"]
+__all__ = ["Exact", "exact_solution", "gravity_terms", "run_scene"]
 
 
 def gravity_terms(scene: Scene) -> tuple[np.ndarray, np.ndarray] | None:
@@ -41,7 +42,7 @@ def gravity_terms(scene: Scene) -> tuple[np.ndarray, np.ndarray] | None:
         return None
     g = scene.data["effects"][scene.gravity_index]
     weight = scene.mass * np.array(g["g"])
-    return weight, np.array(scene._frame.to_principal(g["pivot_to_com"]))
+    return weight, np.array(scene.frame.to_principal(g["pivot_to_com"]))
 
 
 @dataclass
@@ -77,13 +78,13 @@ class Exact:
         return self.model.at(t)[1]
 
     def orientations(self, t) -> np.ndarray:
-        from . import quaternion as Q
+        from .. import quaternion as Q
 
         q = self.model.at(np.asarray(t, dtype=np.float64) - self.t0)[0]
         return q if self.frame is None else Q.multiply(Q.conjugate(self.frame), q)
 
     def orientation_error(self, t, q) -> np.ndarray:
-        from .quaternion import distance
+        from ..quaternion import distance
 
         return np.atleast_1d(distance(self.orientations(t), q))
 
@@ -102,16 +103,16 @@ def exact_solution(scene: Scene) -> Exact | None:
     """
     q0, w0, t0 = scene.orientation, scene.angular_velocity, scene.data["time"]["start"]
     if scene.exact == "symmetric_top":
-        from .reference.symmetric_top import SymmetricTop
+        from ..reference.symmetric_top import SymmetricTop
 
         return Exact("symmetric_top", SymmetricTop(scene.body, q0, w0), t0)
     if scene.exact == "asymmetric_top":
-        from .reference.asymmetric_top import AsymmetricTop
+        from ..reference.asymmetric_top import AsymmetricTop
 
         return Exact("asymmetric_top", AsymmetricTop(scene.body, q0, w0), t0)
     if scene.exact == "heavy_top":
-        from . import quaternion as Q
-        from .reference.heavy_top import HeavyTop
+        from .. import quaternion as Q
+        from ..reference.heavy_top import HeavyTop
 
         weight, r = gravity_terms(scene)
         down = np.array([0.0, 0.0, -1.0])
@@ -120,7 +121,7 @@ def exact_solution(scene: Scene) -> Exact | None:
         model = HeavyTop(scene.body, mgl, Q.multiply(frame, q0), w0)
         return Exact("heavy_top", model, t0, frame)
     if scene.exact == "damped_symmetric_top":
-        from .reference.damped_top import DampedSymmetricTop
+        from ..reference.damped_top import DampedSymmetricTop
 
         c = scene.data["effects"][0]["coefficient"]
         model = DampedSymmetricTop(scene.body, c, q0, w0)
@@ -130,7 +131,7 @@ def exact_solution(scene: Scene) -> Exact | None:
 
 def _integrator(scene: Scene):
     """The registered method's name, or for an adaptive one an instance at the tolerance."""
-    from .integrators import base
+    from ..integrators import base
 
     spec = scene.data["integrator"]
     if "tolerance" not in spec:
@@ -140,7 +141,7 @@ def _integrator(scene: Scene):
 
 
 def _user_compile_error(scene: Scene, exc: Exception):
-    from .errors import SceneError
+    from ..errors import SceneError
 
     users = [i for i, e in enumerate(scene.data["effects"]) if e["type"] == "user"]
     first = str(exc).strip().splitlines()[0] if str(exc).strip() else type(exc).__name__
@@ -150,7 +151,7 @@ def _user_compile_error(scene: Scene, exc: Exception):
     )
 
 
-def simulate(scene, *, progress=None) -> Trajectory:
+def run_scene(scene, *, progress=None) -> Trajectory:
     """Integrate a scene (a :class:`Scene`, a file path or a bundled scene's name).
 
     Parameters
@@ -168,12 +169,12 @@ def simulate(scene, *, progress=None) -> Trajectory:
 
     Examples
     --------
-    >>> tr = simulate("heavy_top")
+    >>> tr = run_scene("heavy_top")
     >>> tr.meta["torques"], tr.meta["problem"]
     (['gravity'], 'torqued')
     """
-    from . import simulate as _sim
-    from .crosscheck import orientations
+    from .. import simulate as _sim
+    from ..crosscheck import orientations
 
     scene = load_scene(scene)
     torques = scene.torques()
@@ -225,7 +226,7 @@ def simulate(scene, *, progress=None) -> Trajectory:
 
 def _quantities(scene: Scene, tr: Trajectory, q: np.ndarray, names: list[str]) -> dict:
     """The scene-level quantities in ``names`` (and nothing else)."""
-    from . import quaternion as Q
+    from .. import quaternion as Q
 
     out: dict[str, tuple[np.ndarray, tuple[str, ...] | None]] = {}
     w, t = tr.w, tr.t[: tr.w.shape[0]]
@@ -247,8 +248,8 @@ def _quantities(scene: Scene, tr: Trajectory, q: np.ndarray, names: list[str]) -
         if "omega_error" in names:
             out["omega_error"] = (np.linalg.norm(w - exact.angular_velocity(t), axis=-1), None)
         if "error" in names:
-            from . import paths as _paths
-            from .crosscheck import orientations
+            from .. import paths as _paths
+            from ..crosscheck import orientations
 
             for path in scene.paths:
                 array = _paths.get(path).array

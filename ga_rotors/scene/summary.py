@@ -10,7 +10,7 @@
   user torques conserve nothing this simple (the exact solution, where one exists, is the
   check);
 * the **cross-check** of the orientation paths (:func:`ga_rotors.crosscheck.cross_check`);
-* the **exact solution** (:func:`ga_rotors.scene_run.exact_solution`): each path's largest
+* the **exact solution** (:func:`ga_rotors.scene.run.exact_solution`): each path's largest
   geodesic error and the largest |ω − ω_exact|;
 * **physics readouts** measured from the samples and compared with their exact values:
   the heavy top's nutation bounds, nutation period and mean precession rate; the asymmetric
@@ -27,8 +27,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .scene import Scene
-from .trajectory import Trajectory
+from ..trajectory import Trajectory
+from .model import Scene
 
 __all__ = ["Report", "extrema", "hermite_at", "invariant_series", "report", "zero_crossings"]
 
@@ -160,14 +160,14 @@ def invariant_series(scene: Scene, tr: Trajectory, q: np.ndarray) -> list[tuple]
     --------
     >>> from ga_rotors.crosscheck import orientations
     >>> from ga_rotors.scene import load_scene
-    >>> from ga_rotors.scene_run import simulate
+    >>> from ga_rotors.scene import run_scene
     >>> scene = load_scene("heavy_top").replace({"time.duration": 0.1})
-    >>> tr = simulate(scene)
+    >>> tr = run_scene(scene)
     >>> [row[0] for row in invariant_series(scene, tr, orientations(tr, "rotor"))]
     ['total_energy', 'vertical_momentum', 'axial_momentum']
     """
-    from . import quaternion as Q
-    from .scene_run import gravity_terms
+    from .. import quaternion as Q
+    from .run import gravity_terms
 
     body, w = scene.body, tr.w
     t = tr.t[: w.shape[0]]
@@ -223,7 +223,7 @@ def _invariants(scene: Scene, tr: Trajectory, q: np.ndarray, rep: Report) -> Non
 
 def _on_sphere(tr: Trajectory) -> Trajectory:
     """``tr`` with its rotor and quaternion states scaled to unit norm (rotations only)."""
-    from . import paths as _paths
+    from .. import paths as _paths
 
     arrays = {name: tr[name] for name in tr.names}
     for path in tr.meta["paths"]:
@@ -235,7 +235,7 @@ def _on_sphere(tr: Trajectory) -> Trajectory:
 
 
 def _paths(tr: Trajectory, rep: Report) -> None:
-    from . import paths as _paths
+    from .. import paths as _paths
 
     for path, info in tr.meta["paths"].items():
         status = "complete" if info["complete"] else f"stopped at t = {info['ended_at']:g} s"
@@ -255,7 +255,7 @@ def _paths(tr: Trajectory, rep: Report) -> None:
 
 
 def _heavy_top(scene: Scene, exact, tr: Trajectory, q: np.ndarray, rep: Report) -> None:
-    from . import quaternion as Q
+    from .. import quaternion as Q
 
     nut = exact.model.nutation()
     w = tr.w
@@ -300,7 +300,7 @@ def _heavy_top(scene: Scene, exact, tr: Trajectory, q: np.ndarray, rep: Report) 
 
 
 def _flips(scene: Scene, exact, tr: Trajectory, rep: Report) -> None:
-    from .body import free_euler_rates
+    from ..body import free_euler_rates
 
     model = exact.model
     w = tr.w
@@ -336,8 +336,8 @@ def _damped(scene: Scene, exact, tr: Trajectory, rep: Report) -> None:
 
 
 def _exact(scene: Scene, tr: Trajectory, q: np.ndarray, rep: Report) -> None:
-    from .errors import GaRotorsError
-    from .scene_run import exact_solution
+    from ..errors import GaRotorsError
+    from .run import exact_solution
 
     if scene.exact is None:
         rep.lines.append(f"exact solution: none ({scene.exact_reason})")
@@ -348,7 +348,7 @@ def _exact(scene: Scene, tr: Trajectory, q: np.ndarray, rep: Report) -> None:
         w_err = np.linalg.norm(tr.w - exact.angular_velocity(t), axis=-1)
         errors = {}
         if exact.has_orientation:
-            from .crosscheck import orientations
+            from ..crosscheck import orientations
 
             for path in scene.paths:
                 qp = orientations(tr, path)
@@ -376,13 +376,13 @@ def report(scene: Scene, trajectory: Trajectory) -> Report:
     Examples
     --------
     >>> from ga_rotors.scene import load_scene
-    >>> from ga_rotors.scene_run import simulate
+    >>> from ga_rotors.scene import run_scene
     >>> scene = load_scene("spinning_disk").replace({"time.duration": 1.0})
-    >>> rep = report(scene, simulate(scene))
+    >>> rep = report(scene, run_scene(scene))
     >>> rep.values["error_rotor"] < 1e-9, rep.values["rotor_vs_quaternion"] < 1e-13
     (True, True)
     """
-    from .crosscheck import cross_check, orientations
+    from ..crosscheck import cross_check, orientations
 
     rep = Report(scene.name)
     raw, tr = trajectory, _on_sphere(trajectory)

@@ -1,0 +1,57 @@
+"""Scenes: a rigid-body simulation described as data, from the file to the run's files.
+
+Data flows one way, one module per step:
+
+* :mod:`~ga_rotors.scene.reader`: checks untrusted nested data, errors naming file and key;
+* :mod:`~ga_rotors.scene.schema`: every table and key, resolved with its defaults;
+* :mod:`~ga_rotors.scene.model`: :class:`Scene`, the resolved scene and its derived values;
+* :mod:`~ga_rotors.scene.toml_io`: a resolved scene written back as TOML;
+* :mod:`~ga_rotors.scene.loading`: :func:`load_scene`, files and the bundled scenes;
+* :mod:`~ga_rotors.scene.run`: :func:`run_scene`, a scene integrated into a Trajectory;
+* :mod:`~ga_rotors.scene.summary`: the closing summary (invariants, cross-check, exact);
+* :mod:`~ga_rotors.scene.figures`: the run's figure;
+* :mod:`~ga_rotors.scene.output`: the run's files, written atomically.
+
+The names below are imported on first use, so ``import ga_rotors.scene.reader`` (which
+:mod:`ga_rotors.effects` needs) does not import the rest.
+
+Examples
+--------
+>>> from ga_rotors.scene import load_scene, run_scene
+>>> scene = load_scene("spinning_disk").replace({"time.duration": 0.01})
+>>> run_scene(scene).meta["scene"]
+'spinning_disk'
+"""
+
+from __future__ import annotations
+
+import importlib
+
+#: public name -> the module of this package that defines it.
+_EXPORTS = {
+    "Scene": "model",
+    "load_scene": "loading",
+    "bundled": "loading",
+    "bundled_path": "loading",
+    "run_scene": "run",
+    "exact_solution": "run",
+    "report": "summary",
+    "Report": "summary",
+    "write_outputs": "output",
+    "figure_png": "figures",
+    "dumps_toml": "toml_io",
+}
+
+__all__ = sorted(_EXPORTS)
+
+
+def __getattr__(name: str):
+    if name not in _EXPORTS:
+        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+    value = getattr(importlib.import_module(f"{__name__}.{_EXPORTS[name]}"), name)
+    globals()[name] = value
+    return value
+
+
+def __dir__() -> list[str]:
+    return sorted(set(globals()) | set(__all__))

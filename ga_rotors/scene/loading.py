@@ -1,0 +1,83 @@
+"""Loading scenes: from a file, or from the scenes bundled with ga_rotors by name.
+
+The bundled scenes are TOML files in ``ga_rotors/scene/bundled/`` (``ga-rotors scenes``
+lists them); a file is read as UTF-8 and parsed by :meth:`Scene.from_toml`, data only.
+"""
+
+from __future__ import annotations
+
+import tomllib
+from importlib import resources
+from pathlib import Path
+
+from ..errors import SceneError
+from .model import Scene
+from .reader import suggest
+
+__all__ = ["bundled", "bundled_path", "load_scene"]
+
+
+def _folder():
+    return resources.files(__package__) / "bundled"
+
+
+def bundled() -> dict[str, str]:
+    """Bundled scene names -> their one-line descriptions.
+
+    Examples
+    --------
+    >>> "heavy_top" in bundled()
+    True
+    """
+    out = {}
+    for entry in sorted(_folder().iterdir(), key=lambda p: p.name):
+        if entry.name.endswith(".toml"):
+            data = tomllib.loads(entry.read_text(encoding="utf-8"))
+            description = data.get("scene", {}).get("description", "")
+            out[entry.name[:-5]] = description.strip().splitlines()[0] if description else ""
+    return out
+
+
+def bundled_path(name: str) -> Path:
+    """The file of the bundled scene ``name``.
+
+    Examples
+    --------
+    >>> bundled_path("heavy_top").name
+    'heavy_top.toml'
+    """
+    return Path(str(_folder() / f"{name}.toml"))
+
+
+def load_scene(path_or_name) -> Scene:
+    """Load a scene file, or a bundled scene by name (``ga-rotors scenes`` lists them).
+
+    Examples
+    --------
+    >>> load_scene("spinning_disk").name
+    'spinning_disk'
+    >>> load_scene("spining_disk")
+    Traceback (most recent call last):
+    ...
+    ga_rotors.errors.SceneError: spining_disk: no such file, and no bundled scene of that name ...
+    """
+    if isinstance(path_or_name, Scene):
+        return path_or_name
+    path = Path(path_or_name)
+    if not path.is_file():
+        names = bundled()
+        name = str(path_or_name)
+        if name in names:
+            path = bundled_path(name)
+        else:
+            raise SceneError(
+                name,
+                "",
+                f"no such file, and no bundled scene of that name{suggest(name, names)}; "
+                f"bundled: {', '.join(names)}",
+            )
+    try:
+        text = path.read_text(encoding="utf-8")
+    except (OSError, UnicodeDecodeError) as exc:
+        raise SceneError(str(path), "", f"cannot read the file: {exc}") from None
+    return Scene.from_toml(text, file=str(path), base_dir=path.resolve().parent)

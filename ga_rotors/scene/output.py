@@ -1,0 +1,67 @@
+"""A scene run's files: data (CSV, NPZ), the figure, the summary and the resolved scene.
+
+:func:`write_outputs` writes, into one directory, exactly what ``output`` declares:
+
+* ``<name>.csv`` / ``<name>.npz`` for ``output.data``;
+* ``<name>.png``, one panel per entry of ``output.plots`` (drawn with matplotlib, a
+  palette PNG carrying a digest of the data it shows);
+* ``<name>.summary.txt`` when ``output.summary`` is on, and ``<name>.scene.toml``, the
+  resolved scene, whenever anything is written (what made these files).
+
+Atomicity: everything is first written into a staging directory on the same file system;
+only when every file is complete are they moved into place (one ``rename`` of the whole
+directory when it did not exist, otherwise one ``os.replace`` per file). A failure at any
+point removes the staging directory, so a failed run leaves no half-written files and
+changes nothing it had not finished.
+"""
+
+from __future__ import annotations
+
+from ..trajectory import Trajectory
+from .figures import figure_png
+from .model import Scene
+
+__all__ = ["write_outputs"]
+
+
+def _plan(scene: Scene, tr: Trajectory, summary: str | None) -> list[tuple[str, object]]:
+    name = scene.name
+    out = scene.data["output"]
+    plan: list[tuple[str, object]] = []
+    for fmt in out["data"]:
+        if fmt == "csv":
+            plan.append((f"{name}.csv", lambda p: tr.to_csv(p)))
+        else:
+            plan.append((f"{name}.npz", lambda p: tr.to_npz(p)))
+    if out["plots"]:
+        plan.append((f"{name}.png", lambda p: p.write_bytes(figure_png(scene, tr))))
+    if not plan:
+        return []
+    if summary is not None:
+        plan.append((f"{name}.summary.txt", lambda p: p.write_text(summary + "\n", "utf-8")))
+    plan.append((f"{name}.scene.toml", lambda p: p.write_text(scene.to_toml(), "utf-8")))
+    return plan
+
+
+def write_outputs(scene: Scene, trajectory: Trajectory, out_dir, summary: str | None = None):
+    """Write the declared files into ``out_dir`` atomically; return their paths.
+
+    Nothing is written (and no directory created) when the scene declares no data and
+    no plots.
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> from ga_rotors.scene import load_scene
+    >>> from ga_rotors.scene import run_scene
+    >>> s = load_scene("spinning_disk").replace({"time.duration": 0.1, "output.plots": []})
+    >>> out = pathlib.Path(tempfile.mkdtemp()) / "run"
+    >>> [p.name for p in write_outputs(s, run_scene(s), out)]
+    ['spinning_disk.csv', 'spinning_disk.scene.toml']
+    """
+    from ..files import write_together
+
+    plan = _plan(scene, trajectory, summary)
+    if not plan:
+        return []
+    return write_together(out_dir, plan, argument="--out")
