@@ -1,0 +1,132 @@
+"""A trajectory as an xarray Dataset: dimension ``time``, units, and how it was made.
+
+Every variable carries ``units`` and ``description`` attributes; multi-column arrays get
+a component dimension with the labels as coordinates (``quaternion_component`` = w, x, y,
+z, ...). The Dataset's attributes say how the data were made: the resolved scene as TOML
+(when given), integrator, order, step, steps between samples, declared torques, package
+versions, and for a scene with an exact solution the largest rounding-error bound of that
+reference over the sampled times (how far the "truth" itself may be off).
+
+A path that stopped early (its state stopped being finite) is padded with NaN after its
+last valid sample, and its ``valid_samples`` attribute says how many rows are real.
+"""
+
+from __future__ import annotations
+
+import importlib.metadata
+import json
+
+import numpy as np
+
+from ..optional import require
+from .variables import COMPONENT_DIMS, describe
+
+__all__ = ["EXACT_BOUND_TIMES", "provenance", "to_dataset"]
+
+#: At most this many sample times (evenly spread, the last included) are evaluated to find
+#: the exact reference's largest error bound; the bounds grow smoothly with time.
+EXACT_BOUND_TIMES = 1000
+
+_PACKAGES = ("ga-rotors", "numpy", "numba", "scipy", "xarray")
+
+
+def provenance(meta: dict, scene=None) -> dict:
+    """Dataset attributes for a run's ``meta`` and optional scene: plain str/int/float values.
+
+    netCDF attributes hold strings and numbers only, so the scene is its TOML text, lists
+    of names are joined with ", ", and the per-path status is JSON.
+
+    Examples
+    --------
+    >>> a = provenance({"integrator": "rk4", "step": 0.001, "torques": ["gravity"]})
+    >>> a["integrator"], a["step"], a["torques"], a["version_numpy"] == np.__version__
+    ('rk4', 0.001, 'gravity', True)
+    """
+    attrs: dict = {"title": "ga_rotors results", "conventions_doc": "docs/conventions.md"}
+    for key in ("integrator", "order", "step", "steps", "sample_every", "problem", "primary"):
+        if meta.get(key) is not None:
+            value = meta[key]
+            attrs[key] = value if isinstance(value, int | float | str) else str(value)
+    if meta.get("moments") is not None:
+        attrs["principal_moments"] = [float(m) for m in meta["moments"]]
+        attrs["principal_moments_units"] = "kg m2"
+    if "torques" in meta:
+        attrs["torques"] = ", ".join(meta["torques"])
+    if "paths" in meta:
+        attrs["paths_json"] = json.dumps(meta["paths"], sort_keys=True, default=str)
+    if meta.get("scene") is not None:
+        attrs["scene"] = str(meta["scene"])
+    if scene is not None:
+        attrs["scene"] = scene.name
+        attrs["scene_toml"] = scene.to_toml()
+        attrs["exact_solution"] = scene.exact or "none"
+    for package in _PACKAGES:
+        try:
+            attrs[f"version_{package.replace('-', '_')}"] = importlib.metadata.version(package)
+        except importlib.metadata.PackageNotFoundError:
+            pass
+    return attrs
+
+
+def _exact_bound(scene, t: np.ndarray) -> float | None:
+    """Largest rounding-error bound (rad) of the scene's exact reference over ``t``."""
+    from ..scene_run import exact_solution
+
+    exact = exact_solution(scene) if scene.exact else None
+    if exact is None or not hasattr(exact.model, "state") or t.size == 0:
+        return None
+    pick = np.unique(np.linspace(0, t.size - 1, min(t.size, EXACT_BOUND_TIMES)).astype(int))
+    error = getattr(exact.model.state(t[pick] - exact.t0), "error", None)
+    return None if error is None else float(np.max(error))
+
+
+def to_dataset(trajectory, scene=None):
+    """The trajectory as an :class:`xarray.Dataset` with units and provenance.
+
+    Parameters
+    ----------
+    trajectory : Trajectory
+    scene : Scene, optional
+        The scene that made it: its TOML and exact-solution bound become attributes.
+
+    Examples
+    --------
+    >>> from ga_rotors.scene import load_scene
+    >>> from ga_rotors.scene_run import simulate
+    >>> scene = load_scene("heavy_top").replace({"time.duration": 0.01})
+    >>> ds = to_dataset(simulate(scene), scene)
+    >>> ds["q"].dims, ds["q"].attrs["units"], ds["t"].attrs["units"]
+    (('time', 'quaternion_component'), '1', 's')
+    >>> ds.attrs["integrator"], ds.attrs["exact_solution"], ds.attrs["exact_error_bound"] < 1e-12
+    ('rk4', 'heavy_top', True)
+    """
+    xr = require("xarray", "results")
+    t = trajectory.t
+    n = t.shape[0]
+    coords = {"t": ("time", t, dict(zip(("units", "description"), describe("t"), strict=True)))}
+    variables = {}
+    for name in trajectory.names:
+        if name == "t":
+            continue
+        a = trajectory[name]
+        unit, description = describe(name)
+        attrs = {"units": unit, "description": description}
+        if a.shape[0] < n:
+            attrs["valid_samples"] = int(a.shape[0])
+            pad = np.full((n, *a.shape[1:]), np.nan)
+            pad[: a.shape[0]] = a
+            a = pad
+        dims: tuple[str, ...] = ("time",)
+        if a.ndim == 2:
+            labels = trajectory.components.get(name) or tuple(str(i) for i in range(a.shape[1]))
+            dim = COMPONENT_DIMS.get(tuple(labels), f"{name}_component")
+            coords.setdefault(dim, (dim, list(labels)))
+            dims = ("time", dim)
+        variables[name] = (dims, a, attrs)
+    attrs = provenance(trajectory.meta, scene)
+    if scene is not None:
+        bound = _exact_bound(scene, t)
+        if bound is not None:
+            attrs["exact_error_bound"] = bound
+            attrs["exact_error_bound_units"] = "rad"
+    return xr.Dataset(variables, coords=coords, attrs=attrs)

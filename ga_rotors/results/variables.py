@@ -1,0 +1,60 @@
+"""What each array of a trajectory is: its unit, its description and its component axis.
+
+One table for every results format (xarray attributes, CSV headers), so a unit is
+written once. Names are those of :class:`ga_rotors.trajectory.Trajectory`.
+"""
+
+from __future__ import annotations
+
+from ..errors import InputError
+
+__all__ = ["COMPONENT_DIMS", "VARIABLES", "describe"]
+
+#: array name -> (unit, description). Units follow SI; "1" is dimensionless.
+VARIABLES: dict[str, tuple[str, str]] = {
+    "t": ("s", "sample time"),
+    "w": ("rad/s", "body angular velocity of the primary path"),
+    "q": ("1", "orientation quaternion (w, x, y, z), body to space, of the quaternion path"),
+    "R": ("1", "rotor coefficients on clifford's blades (1, e12, e13, e23), rotor path"),
+    "euler": ("rad", "integrated ZYZ Euler angles (psi, theta, phi), Euler-angle path"),
+    "energy": ("J", "kinetic energy 1/2 w.Iw of the primary path"),
+    "potential_energy": ("J", "gravitational energy -m g.r_space about the pivot"),
+    "total_energy": ("J", "kinetic plus gravitational energy"),
+    "L": ("kg m2/s", "body-frame angular momentum Iw"),
+    "L_space": ("kg m2/s", "space-frame angular momentum q (Iw) q*"),
+    "omega_space": ("rad/s", "space-frame angular velocity q w q*"),
+    "angles": ("rad", "ZYZ Euler angles (psi, theta, phi) of the primary path's orientation"),
+    "omega_error": ("rad/s", "|w - w_exact| of the primary path"),
+}
+
+#: component labels -> name of the dimension they index.
+COMPONENT_DIMS: dict[tuple[str, ...], str] = {
+    ("w", "x", "y", "z"): "quaternion_component",
+    ("1", "e12", "e13", "e23"): "rotor_blade",
+    ("1", "2", "3"): "body_axis",
+    ("x", "y", "z"): "space_axis",
+    ("psi", "theta", "phi"): "zyz_angle",
+}
+
+
+def describe(name: str) -> tuple[str, str]:
+    """(unit, description) of the trajectory array ``name``.
+
+    Examples
+    --------
+    >>> describe("w")
+    ('rad/s', 'body angular velocity of the primary path')
+    >>> describe("error_q")
+    ('rad', 'geodesic angle from the exact orientation, quaternion path q')
+    >>> describe("x")
+    Traceback (most recent call last):
+    ...
+    ga_rotors.errors.InputError: x: no unit is known for this array
+    """
+    if name in VARIABLES:
+        return VARIABLES[name]
+    if name.startswith("error_"):
+        array = name[len("error_") :]
+        path = {"q": "quaternion", "R": "rotor", "euler": "Euler-angle"}.get(array, array)
+        return "rad", f"geodesic angle from the exact orientation, {path} path {array}"
+    raise InputError(f"{name}: no unit is known for this array")
