@@ -11,8 +11,7 @@ import pytest
 from ga_rotors import optional
 from ga_rotors.errors import InputError
 from ga_rotors.optional import MissingExtraError
-from ga_rotors.scene import load_scene
-from ga_rotors.scene_run import simulate
+from ga_rotors.scene import load_scene, run_scene
 from ga_rotors.trajectory import Trajectory
 
 xr = pytest.importorskip("xarray")
@@ -25,7 +24,7 @@ from ga_rotors import results  # noqa: E402
 @pytest.fixture(scope="module")
 def heavy():
     scene = load_scene("heavy_top").replace({"time.duration": 0.05})
-    return scene, simulate(scene)
+    return scene, run_scene(scene)
 
 
 def ragged():

@@ -70,7 +70,7 @@ def provenance(meta: dict, scene=None) -> dict:
 
 def _exact_bound(scene, t: np.ndarray) -> float | None:
     """Largest rounding-error bound (rad) of the scene's exact reference over ``t``."""
-    from ..scene_run import exact_solution
+    from ..scene import exact_solution
 
     exact = exact_solution(scene) if scene.exact else None
     if exact is None or not hasattr(exact.model, "state") or t.size == 0:
@@ -91,10 +91,9 @@ def to_dataset(trajectory, scene=None):
 
     Examples
     --------
-    >>> from ga_rotors.scene import load_scene
-    >>> from ga_rotors.scene_run import simulate
+    >>> from ga_rotors.scene import load_scene, run_scene
     >>> scene = load_scene("heavy_top").replace({"time.duration": 0.01})
-    >>> ds = to_dataset(simulate(scene), scene)
+    >>> ds = to_dataset(run_scene(scene), scene)
     >>> ds["q"].dims, ds["q"].attrs["units"], ds["t"].attrs["units"]
     (('time', 'quaternion_component'), '1', 's')
     >>> ds.attrs["integrator"], ds.attrs["exact_solution"], ds.attrs["exact_error_bound"] < 1e-12
