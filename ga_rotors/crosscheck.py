@@ -17,24 +17,7 @@ from . import paths as _paths
 from .errors import InputError
 from .trajectory import Trajectory
 
-__all__ = ["PathComparison", "cross_check", "orientations"]
-
-
-def orientations(trajectory: Trajectory, path: str) -> np.ndarray:
-    """Unit quaternions (m, 4) of ``path``'s samples in ``trajectory``.
-
-    Examples
-    --------
-    >>> from ga_rotors.simulate import simulate
-    >>> tr = simulate((1.0, 2.0, 3.0), [1.0, 0, 0, 0], [0.0, 0.0, 1.0], duration=0.5,
-    ...               step=0.1)
-    >>> orientations(tr, "rotor").shape
-    (6, 4)
-    """
-    spec = _paths.get(path)
-    if spec.array not in trajectory:
-        raise InputError(f"path: the trajectory has no {path!r} path (it has {trajectory.names})")
-    return spec.load().quaternions(trajectory[spec.array])
+__all__ = ["PathComparison", "cross_check"]
 
 
 @dataclass(frozen=True)
@@ -68,7 +51,8 @@ def cross_check(trajectory: Trajectory) -> list[PathComparison]:
     Returns
     -------
     list of PathComparison
-        One per pair, in the order rotor, quaternion, euler.
+        One per pair, in the order of :data:`ga_rotors.paths.PATHS` (rotor, quaternion,
+        euler).
 
     Examples
     --------
@@ -79,12 +63,13 @@ def cross_check(trajectory: Trajectory) -> list[PathComparison]:
     >>> c.paths, c.max_angle < 1e-13
     (('rotor', 'quaternion'), True)
     """
-    from .quaternion import distance
+    from .quaternion import distance, normalize
 
-    present = [p for p in ("rotor", "quaternion", "euler") if _paths.get(p).array in trajectory]
+    present = [p for p in _paths.PATHS if _paths.get(p).array in trajectory]
     if len(present) < 2:
         raise InputError(f"trajectory: cross-checking needs two paths, it has {present}")
-    quats = {p: orientations(trajectory, p) for p in present}
+    # Between rotations: each path's own norm drift is not a disagreement.
+    quats = {p: normalize(trajectory.quaternions(p)) for p in present}
     out = []
     for a, b in combinations(present, 2):
         n = min(quats[a].shape[0], quats[b].shape[0])

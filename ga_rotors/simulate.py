@@ -159,8 +159,11 @@ def simulate(
     Returns
     -------
     Trajectory
-        ``t``, ``w`` and one array per path (``R``, ``q``, ``euler``), plus ``outputs``;
-        ``meta`` records the integrator, step and each path's status.
+        ``t``, ``w`` and one array per path (``rotor_blades``, ``q``, ``euler``), plus
+        ``outputs``; ``meta`` records the integrator, step and each path's status.
+        Whatever the path, ``quaternions(path)`` gives its orientation as (w, x, y, z)
+        and ``rotors(path)`` as clifford rotors (the rotor path's raw state is on
+        clifford's blades (1, e12, e13, e23), where k is −e12: not a quaternion).
 
     Warns
     -----
@@ -176,7 +179,7 @@ def simulate(
     >>> tr = simulate(shapes.disk(2.0, 0.075), [1.0, 0.0, 0.0, 0.0], [0.0, 0.0, 2.0],
     ...               duration=1.0, step=1e-3, paths=("rotor", "quaternion"))
     >>> tr.names
-    ('t', 'w', 'R', 'q')
+    ('t', 'w', 'rotor_blades', 'q')
     >>> tr.q[-1].round(12).tolist()          # a 2 rad turn about z: (cos 1, 0, 0, sin 1)
     [0.540302305868, 0.0, 0.0, 0.841470984808]
     >>> tr.meta["paths"]["rotor"]["complete"]

@@ -1,21 +1,25 @@
 """A simulation's result: named arrays on one time grid, exportable to CSV and NPZ.
 
 Only what was computed is present: a path that was not asked for has no array, an output
-nobody requested is not computed. Names used by :func:`ga_rotors.simulate.simulate`:
+nobody requested is not computed. Whatever paths were integrated, the orientation is
+handed out by name, in one convention: :meth:`Trajectory.quaternions` gives unit
+quaternions (w, x, y, z) and :meth:`Trajectory.rotors` clifford rotors, for any path.
+Names used by :func:`ga_rotors.simulate.simulate`:
 
-======== ========= ===================================================================
-name     shape     meaning
-======== ========= ===================================================================
-t        (n,)      sample times (s)
-w        (n, 3)    body angular velocity of the primary path (rad/s)
-R        (n, 4)    rotor path: coefficients on clifford's blades (1, e12, e13, e23)
-q        (n, 4)    quaternion path: (w, x, y, z)
-euler    (m, 3)    Euler-angle path: integrated ZYZ angles (ψ, θ, φ), rad
-energy   (n,)      kinetic energy ½ ω·Iω (J) of the primary path
-L        (n, 3)    body-frame angular momentum Iω
-L_space  (n, 3)    space-frame angular momentum q (Iω) q*
-angles   (n, 3)    ZYZ angles (ψ, θ, φ) of the primary path's orientation (ga_rotors.euler)
-======== ========= ===================================================================
+============= ========= ==============================================================
+name          shape     meaning
+============= ========= ==============================================================
+t             (n,)      sample times (s)
+w             (n, 3)    body angular velocity of the primary path (rad/s)
+rotor_blades  (n, 4)    rotor path, raw: coefficients on clifford's blades
+                        (1, e12, e13, e23) — *not* a quaternion; use ``quaternions()``
+q             (n, 4)    quaternion path: (w, x, y, z)
+euler         (m, 3)    Euler-angle path: integrated ZYZ angles (ψ, θ, φ), rad
+energy        (n,)      kinetic energy ½ ω·Iω (J) of the primary path
+L             (n, 3)    body-frame angular momentum Iω
+L_space       (n, 3)    space-frame angular momentum q (Iω) q*
+angles        (n, 3)    ZYZ angles (ψ, θ, φ) of the primary path's orientation
+============= ========= ==============================================================
 
 An array can be shorter than ``t`` (``m < n``) when its path stopped early because its
 state stopped being finite (the Euler-angle path hitting sin θ = 0 exactly); its first
@@ -29,6 +33,7 @@ from pathlib import Path
 
 import numpy as np
 
+from . import paths as _paths
 from .errors import InputError
 from .files import atomic_write, write_text
 
@@ -43,7 +48,7 @@ class Trajectory:
     arrays : dict of str -> ndarray
         Must contain ``t`` (1-D); every other array has at most ``len(t)`` rows.
     components : dict of str -> tuple of str, optional
-        Column names of multi-column arrays (``R`` -> ``("1", "e12", "e13", "e23")``).
+        Column names of multi-column arrays (``q`` -> ``("w", "x", "y", "z")``).
     meta : dict, optional
         How the data were made (integrator, step, body, per-path status).
 
@@ -77,6 +82,130 @@ class Trajectory:
             self._arrays[name] = a
         self.components = {k: tuple(v) for k, v in (components or {}).items()}
         self.meta = dict(meta or {})
+        self._quaternions: dict[str, np.ndarray] = {}
+
+    # ------------------------------------------------------------------ orientation
+
+    @property
+    def paths(self) -> tuple[str, ...]:
+        """The orientation paths present, primary first.
+
+        Examples
+        --------
+        >>> from ga_rotors.simulate import simulate
+        >>> simulate((1.0, 2.0, 3.0), [1.0, 0, 0, 0], [0.0, 0.0, 1.0], duration=0.5,
+        ...          step=0.1, paths=("quaternion", "rotor")).paths
+        ('rotor', 'quaternion')
+        """
+        present = [name for name, spec in _paths.PATHS.items() if spec.array in self._arrays]
+        primary = self.meta.get("primary")
+        if primary in present:
+            present.remove(primary)
+            present.insert(0, primary)
+        return tuple(present)
+
+    def _path(self, path: str | None) -> str:
+        present = self.paths
+        if path is None:
+            if not present:
+                raise InputError("path: this trajectory holds no orientation path")
+            return present[0]
+        _paths.get(path)  # an unknown name gets the list of valid ones
+        if path not in present:
+            raise InputError(
+                f"path: the trajectory has no {path!r} path (it has {', '.join(present) or 'none'}"
+                "; only the requested paths are integrated)"
+            )
+        return path
+
+    def quaternions(self, path: str | None = None) -> np.ndarray:
+        """The orientation of ``path`` as quaternions (m, 4), (w, x, y, z), body -> space.
+
+        Parameters
+        ----------
+        path : {"rotor", "quaternion", "euler"}, optional
+            Which integrated path (default: the primary one, ``meta["primary"]``).
+
+        Returns
+        -------
+        ndarray (m, 4), read-only
+            Hamilton quaternions in ``docs/conventions.md``'s convention, whatever the path
+            integrated; their norms are the path's own (an integrator that does not
+            renormalise drifts from 1 by its error). ``m`` is the path's sample count
+            (fewer than ``len(t)`` when it stopped early).
+
+        Examples
+        --------
+        A quarter turn about z, integrated on the rotor path (its raw state is on
+        clifford's blades, where k is −e12):
+
+        >>> import math
+        >>> from ga_rotors.simulate import simulate
+        >>> tr = simulate((1.0, 1.0, 1.0), [1.0, 0, 0, 0], [0.0, 0.0, math.pi / 2],
+        ...               duration=1.0, step=0.01)
+        >>> tr.quaternions()[-1].round(9).tolist()
+        [0.707106781, 0.0, 0.0, 0.707106781]
+        >>> tr["rotor_blades"][-1].round(9).tolist()
+        [0.707106781, -0.707106781, 0.0, 0.0]
+        """
+        path = self._path(path)
+        if path not in self._quaternions:
+            spec = _paths.get(path)
+            q = np.array(spec.load().quaternions(self._arrays[spec.array]), dtype=np.float64)
+            q.flags.writeable = False  # computed once and shared: nobody may change it
+            self._quaternions[path] = q
+        return self._quaternions[path]
+
+    def rotors(self, path: str | None = None):
+        """The orientation of ``path`` as clifford rotors of Cl(3,0).
+
+        R = w − x e23 − y e31 − z e12 for each quaternion of :meth:`quaternions`, acting
+        as v ↦ R v R̃ (``docs/conventions.md``).
+
+        Returns
+        -------
+        clifford.MVArray (m,)
+            One :class:`clifford.MultiVector` per sample; index it like a list, or use
+            ``.value`` for the (m, 8) coefficients on all eight blades.
+
+        Examples
+        --------
+        >>> import math
+        >>> from ga_rotors.simulate import simulate
+        >>> tr = simulate((1.0, 1.0, 1.0), [1.0, 0, 0, 0], [0.0, 0.0, math.pi / 2],
+        ...               duration=1.0, step=0.01, paths="quaternion")
+        >>> R = tr.rotors()[-1]
+        >>> R
+        0.70711 - (0.70711^e12)
+        >>> from ga_rotors import rotor
+        >>> rotor.apply(R, [1.0, 0.0, 0.0]).round(9).tolist()   # x turns to y
+        [0.0, 1.0, 0.0]
+        """
+        from clifford import MultiVector, MVArray
+
+        from .isomorphism import to_even
+        from .rotor import layout
+
+        coefficients = to_even(self.quaternions(path))
+        return MVArray([MultiVector(layout(), c) for c in coefficients])
+
+    def extended(self, arrays: dict, components: dict | None = None, meta: dict | None = None):
+        """This trajectory with more arrays (and meta entries); its orientations, already
+        converted, are shared rather than converted again.
+
+        Examples
+        --------
+        >>> tr = Trajectory({"t": np.array([0.0, 0.5])})
+        >>> tr.extended({"energy": np.ones(2)}, meta={"scene": "demo"}).names
+        ('t', 'energy')
+        """
+        out = Trajectory(
+            {**self._arrays, **arrays},
+            {**self.components, **(components or {})},
+            {**self.meta, **(meta or {})},
+        )
+        out._quaternions = self._quaternions
+        return out
 
     @property
     def names(self) -> tuple[str, ...]:
@@ -87,9 +216,15 @@ class Trajectory:
         arrays = self.__dict__.get("_arrays", {})
         if name in arrays:
             return arrays[name]
+        hint = ""
+        if name == "R":  # the rotor path's raw state was once exposed under this name
+            hint = (
+                "; the orientation is tr.quaternions() (w, x, y, z) or tr.rotors() (clifford), "
+                "the rotor path's raw blade coefficients are tr['rotor_blades']"
+            )
         raise AttributeError(
             f"trajectory has no array {name!r}; it has {', '.join(arrays) or 'none'} "
-            "(only requested paths and outputs are computed)"
+            f"(only requested paths and outputs are computed){hint}"
         )
 
     def __getitem__(self, name: str) -> np.ndarray:
@@ -124,7 +259,7 @@ class Trajectory:
         return out
 
     def to_csv(self, path=None) -> str | Path:
-        """Write every array as CSV columns (``R_e12``, ``q_w``, ...), atomically.
+        """Write every array as CSV columns (``rotor_blades_e12``, ``q_w``, ...), atomically.
 
         ``%.17g`` (17 significant digits: every float64 round-trips exactly); cells past
         the end of a shorter array are empty. Without ``path``, return the text.

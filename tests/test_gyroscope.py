@@ -16,7 +16,7 @@ import numpy as np
 import pytest
 
 from ga_rotors import euler, paper_scenes, shapes
-from ga_rotors.crosscheck import cross_check, orientations
+from ga_rotors.crosscheck import cross_check
 from ga_rotors.errors import GimbalLockWarning, InputError, IntegrationStoppedWarning
 from ga_rotors.kinematics import body_omega_from_zyz_rates
 from ga_rotors.reference.symmetric_top import SymmetricTop
@@ -113,7 +113,7 @@ def test_euler_path_started_exactly_at_the_pole_stops_without_nan():
     assert not status["complete"] and status["samples"] == 1 and status["ended_at"] == 0.0
     assert status["watch"]["first_unresolved"] == 0.0
     assert tr.euler.shape == (1, 3) and np.isfinite(tr.euler).all()
-    assert tr.R.shape == (1001, 4) and tr.meta["paths"]["rotor"]["complete"]
+    assert tr["rotor_blades"].shape == (1001, 4) and tr.meta["paths"]["rotor"]["complete"]
     text = tr.to_csv()
     assert "nan" not in text.lower()
 
@@ -183,7 +183,7 @@ def test_cross_check_needs_two_paths():
     with pytest.raises(InputError, match="needs two paths"):
         cross_check(tr)
     with pytest.raises(InputError, match="no 'quaternion' path"):
-        orientations(tr, "quaternion")
+        tr.quaternions("quaternion")
 
 
 # ------------------------------------------------------------ invariants vs the error model
@@ -229,7 +229,7 @@ def test_invariants_of_the_paper_scenes():
         e = 0.5 * np.einsum("ni,i,ni->n", tr.w, np.array(body), tr.w)
         assert np.abs(e / e[0] - 1).max() < 1e4 * eps
         lb = tr.w * np.array(body)
-        q = orientations(tr, "rotor")
+        q = tr.quaternions("rotor")
         from ga_rotors.quaternion import rotate
 
         ls = rotate(q, lb)
@@ -251,4 +251,4 @@ def test_gimbal_warning_is_not_raised_for_the_papers_near_pole_samples():
     # θ comes within ~1e-7 rad of 0, still far above the gimbal tolerance (1e-14 rad).
     with warnings.catch_warnings():
         warnings.simplefilter("error")
-        euler.from_quaternion(orientations(BY_KEY["disk_0.001deg"].trajectory, "rotor"), "ZYZ")
+        euler.from_quaternion(BY_KEY["disk_0.001deg"].trajectory.quaternions("rotor"), "ZYZ")

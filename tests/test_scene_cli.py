@@ -63,7 +63,7 @@ def test_run_writes_what_the_scene_declares(short, tmp_path, capsys):
                      "short.summary.txt"]  # fmt: skip
     assert Scene.from_toml((out / "short.scene.toml").read_text()).data == load_scene(short).data
     data = np.load(out / "short.npz")
-    assert data["t"].shape == (21,) and data["R"].shape == (21, 4)
+    assert data["t"].shape == (21,) and data["rotor_blades"].shape == (21, 4)
     assert (out / "short.summary.txt").read_text().startswith("scene short: rk4")
 
 

@@ -130,7 +130,7 @@ def test_undeclared_effects_are_never_evaluated_uncompiled(tmp_path):
     assert proc.returncode == 0, proc.stderr
     count, names = proc.stdout.split(" ", 1)
     assert int(count) == 4 * 5 * 2
-    assert names.strip() == "('t', 'w', 'R', 'q')"
+    assert names.strip() == "('t', 'w', 'rotor_blades', 'q')"
 
 
 def test_undeclared_paths_are_never_integrated(monkeypatch):
@@ -157,20 +157,21 @@ def test_nothing_is_computed_for_outputs_nobody_asked_for(monkeypatch):
         raise AssertionError("computed an output nobody asked for")
 
     s = load_scene("heavy_top").replace({"time.duration": 0.01, "output.quantities": []})
-    for name in ("exact_solution", "_quantities", "gravity_terms"):
-        monkeypatch.setattr(scene_run, name, tripwire)
-    import ga_rotors.crosscheck as crosscheck
+    from ga_rotors.scene import exact
+    from ga_rotors.trajectory import Trajectory
 
-    monkeypatch.setattr(crosscheck, "orientations", tripwire)
+    monkeypatch.setattr(scene_run, "_quantities", tripwire)
+    monkeypatch.setattr(exact, "build", tripwire)
+    monkeypatch.setattr(Trajectory, "quaternions", tripwire)
     tr = run_scene(s)
-    assert tr.names == ("t", "w", "R", "q")
+    assert tr.names == ("t", "w", "rotor_blades", "q")
 
     # Asking for one quantity computes that one: energy comes from simulate itself, and the
     # exact solution is still not touched.
     monkeypatch.undo()
-    monkeypatch.setattr(scene_run, "exact_solution", tripwire)
+    monkeypatch.setattr(exact, "build", tripwire)
     tr = run_scene(s.replace({"output.quantities": ["energy", "potential_energy"]}))
-    assert tr.names == ("t", "w", "R", "q", "energy", "potential_energy")
+    assert tr.names == ("t", "w", "rotor_blades", "q", "energy", "potential_energy")
 
 
 def test_quantities_are_what_they_say():
@@ -183,12 +184,12 @@ def test_quantities_are_what_they_say():
     })  # fmt: skip
     tr = run_scene(s)
     q = Q.normalize(tr.q)
-    weight, r = scene_run.gravity_terms(s)
+    weight, r = s.gravity
     assert np.allclose(tr.potential_energy, -(Q.rotate(q, r) @ weight), rtol=0, atol=1e-15)
     assert np.allclose(tr.total_energy, tr.energy + tr.potential_energy, rtol=0, atol=1e-15)
     assert np.allclose(tr.omega_space, Q.rotate(q, tr.w), rtol=0, atol=1e-13)
     assert np.allclose(tr.L_space, Q.rotate(q, tr.L), rtol=0, atol=1e-15)
-    assert tr.error_R.max() < 1e-10 and tr.error_q.max() < 1e-10
+    assert tr.error_rotor.max() < 1e-10 and tr.error_quaternion.max() < 1e-10
     assert tr.omega_error.max() < 1e-9
     assert np.allclose(tr.angles[0], np.radians([0.0, 30.0, 0.0]), atol=1e-15)
 

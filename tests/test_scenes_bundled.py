@@ -24,7 +24,7 @@ import pytest
 
 from ga_rotors import _generate_paper_scenes as gen
 from ga_rotors import paper_figures, paper_scenes
-from ga_rotors.scene import bundled, bundled_path, exact_solution, load_scene, report, run_scene
+from ga_rotors.scene import bundled, load_scene, report, run_scene
 from ga_rotors.scene.figures import DIGEST_PREFIX, data_digest
 
 EPS = np.finfo(float).eps
@@ -102,7 +102,7 @@ def test_the_euler_path_is_fine_at_15_degrees_and_reports_trouble_near_zero():
 
 def test_heavy_top_matches_the_lagrange_solution():
     scene, tr, rep = run("heavy_top")
-    exact = exact_solution(scene)
+    exact = scene.exact_solution
     nut = exact.model.nutation()
     e_orient = max(rep.values["error_rotor"], rep.values["error_quaternion"])
     # The angle between two orientations bounds the angle between their symmetry axes,
@@ -150,7 +150,7 @@ def test_heavy_top_converges_to_the_lagrange_solution_at_fourth_order():
 
 def test_intermediate_axis_flips_every_2K_over_lambda():
     scene, tr, rep = run("intermediate_axis_flip")
-    model = exact_solution(scene).model
+    model = scene.exact_solution.model
     assert model.m1 < 1e-5  # near the separatrix: long, sharp flips
     flips = round(scene.data["time"]["duration"] / model.flip_period)
     assert rep.values["flip_period_exact"] == model.flip_period and flips >= 4
@@ -168,7 +168,7 @@ def test_intermediate_axis_flips_every_2K_over_lambda():
 
 def test_damped_top_follows_the_exact_decay():
     scene, tr, rep = run("damped_top")
-    model = exact_solution(scene).model
+    model = scene.exact_solution.model
     # |L| decays as two exponentials; at the end it matches to the ω error's order.
     assert rep.values["momentum_final"] < 0.2 * np.linalg.norm(scene.body.momentum(tr.w[0]))
     rel = abs(rep.values["momentum_final"] - rep.values["momentum_final_exact"])

@@ -20,14 +20,14 @@ def test_only_requested_paths_and_outputs_are_present():
     assert tr.names == ("t", "w", "q")
     tr = simulate(DISK, Q0, [0.1, 0.0, 3.0], duration=0.1, step=1e-3,
                   paths=["quaternion", "rotor"], outputs=["energy"])  # fmt: skip
-    assert tr.names == ("t", "w", "R", "q", "energy")
+    assert tr.names == ("t", "w", "rotor_blades", "q", "energy")
     assert tr.meta["primary"] == "rotor" and set(tr.meta["paths"]) == {"rotor", "quaternion"}
 
 
 def test_sampling_keeps_the_last_step():
     tr = simulate(DISK, Q0, [0.0, 0.0, 1.0], duration=0.01, step=1e-3, sample_every=4)
     assert np.allclose(tr.t, [0.0, 0.004, 0.008, 0.01], rtol=0, atol=1e-15)
-    assert tr.R.shape == (4, 4)
+    assert tr["rotor_blades"].shape == tr.quaternions().shape == (4, 4)
 
 
 def test_torqued_run_records_its_torques():

@@ -41,8 +41,8 @@ def test_npz_holds_every_array_and_labels(tmp_path):
 
 
 def test_missing_array_names_what_exists():
-    with pytest.raises(AttributeError, match="no array 'R'; it has t, w, euler"):
-        _ = sample().R
+    with pytest.raises(AttributeError, match="no array 'q'; it has t, w, euler"):
+        _ = sample().q
     assert "q" not in sample()
 
 

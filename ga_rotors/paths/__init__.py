@@ -70,7 +70,7 @@ PATHS: dict[str, Path] = {
         Path(
             "rotor",
             "ga_rotors.paths.rotor",
-            "R",
+            "rotor_blades",
             ("1", "e12", "e13", "e23"),
             True,
             "rotor equation dR/dt = R Ω / 2 in Cl(3,0)",
@@ -101,7 +101,7 @@ def get(name: str) -> Path:
     Examples
     --------
     >>> get("rotor").array
-    'R'
+    'rotor_blades'
     >>> get("matrix")
     Traceback (most recent call last):
     ...

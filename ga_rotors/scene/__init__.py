@@ -7,6 +7,7 @@ Data flows one way, one module per step:
 * :mod:`~ga_rotors.scene.model`: :class:`Scene`, the resolved scene and its derived values;
 * :mod:`~ga_rotors.scene.toml_io`: a resolved scene written back as TOML;
 * :mod:`~ga_rotors.scene.loading`: :func:`load_scene`, files and the bundled scenes;
+* :mod:`~ga_rotors.scene.exact`: the exact solution that applies, in the scene's terms;
 * :mod:`~ga_rotors.scene.run`: :func:`run_scene`, a scene integrated into a Trajectory;
 * :mod:`~ga_rotors.scene.summary`: the closing summary (invariants, cross-check, exact);
 * :mod:`~ga_rotors.scene.figures`: the run's figure;
@@ -34,7 +35,6 @@ _EXPORTS = {
     "bundled": "loading",
     "bundled_path": "loading",
     "run_scene": "run",
-    "exact_solution": "run",
     "report": "summary",
     "Report": "summary",
     "write_outputs": "output",

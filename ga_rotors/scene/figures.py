@@ -72,9 +72,8 @@ class _Context:
 
     def _q(self):
         from .. import quaternion as Q
-        from ..crosscheck import orientations
 
-        return Q.normalize(orientations(self.tr, self.tr.meta["primary"]))[: self.t.shape[0]]
+        return Q.normalize(self.tr.quaternions())[: self.t.shape[0]]
 
     def _angles(self):
         from .. import euler
@@ -87,9 +86,7 @@ class _Context:
         return np.degrees(a)
 
     def _exact(self):
-        from .run import exact_solution
-
-        return exact_solution(self.scene)
+        return self.scene.exact_solution
 
 
 def _omega(axes, ctx: _Context) -> None:
@@ -143,17 +140,15 @@ def _invariants(axes, ctx: _Context) -> None:
 
 
 def _error(axes, ctx: _Context) -> None:
-    from .. import paths as _paths
     from .. import quaternion as Q
-    from ..crosscheck import orientations
 
     (ax,) = axes
     exact = ctx.get("exact")
     for path in ctx.scene.paths:
-        q = Q.normalize(orientations(ctx.tr, path))
+        q = Q.normalize(ctx.tr.quaternions(path))
         e = exact.orientation_error(ctx.tr.t[: q.shape[0]], q)
         ax.semilogy(ctx.tr.t[: q.shape[0]], np.maximum(e, 1e-17), lw=0.8,
-                    label=f"{path} ({_paths.get(path).array})")  # fmt: skip
+                    label=path)  # fmt: skip
     ax.set_ylabel("error (rad)", fontsize=8)
     ax.legend(fontsize=7, loc="lower right")
 

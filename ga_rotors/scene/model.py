@@ -46,6 +46,7 @@ ga_rotors.errors.SceneError: <dict>: time.duraton: unknown key (did you mean 'du
 from __future__ import annotations
 
 import copy
+import functools
 import itertools
 import re
 import tomllib
@@ -114,7 +115,16 @@ class Scene:
     steps, sample_every : int
         Number of integration steps; steps between output samples.
     exact : str or None
-        Which exact solution applies (:attr:`exact_reason` says why not, when None).
+        Which exact solution applies (:attr:`exact_reason` says why not, when None);
+        :attr:`exact_solution` is that solution, built on first use and kept.
+    method : Integrator
+        The resolved integrator (an adaptive one at the scene's tolerance), checked
+        against the scene's effects and paths.
+    gravity : tuple of ndarray or None
+        (weight m g in space, r = pivot -> centre of mass in the integration frame), or
+        None without gravity.
+    frame : ga_rotors.effects.Frame
+        What building the effects' torques needs (principal rotation, mass, base_dir).
 
     Examples
     --------
@@ -222,6 +232,8 @@ class Scene:
             f"{time['output_step']!r} s",
         )  # fmt: skip
         self.kind = "torqued" if d["effects"] else "free"
+        self.gravity = self._gravity()
+        self.method = self._method()
         self._check_integrator(reader)
         self.exact, self.exact_reason = self._exact()
         self._check_outputs(reader)
@@ -322,13 +334,28 @@ class Scene:
             o["sequence"], angles, np.array(a["euler_rates"]) * scale
         )
 
+    def _gravity(self) -> tuple[np.ndarray, np.ndarray] | None:
+        if self.gravity_index is None:
+            return None
+        g = self.data["effects"][self.gravity_index]
+        weight = self.mass * np.array(g["g"])
+        return weight, np.array(self.frame.to_principal(g["pivot_to_com"]))
+
+    def _method(self):
+        """The registered integrator, or for an adaptive one an instance at the tolerance."""
+        from ..integrators import base
+
+        spec = self.data["integrator"]
+        method = base.get(spec["method"])
+        if "tolerance" not in spec or method.rtol == spec["tolerance"]:
+            return method
+        return type(method)(rtol=spec["tolerance"])
+
     def _check_integrator(self, reader: Reader) -> None:
         from types import SimpleNamespace
 
-        from ..integrators import base
-
         integ = self.data["integrator"]
-        method = base.get(integ["method"])
+        method = self.method
         # The effects as the check sees them (name, whether they read ω), without building
         # them: a user kernel is imported only when the scene is simulated.
         torques = [
@@ -364,7 +391,7 @@ class Scene:
                 return "damped_symmetric_top", "isotropic damping of a symmetric top"
             return None, "isotropic damping has an exact solution only for a symmetric top"
         if types == ["gravity"]:
-            r = self.frame.to_principal(effects[0]["pivot_to_com"])
+            r = self.gravity[1]
             if i1 == i2 and r[0] == r[1] == 0.0 and r[2] > 0.0:
                 return "heavy_top", "gravity on a symmetric top, centre of mass on its axis"
             return None, (
@@ -389,6 +416,34 @@ class Scene:
                     else f"needs an exact solution; this scene has none ({self.exact_reason})"
                 )  # fmt: skip
                 raise reader.error(join(join("output", section), i), f"{name!r} {reason}")
+
+    @functools.cached_property
+    def exact_solution(self):
+        """The exact solution that applies (:class:`ga_rotors.scene.exact.Exact`), or None.
+
+        Built on first use and kept: a run, its summary and its figure share one.
+        Raises InputError (from the reference) when the state is outside its domain.
+
+        Examples
+        --------
+        >>> from ga_rotors.scene import load_scene
+        >>> scene = load_scene("spinning_disk")
+        >>> scene.exact_solution.name, scene.exact_solution is scene.exact_solution
+        ('symmetric_top', True)
+        """
+        from . import exact
+
+        effects = self.data["effects"]
+        damping = effects[0]["coefficient"] if self.exact == "damped_symmetric_top" else None
+        return exact.build(
+            self.exact,
+            self.body,
+            self.orientation,
+            self.angular_velocity,
+            self.data["time"]["start"],
+            gravity=self.gravity,
+            damping=damping,
+        )
 
     @property
     def exact_has_orientation(self) -> bool:
@@ -469,10 +524,8 @@ class Scene:
         >>> print(load_scene("heavy_top").describe().splitlines()[0])
         # integration frame: principal moments (0.002225, 0.002225, 0.00125) kg·m² about the pivot
         """
-        from ..integrators import base
-
         q, w = self.orientation, self.angular_velocity
-        method = base.get(self.data["integrator"]["method"])
+        method = self.method
         lines = [
             f"integration frame: principal moments {_fmt(self.body.moments)} kg·m²"
             + (" about the pivot" if self.gravity_index is not None else ""),

@@ -10,7 +10,7 @@
   user torques conserve nothing this simple (the exact solution, where one exists, is the
   check);
 * the **cross-check** of the orientation paths (:func:`ga_rotors.crosscheck.cross_check`);
-* the **exact solution** (:func:`ga_rotors.scene.run.exact_solution`): each path's largest
+* the **exact solution** (:attr:`ga_rotors.scene.Scene.exact_solution`): each path's largest
   geodesic error and the largest |ω − ω_exact|;
 * **physics readouts** measured from the samples and compared with their exact values:
   the heavy top's nutation bounds, nutation period and mean precession rate; the asymmetric
@@ -158,16 +158,14 @@ def invariant_series(scene: Scene, tr: Trajectory, q: np.ndarray) -> list[tuple]
 
     Examples
     --------
-    >>> from ga_rotors.crosscheck import orientations
     >>> from ga_rotors.scene import load_scene
     >>> from ga_rotors.scene import run_scene
     >>> scene = load_scene("heavy_top").replace({"time.duration": 0.1})
     >>> tr = run_scene(scene)
-    >>> [row[0] for row in invariant_series(scene, tr, orientations(tr, "rotor"))]
+    >>> [row[0] for row in invariant_series(scene, tr, tr.quaternions())]
     ['total_energy', 'vertical_momentum', 'axial_momentum']
     """
     from .. import quaternion as Q
-    from .run import gravity_terms
 
     body, w = scene.body, tr.w
     t = tr.t[: w.shape[0]]
@@ -191,7 +189,7 @@ def invariant_series(scene: Scene, tr: Trajectory, q: np.ndarray) -> list[tuple]
             ("space_momentum", "space-frame L", dev(L_space, L0), "relative to |L₀|"),
         ]  # fmt: skip
     elif types == ["gravity"]:
-        weight, r = gravity_terms(scene)
+        weight, r = scene.gravity
         total = body.energy(w) - Q.rotate(q, r) @ weight
         scale = float(body.energy(w[0]) + np.linalg.norm(weight) * np.linalg.norm(r))
         up = -weight / np.linalg.norm(weight)
@@ -219,19 +217,6 @@ def _invariants(scene: Scene, tr: Trajectory, q: np.ndarray, rep: Report) -> Non
         value = float(deviation.max())
         rep.values[f"drift_{key}"] = value
         rep.lines.append(f"  {label:<22} max drift {value:9.2e}  ({scale})")
-
-
-def _on_sphere(tr: Trajectory) -> Trajectory:
-    """``tr`` with its rotor and quaternion states scaled to unit norm (rotations only)."""
-    from .. import paths as _paths
-
-    arrays = {name: tr[name] for name in tr.names}
-    for path in tr.meta["paths"]:
-        spec = _paths.get(path)
-        if spec.on_unit_sphere:
-            a = arrays[spec.array]
-            arrays[spec.array] = a / np.linalg.norm(a, axis=-1, keepdims=True)
-    return Trajectory(arrays, tr.components, tr.meta)
 
 
 def _paths(tr: Trajectory, rep: Report) -> None:
@@ -336,22 +321,20 @@ def _damped(scene: Scene, exact, tr: Trajectory, rep: Report) -> None:
 
 
 def _exact(scene: Scene, tr: Trajectory, q: np.ndarray, rep: Report) -> None:
+    from .. import quaternion as Q
     from ..errors import GaRotorsError
-    from .run import exact_solution
 
     if scene.exact is None:
         rep.lines.append(f"exact solution: none ({scene.exact_reason})")
         return
     try:
-        exact = exact_solution(scene)
+        exact = scene.exact_solution
         t = tr.t[: tr.w.shape[0]]
         w_err = np.linalg.norm(tr.w - exact.angular_velocity(t), axis=-1)
         errors = {}
         if exact.has_orientation:
-            from ..crosscheck import orientations
-
             for path in scene.paths:
-                qp = orientations(tr, path)
+                qp = Q.normalize(tr.quaternions(path))
                 errors[path] = float(exact.orientation_error(tr.t[: qp.shape[0]], qp).max())
     except GaRotorsError as exc:
         rep.lines.append(f"exact solution ({scene.exact}): not evaluated: {exc}")
@@ -382,10 +365,11 @@ def report(scene: Scene, trajectory: Trajectory) -> Report:
     >>> rep.values["error_rotor"] < 1e-9, rep.values["rotor_vs_quaternion"] < 1e-13
     (True, True)
     """
-    from ..crosscheck import cross_check, orientations
+    from .. import quaternion as Q
+    from ..crosscheck import cross_check
 
     rep = Report(scene.name)
-    raw, tr = trajectory, _on_sphere(trajectory)
+    tr = trajectory
     method = tr.meta["integrator"]
     torques = ", ".join(tr.meta["torques"]) or "none (torque-free)"
     spec = scene.data["integrator"]
@@ -396,8 +380,8 @@ def report(scene: Scene, trajectory: Trajectory) -> Report:
     )
     rep.lines.append(f"scene {scene.name}: {method}, {how}; torques: {torques}")
     rep.lines.append("paths (geodesic angles below are between rotations: states normalised):")
-    _paths(raw, rep)
-    q = orientations(tr, tr.meta["primary"])[: tr.w.shape[0]]
+    _paths(tr, rep)
+    q = Q.normalize(tr.quaternions())[: tr.w.shape[0]]
     rep.lines.append(f"invariants ({tr.meta['primary']} path):")
     _invariants(scene, tr, q, rep)
     if len(scene.paths) > 1:
