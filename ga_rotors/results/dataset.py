@@ -70,9 +70,7 @@ def provenance(meta: dict, scene=None) -> dict:
 
 def _exact_bound(scene, t: np.ndarray) -> float | None:
     """Largest rounding-error bound (rad) of the scene's exact reference over ``t``."""
-    from ..scene import exact_solution
-
-    exact = exact_solution(scene) if scene.exact else None
+    exact = scene.exact_solution if scene.exact else None
     if exact is None or not hasattr(exact.model, "state") or t.size == 0:
         return None
     pick = np.unique(np.linspace(0, t.size - 1, min(t.size, EXACT_BOUND_TIMES)).astype(int))

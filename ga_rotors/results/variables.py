@@ -15,7 +15,11 @@ VARIABLES: dict[str, tuple[str, str]] = {
     "t": ("s", "sample time"),
     "w": ("rad/s", "body angular velocity of the primary path"),
     "q": ("1", "orientation quaternion (w, x, y, z), body to space, of the quaternion path"),
-    "R": ("1", "rotor coefficients on clifford's blades (1, e12, e13, e23), rotor path"),
+    "rotor_blades": (
+        "1",
+        "rotor path's raw state: coefficients on clifford's blades (1, e12, e13, e23), "
+        "not a quaternion",
+    ),
     "euler": ("rad", "integrated ZYZ Euler angles (psi, theta, phi), Euler-angle path"),
     "energy": ("J", "kinetic energy 1/2 w.Iw of the primary path"),
     "potential_energy": ("J", "gravitational energy -m g.r_space about the pivot"),
@@ -44,8 +48,8 @@ def describe(name: str) -> tuple[str, str]:
     --------
     >>> describe("w")
     ('rad/s', 'body angular velocity of the primary path')
-    >>> describe("error_q")
-    ('rad', 'geodesic angle from the exact orientation, quaternion path q')
+    >>> describe("error_quaternion")
+    ('rad', 'geodesic angle from the exact orientation, quaternion path')
     >>> describe("x")
     Traceback (most recent call last):
     ...
@@ -54,7 +58,6 @@ def describe(name: str) -> tuple[str, str]:
     if name in VARIABLES:
         return VARIABLES[name]
     if name.startswith("error_"):
-        array = name[len("error_") :]
-        path = {"q": "quaternion", "R": "rotor", "euler": "Euler-angle"}.get(array, array)
-        return "rad", f"geodesic angle from the exact orientation, {path} path {array}"
+        path = name[len("error_") :]  # one per path: error_rotor, error_quaternion, ...
+        return "rad", f"geodesic angle from the exact orientation, {path} path"
     raise InputError(f"{name}: no unit is known for this array")
