@@ -1,0 +1,612 @@
+"""``prove(lhs, rhs, assumptions)``: an exact verdict on a geometric-algebra identity.
+
+How a verdict is reached:
+
+1. **Numeric pre-check.** The symbols are drawn at random rational parameters (many
+   draws at once, numpy arrays as coefficients) and both sides are compared in floating
+   point. A draw where they differ is only a *suspect*.
+2. **Exact check of a suspect.** At that draw's rational parameters both sides are
+   recomputed exactly (normalisers c = 1/√λ and exp's cos/sin kept exact in SymPy).
+   If the difference is not zero the verdict is *refuted*, with the counterexample.
+3. **Exact proof.** Otherwise every coefficient of lhs − rhs is computed as a
+   polynomial over ℚ in the free parameters and reduced modulo the assumptions
+   (c² λ = 1 for each normaliser, C² − δ S² = 1 for each exp); *proved* means every
+   reduced coefficient is the zero polynomial. No floating point takes part.
+4. A nonzero reduced difference with no counterexample found at further exact random
+   points is *undecided*, with the reason (for instance an identity that needs more
+   of exp than C² − δ S² = 1, such as exp(B)² = exp(2B)).
+
+Examples
+--------
+>>> v = prove("(a^b)|c == a*(b|c) - b*(a|c)", signature=(4, 1), vectors="a,b,c")
+>>> v.status, v.exit_code
+('proved', 0)
+>>> w = prove("B*B == grade(B*B, 0)", signature=(1, 3), bivectors="B")
+>>> w.status
+'refuted'
+>>> prove("R*v*~R == grade(R*v*~R, 1)", signature=(3, 0, 1), rotors="R", vectors="v").status
+'proved'
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, field
+from fractions import Fraction
+from itertools import product
+
+import numpy as np
+import sympy
+from sympy.polys.domains import QQ
+from sympy.polys.rings import PolyRing
+
+from .assumptions import Assumptions
+from .basis import Basis, cached_basis
+from .element import Element
+from .evaluate import evaluate
+from .grammar import Call, Node, parse_identity
+from .symbols import Unsupported, build_values, null_cases, parameter_names
+
+__all__ = ["Counterexample", "Verdict", "parse_signature", "prove"]
+
+_DRAWS = 16
+_EXTRA_POINTS = 6
+_DIGITS = 50
+
+
+def parse_signature(signature) -> Basis:
+    """The algebra of ``(p, q)``, ``(p, q, r)`` or the text ``"p,q[,r]"``.
+
+    Examples
+    --------
+    >>> parse_signature("3,0,1").label(), parse_signature((1, 3)).label()
+    ('Cl(3,0,1)', 'Cl(1,3)')
+    >>> parse_signature("3;0")
+    Traceback (most recent call last):
+    ...
+    ValueError: signature: expected p,q or p,q,r (non-negative integers), got '3;0'
+    """
+    items = signature.split(",") if isinstance(signature, str) else signature
+    try:
+        numbers = [int(str(x).strip()) for x in items]
+    except (TypeError, ValueError):
+        numbers = []
+    if len(numbers) not in (2, 3) or min(numbers) < 0:
+        raise ValueError(
+            f"signature: expected p,q or p,q,r (non-negative integers), got {signature!r}"
+        )
+    if sum(numbers) == 0 or sum(numbers) > 6:
+        raise ValueError(f"signature: n = p + q + r must be 1..6, got {sum(numbers)}")
+    return cached_basis(*numbers)
+
+
+# -- domains: where the numbers come from --------------------------------------------------
+class _Symbolic:
+    """Polynomials over ℚ in every free parameter, normaliser and exp coefficient."""
+
+    def __init__(self, names: list[str]):
+        self.ring = PolyRing(names, QQ)
+        self.gen = dict(zip(names, self.ring.gens, strict=True))
+        self.norms: list[tuple[str, object]] = []  # (normaliser, λ)
+        self.exps: list[tuple[str, str, object]] = []  # (C, S, δ)
+        self.exp_names: dict[Node, tuple[str, str]] = {}
+
+    def param(self, name):
+        return self.gen[name]
+
+    def const(self, q):
+        q = Fraction(q)
+        return self.ring(QQ(q.numerator, q.denominator))
+
+    def normaliser(self, name, lam):
+        self.norms.append((name, lam))
+        return self.gen[name]
+
+    def is_scalar(self, x: Element) -> bool:
+        return not x.grades() - {0}
+
+    def exp_pair(self, node, delta):
+        c, s = self.exp_names[node]
+        if not any(c == name for name, _, _ in self.exps):
+            self.exps.append((c, s, delta))
+        return self.gen[c], self.gen[s]
+
+
+class _Draws:
+    """Float arrays: column j of every coefficient is random draw j."""
+
+    def __init__(self, count: int, seed: int):
+        self.count = count
+        self.rng = np.random.default_rng(seed)
+        self.exact: dict[str, list[Fraction]] = {}
+        self.signs: dict[str, np.ndarray] = {}
+        self.valid = np.ones(count, dtype=bool)
+
+    def param(self, name):
+        if name not in self.exact:
+            num = self.rng.integers(-5, 6, size=self.count)
+            den = self.rng.integers(1, 4, size=self.count)
+            self.exact[name] = [Fraction(int(a), int(b)) for a, b in zip(num, den, strict=True)]
+        return np.array([float(x) for x in self.exact[name]])
+
+    def const(self, q):
+        return float(q)
+
+    def normaliser(self, name, lam):
+        lam = np.broadcast_to(np.asarray(lam, dtype=float), (self.count,))
+        ok = lam > 1e-6
+        self.valid &= ok
+        # the sign of c is free (−v is a unit vector, −R a rotor): draw it too
+        sign = self.signs.setdefault(name, self.rng.choice([-1.0, 1.0], size=self.count))
+        return sign / np.sqrt(np.where(ok, lam, 1.0))
+
+    def is_scalar(self, x: Element) -> bool:
+        scale = 1.0 + max((np.max(np.abs(c)) for c in x.terms.values()), default=0.0)
+        return all(np.max(np.abs(c)) <= 1e-9 * scale for b, c in x.terms.items() if b)
+
+    def exp_pair(self, node, delta):
+        delta = np.broadcast_to(np.asarray(delta, dtype=float), (self.count,))
+        theta = np.sqrt(np.abs(delta))
+        big = theta > 30
+        self.valid &= ~big
+        theta = np.where(big, 0.0, theta)
+        c = np.where(delta < 0, np.cos(theta), np.cosh(theta))
+        safe = np.where(theta > 0, theta, 1.0)
+        s = np.where(theta > 0, np.where(delta < 0, np.sin(theta), np.sinh(theta)) / safe, 1.0)
+        return c, s
+
+
+class _InvalidPoint(Exception):
+    pass
+
+
+class _Point(_Symbolic):
+    """One rational point: free parameters are numbers, normalisers and exp stay symbols."""
+
+    def __init__(self, values: dict[str, Fraction], signs: dict[str, float], names: list[str]):
+        super().__init__(names)
+        self.values = values
+        self.signs = signs
+
+    def param(self, name):
+        return self.const(self.values[name])
+
+    def normaliser(self, name, lam):
+        if not lam.is_ground or lam.LC <= 0:
+            raise _InvalidPoint(name)
+        return super().normaliser(name, lam)
+
+
+def _split(f, i: int) -> dict[int, object]:
+    """f = Σ_e x_i^e f_e: {e: f_e} with x_i removed from f_e."""
+    parts: dict[int, dict] = {}
+    for monom, coeff in f.terms():
+        e = monom[i]
+        parts.setdefault(e, {})[monom[:i] + (0,) + monom[i + 1 :]] = coeff
+    return {e: f.ring.from_dict(d) for e, d in parts.items()}
+
+
+def _reduce(f, domain: _Symbolic):
+    """f modulo C² = 1 + δ S² (each exp) and c² λ = 1 (each normaliser, cleared of λ)."""
+    ring = domain.ring
+    for c, s, delta in reversed(domain.exps):
+        i = ring.gens.index(domain.gen[c])
+        q = 1 + delta * domain.gen[s] ** 2
+        parts = _split(f, i)
+        f = ring.zero
+        for e, fe in parts.items():
+            f += domain.gen[c] ** (e % 2) * q ** (e // 2) * fe
+    for c, lam in domain.norms:
+        i = ring.gens.index(domain.gen[c])
+        parts = _split(f, i)
+        top = max((e // 2 for e in parts), default=0)
+        f = ring.zero
+        for e, fe in parts.items():
+            f += domain.gen[c] ** (e % 2) * lam ** (top - e // 2) * fe
+    return f
+
+
+# -- verdicts ---------------------------------------------------------------------------------
+@dataclass
+class Counterexample:
+    """Exact values of the symbols where the two sides differ, and both sides' values.
+
+    Values are SymPy numbers (a normaliser is 1/√λ with λ rational, exp keeps cos/sin).
+
+    Examples
+    --------
+    >>> v = prove("a*b == b*a", signature=(2, 0), vectors="a,b")
+    >>> sorted(v.counterexample.values)
+    ['a', 'b']
+    >>> v.counterexample.lhs != v.counterexample.rhs
+    True
+    """
+
+    values: dict[str, dict[str, sympy.Expr]]
+    lhs: dict[str, sympy.Expr]
+    rhs: dict[str, sympy.Expr]
+    digits: int | None = None  # None: zero-tested exactly; else at this many digits
+
+    @staticmethod
+    def _show(coeffs: dict[str, sympy.Expr]) -> str:
+        if not coeffs:
+            return "0"
+        parts = []
+        for name, c in coeffs.items():
+            text = sympy.sstr(c)
+            if name == "1":
+                parts.append(text)
+            else:
+                atomic = text.lstrip("-").replace("/", "").replace("*", "").isalnum()
+                parts.append(f"{text}*{name}" if atomic else f"({text})*{name}")
+        return " + ".join(parts).replace("+ -", "- ")
+
+    def lines(self) -> list[str]:
+        """The counterexample as text lines.
+
+        Examples
+        --------
+        >>> v = prove("a*a == 1", signature=(2, 0), vectors="a")
+        >>> v.counterexample.lines()[0].startswith("a = ")
+        True
+        """
+        out = [f"{name} = {self._show(c)}" for name, c in self.values.items()]
+        out.append(f"lhs = {self._show(self.lhs)}")
+        out.append(f"rhs = {self._show(self.rhs)}")
+        return out
+
+    def _latex(self, coeffs) -> str:
+        if not coeffs:
+            return "0"
+        parts = []
+        for name, c in coeffs.items():
+            tex = sympy.latex(c)
+            if isinstance(c, sympy.Add):
+                tex = rf"\left({tex}\right)"
+            parts.append(tex if name == "1" else f"{tex}\\, e_{{{name[1:]}}}")
+        return " + ".join(parts).replace("+ -", "- ")
+
+
+@dataclass
+class Verdict:
+    """The outcome of :func:`prove`: proved, refuted (with a counterexample) or undecided.
+
+    ``bool(verdict)`` is True only when proved; ``exit_code`` is what ``ga-rotors prove``
+    returns (0 proved, 1 refuted, 3 undecided).
+
+    Examples
+    --------
+    >>> v = prove("a^a == 0", signature=(3, 0), vectors="a")
+    >>> bool(v), v.status, v.signature
+    (True, 'proved', 'Cl(3,0)')
+    >>> print(v.report().splitlines()[0])
+    proved in Cl(3,0): a^a == 0
+    """
+
+    status: str
+    identity: str
+    signature: str
+    assumptions: str
+    seconds: float
+    detail: str
+    counterexample: Counterexample | None = None
+    notes: list[str] = field(default_factory=list)
+
+    def __bool__(self) -> bool:
+        return self.status == "proved"
+
+    @property
+    def exit_code(self) -> int:
+        """0 proved, 1 refuted, 3 undecided.
+
+        Examples
+        --------
+        >>> prove("a*b == b*a", signature=(2, 0), vectors="a,b").exit_code
+        1
+        """
+        return {"proved": 0, "refuted": 1, "undecided": 3}[self.status]
+
+    def report(self) -> str:
+        """The verdict as text: status, identity, assumptions, the evidence.
+
+        Examples
+        --------
+        >>> print(prove("a*b == b*a", signature=(2, 0), vectors="a,b").report())
+        refuted in Cl(2,0): a*b == b*a
+          assuming: vectors a, b
+          counterexample (exact):
+            a = ...
+        """
+        lines = [
+            f"{self.status} in {self.signature}: {self.identity}",
+            f"  assuming: {self.assumptions}",
+        ]
+        if self.counterexample is not None:
+            how = (
+                "exact"
+                if self.counterexample.digits is None
+                else f"checked to {self.counterexample.digits} digits"
+            )
+            lines.append(f"  counterexample ({how}):")
+            lines += ["    " + line for line in self.counterexample.lines()]
+        else:
+            lines.append(f"  {self.detail}")
+        lines += [f"  note: {n}" for n in self.notes]
+        lines.append(f"  time: {self.seconds:.3f} s")
+        return "\n".join(lines)
+
+    __str__ = report
+
+    def _repr_latex_(self) -> str:
+        """The verdict as LaTeX for notebooks.
+
+        Examples
+        --------
+        >>> prove("a^a == 0", signature=(3, 0), vectors="a")._repr_latex_()
+        '$\\\\textbf{proved}\\\\ \\\\text{in Cl(3,0)}: \\\\quad a^a == 0 ...'
+        """
+        ident = self.identity.replace("\\", "")
+        head = rf"\textbf{{{self.status}}}\ \text{{in {self.signature}}}: \quad {ident}"
+        head = head.replace("^", r"\wedge ").replace("==", "=").replace("*", r"\,")
+        head = rf"\textbf{{{self.status}}}\ \text{{in {self.signature}}}: \quad " + (
+            self.identity
+        )
+        body = ""
+        if self.counterexample is not None:
+            ce = self.counterexample
+            rows = [
+                f"{name} = {ce._latex(c)}" for name, c in ce.values.items()
+            ] + [rf"\text{{lhs}} = {ce._latex(ce.lhs)}", rf"\text{{rhs}} = {ce._latex(ce.rhs)}"]
+            body = r" \\ ".join(rows)
+            return f"${head} \\\\ \\begin{{aligned}}{body}\\end{{aligned}}$"
+        return f"${head} \\quad \\text{{({_tex_text(self.detail)})}}$"
+
+
+def _tex_text(text: str) -> str:
+    return text.replace("_", r"\_").replace("^", r"\^{}").replace("#", r"\#")
+
+
+# -- the prover --------------------------------------------------------------------------------
+def _exp_nodes(*nodes: Node) -> list[Node]:
+    found: list[Node] = []
+
+    def walk(node):
+        if isinstance(node, Call):
+            for a in node.args:
+                walk(a)
+            if node.name == "exp" and node not in found:
+                found.append(node)
+        for attr in ("operand", "left", "right"):
+            if hasattr(node, attr):
+                walk(getattr(node, attr))
+
+    for n in nodes:
+        walk(n)
+    return found
+
+
+def _ring_names(free, norms, exps) -> tuple[list[str], dict[Node, tuple[str, str]]]:
+    exp_names = {node: (f"C_{k}", f"S_{k}") for k, node in enumerate(exps, 1)}
+    return free + norms + [x for pair in exp_names.values() for x in pair], exp_names
+
+
+def _to_sympy(f, domain: _Symbolic, point_values: dict[str, sympy.Expr]) -> sympy.Expr:
+    return f.as_expr().subs(
+        {sympy.Symbol(name): v for name, v in point_values.items()}, simultaneous=True
+    )
+
+
+def _exact_check(lhs, rhs, assumptions, basis, case, draws: _Draws, j: int, free, norms, exps):
+    """The exact counterexample at draw j, or None when the sides agree there."""
+    values = {name: xs[j] for name, xs in draws.exact.items()}
+    signs = {name: s[j] for name, s in draws.signs.items()}
+    names, exp_names = _ring_names([], norms, exps)
+    dom = _Point(values, signs, names)
+    dom.exp_names = exp_names
+    try:
+        env = build_values(assumptions, basis, dom, case)
+        memo: dict = {}
+        left = evaluate(lhs, env, basis, dom, memo)
+        right = evaluate(rhs, env, basis, dom, memo)
+    except _InvalidPoint:
+        return None
+    # exact values of the normalisers and of exp's C, S at this point
+    subst: dict[str, sympy.Expr] = {}
+    for c, lam in dom.norms:
+        subst[c] = int(signs.get(c, 1)) / sympy.sqrt(sympy.Rational(str(lam.LC)))
+    for c, s, delta in dom.exps:
+        d = sympy.nsimplify(_to_sympy(delta, dom, subst))
+        theta = sympy.sqrt(sympy.Abs(d))
+        if d == 0:
+            subst[c], subst[s] = sympy.Integer(1), sympy.Integer(1)
+        elif d < 0:
+            subst[c], subst[s] = sympy.cos(theta), sympy.sin(theta) / theta
+        else:
+            subst[c], subst[s] = sympy.cosh(theta), sympy.sinh(theta) / theta
+    digits = _DIGITS if dom.exps else None
+    difference = left - right
+    nonzero = False
+    for coeff in difference.terms.values():
+        expr = sympy.expand(_to_sympy(_reduce(coeff, dom), dom, subst))
+        if digits is None:
+            nonzero = expr != 0
+        else:
+            nonzero = abs(sympy.N(expr, digits)) > sympy.Float(10) ** (10 - digits)
+        if nonzero:
+            break
+    if not nonzero:
+        return None
+
+    def show(x: Element) -> dict[str, sympy.Expr]:
+        out = {}
+        for blade in basis.blades:
+            if blade in x.terms:
+                v = sympy.expand(_to_sympy(x.terms[blade], dom, subst))
+                if v != 0:
+                    out[basis.name(blade)] = v
+        return out
+
+    return Counterexample(
+        values={name: show(x) for name, x in env.items()},
+        lhs=show(left),
+        rhs=show(right),
+        digits=digits,
+    )
+
+
+def prove(
+    lhs: str,
+    rhs: str | None = None,
+    assumptions: Assumptions | None = None,
+    *,
+    signature=(3, 0),
+    draws: int = _DRAWS,
+    seed: int = 0,
+    **kinds,
+) -> Verdict:
+    """Decide ``lhs == rhs`` for every value of the symbols allowed by ``assumptions``.
+
+    Parameters
+    ----------
+    lhs : str
+        The left side, or the whole identity ``"lhs == rhs"`` when ``rhs`` is None.
+    rhs : str, optional
+        The right side.
+    assumptions : Assumptions, optional
+        The symbols' kinds; or give them as keywords (``vectors="a,b"``, ``rotors="R"``,
+        ``blades={"B": 2}``, ``orthogonal=[("a", "b")]``...), see :class:`Assumptions`.
+    signature : tuple or str
+        (p, q) or (p, q, r): p vectors square to +1, q to −1, r to 0 (null first).
+    draws : int
+        Random draws of the numeric pre-check.
+    seed : int
+        Seed of the draws (verdicts do not depend on it; counterexamples may).
+
+    Returns
+    -------
+    Verdict
+
+    Raises
+    ------
+    ValueError
+        Bad input: a syntax error (column named), an undeclared symbol, a malformed
+        declaration, an operation the metric does not allow (dual when I² = 0).
+
+    Examples
+    --------
+    >>> prove("R*~R", "1", rotors="R", signature=(1, 3)).status
+    'proved'
+    >>> print(prove("n*a*n == a", signature=(3, 0), units="n", vectors="a").status)
+    refuted
+    """
+    start = time.perf_counter()
+    text = lhs if rhs is None else f"{lhs} == {rhs}"
+    left, right = parse_identity(text)
+    if assumptions is None:
+        assumptions = Assumptions(**kinds)
+    elif kinds:
+        raise ValueError("give the symbols either as an Assumptions or as keywords, not both")
+    basis = parse_signature(signature)
+    if not isinstance(draws, int) or draws < 1:
+        raise ValueError(f"draws: expected a positive integer, got {draws!r}")
+    free, norms = parameter_names(assumptions, basis)
+    exps = _exp_nodes(left, right)
+    nulls = [n for n, k in assumptions.kinds.items() if k == "null"]
+    cases = [
+        dict(zip(nulls, combo, strict=True))
+        for combo in product(*(range(null_cases(basis)) for _ in nulls))
+    ]
+
+    def verdict(status, detail, counterexample=None, notes=()):
+        return Verdict(
+            status,
+            text,
+            basis.label(),
+            assumptions.describe(),
+            time.perf_counter() - start,
+            detail,
+            counterexample,
+            list(notes),
+        )
+
+    try:
+        # 1-2: numeric pre-check, exact check of the suspects
+        any_valid = False
+        for case in cases:
+            sample = _Draws(draws, seed)
+            with np.errstate(all="ignore"):
+                env = build_values(assumptions, basis, sample, case)
+                memo: dict = {}
+                a = evaluate(left, env, basis, sample, memo)
+                b = evaluate(right, env, basis, sample, memo)
+            zeros = np.zeros(draws)
+            size = lambda x: np.max(  # noqa: E731
+                [np.abs(np.broadcast_to(c, (draws,))) for c in x.terms.values()] or [zeros],
+                axis=0,
+            )
+            err, scale = size(a - b), 1.0 + size(a) + size(b)
+            valid = sample.valid & np.isfinite(err) & np.isfinite(scale)
+            any_valid |= bool(valid.any())
+            suspects = [j for j in np.argsort(-err / scale) if valid[j] and err[j] > 1e-9 * scale[j]]
+            for j in suspects[:3]:
+                ce = _exact_check(left, right, assumptions, basis, case, sample, int(j), free,
+                                  norms, exps)
+                if ce is not None:
+                    return verdict("refuted", "counterexample", ce)
+
+        # 3: exact proof
+        terms = 0
+        for case in cases:
+            names, exp_names = _ring_names(free, norms, exps)
+            dom = _Symbolic(names)
+            dom.exp_names = exp_names
+            env = build_values(assumptions, basis, dom, case)
+            memo = {}
+            difference = evaluate(left, env, basis, dom, memo) - evaluate(right, env, basis, dom, memo)
+            terms += sum(len(c) for c in difference.terms.values())
+            residue = {b: _reduce(c, dom) for b, c in difference.terms.items()}
+            residue = {b: c for b, c in residue.items() if c}
+            if residue:
+                break
+        else:
+            relations = [f"{c}²·λ = 1" for c, _ in dom.norms] + [
+                f"{c}² − δ·{s}² = 1" for c, s, _ in dom.exps
+            ]
+            how = f" modulo {', '.join(relations)}" if relations else ""
+            notes = []
+            if len(cases) > 1:
+                notes.append(f"proved on each of the {len(cases)} pieces of the null cone")
+            if not any_valid:
+                notes.append("no random draw satisfied the assumptions over the reals; "
+                             "the identity may hold vacuously")
+            return verdict(
+                "proved",
+                f"lhs − rhs = 0: {terms} polynomial terms over ℚ in {len(free)} parameters "
+                f"reduce to 0{how}",
+                notes=notes,
+            )
+
+        # 4: a nonzero residue: look for an exact counterexample at more points
+        for attempt in range(_EXTRA_POINTS):
+            sample = _Draws(draws, seed + 1 + attempt)
+            with np.errstate(all="ignore"):
+                build_values(assumptions, basis, sample, case)
+            for j in np.flatnonzero(sample.valid)[:2]:
+                ce = _exact_check(left, right, assumptions, basis, case, sample, int(j), free,
+                                  norms, exps)
+                if ce is not None:
+                    return verdict("refuted", "counterexample", ce)
+        some = next(iter(residue.values()))
+        reason = (
+            "the difference reduces to a nonzero polynomial but no exact counterexample "
+            f"was found at {draws + 2 * _EXTRA_POINTS} random points"
+        )
+        if exps:
+            reason = (
+                "the difference does not reduce to 0 using only C² − δS² = 1 for each exp "
+                "(the prover does not use addition theorems such as exp(B)² = exp(2B)), and "
+                "no counterexample was found"
+            )
+        return verdict("undecided", reason + f" (a residual coefficient has {len(some)} terms)")
+    except Unsupported as exc:
+        return verdict("undecided", f"not supported: {exc}")
