@@ -47,7 +47,7 @@ symbolic.prover.assumptions.AssumptionError: vectors: 'e1' is a basis blade name
 from __future__ import annotations
 
 import re
-from collections.abc import Iterable, Mapping
+from collections.abc import Mapping
 from dataclasses import dataclass, field
 
 from .grammar import FUNCTIONS
@@ -127,7 +127,9 @@ def _graded(value, what: str) -> dict[str, int]:
         try:
             grade = int(str(k).strip())
         except ValueError:
-            raise AssumptionError(f"{what}: grade of {name!r} must be an integer, got {k!r}")
+            raise AssumptionError(
+                f"{what}: grade of {name!r} must be an integer, got {k!r}"
+            ) from None
         if grade < 0:
             raise AssumptionError(f"{what}: grade of {name!r} must be >= 0, got {grade}")
         out[name] = grade
@@ -261,8 +263,16 @@ class Assumptions:
         'vectors a, b; blades B:2; orthogonal a⟂b'
         """
         parts = []
-        for attr in ("scalars", "vectors", "units", "nulls", "bivectors", "evens", "rotors",
-                     "multivectors"):
+        for attr in (
+            "scalars",
+            "vectors",
+            "units",
+            "nulls",
+            "bivectors",
+            "evens",
+            "rotors",
+            "multivectors",
+        ):
             names = getattr(self, attr)
             if names:
                 parts.append(f"{attr} {', '.join(names)}")
@@ -273,5 +283,3 @@ class Assumptions:
         if self.orthogonal:
             parts.append("orthogonal " + ", ".join(f"{a}⟂{b}" for a, b in self.orthogonal))
         return "; ".join(parts) if parts else "no symbols"
-
-

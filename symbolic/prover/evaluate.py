@@ -149,8 +149,8 @@ def _call(node: Call, ev, basis: Basis, domain) -> Element:
     name, args = node.name, node.args
     if name == "grade":
         k = constant(args[1])
-        if k is None or k.denominator != 1 or not 0 <= k <= basis.n:
-            raise EvaluationError(f"grade(x, k): k must be an integer 0..{basis.n}, got {args[1]}")
+        if k is None or k.denominator != 1 or k < 0:
+            raise EvaluationError("grade(x, k): k must be a non-negative integer")
         return ev(args[0]).grade(int(k))
     if len(args) == 2:
         a, b = ev(args[0]), ev(args[1])
@@ -169,6 +169,11 @@ def _call(node: Call, ev, basis: Basis, domain) -> Element:
         except DegenerateDualError as exc:
             raise EvaluationError(str(exc)) from None
     if name == "exp":
+        # exp(−X) = C − S X with the C, S of exp(X): one pair for both, so that
+        # exp(X) exp(−X) = C² − δS² = 1 is seen
+        flip = isinstance(args[0], Unary) and args[0].op == "-"
+        if flip:
+            node, x = Call("exp", (args[0].operand,)), -x
         square = x * x
         delta = square.terms.get(0, domain.const(0))
         if not domain.is_scalar(square):
@@ -177,7 +182,7 @@ def _call(node: Call, ev, basis: Basis, domain) -> Element:
                 "exp has no closed form here; use a simple bivector (--blades B:2)"
             )
         c, s = domain.exp_pair(node, delta)
-        return x.scale(s) + c
+        return x.scale(-s if flip else s) + c
     return {
         "rev": lambda: ~x,
         "involute": x.involute,

@@ -248,11 +248,11 @@ class _Parser:
                 other = "^" if op == "|" else "|"
                 if op == first:
                     raise ParseError(
-                        f"column {col}: '|' does not chain (it is not associative); "
-                        "add parentheses"
+                        f"column {col}: '|' does not chain (it is not associative); add parentheses"
                     )
-                raise ParseError(f"column {col}: '{op}' next to '{other}' is ambiguous; "
-                                 "add parentheses")
+                raise ParseError(
+                    f"column {col}: '{op}' next to '{other}' is ambiguous; add parentheses"
+                )
             first = op
             node = Binary(op, node, self.unary())
         return node
@@ -285,8 +285,10 @@ class _Parser:
         if kind == "name":
             if self.at("("):
                 if text not in FUNCTIONS:
-                    raise ParseError(f"column {col}: unknown function {text!r}; known: "
-                                     + ", ".join(sorted(FUNCTIONS)))
+                    raise ParseError(
+                        f"column {col}: unknown function {text!r}; known: "
+                        + ", ".join(sorted(FUNCTIONS))
+                    )
                 self.take()
                 self.nested()
                 args = [self.sum()]

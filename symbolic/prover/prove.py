@@ -44,7 +44,7 @@ from .assumptions import Assumptions
 from .basis import Basis, cached_basis
 from .element import Element
 from .evaluate import evaluate
-from .grammar import Call, Node, parse_identity
+from .grammar import Call, Node, Unary, parse_identity
 from .symbols import Unsupported, build_values, null_cases, parameter_names
 
 __all__ = ["Counterexample", "Verdict", "parse_signature", "prove"]
@@ -182,7 +182,7 @@ def _split(f, i: int) -> dict[int, object]:
     parts: dict[int, dict] = {}
     for monom, coeff in f.terms():
         e = monom[i]
-        parts.setdefault(e, {})[monom[:i] + (0,) + monom[i + 1 :]] = coeff
+        parts.setdefault(e, {})[(*monom[:i], 0, *monom[i + 1 :])] = coeff
     return {e: f.ring.from_dict(d) for e, d in parts.items()}
 
 
@@ -338,32 +338,43 @@ class Verdict:
     __str__ = report
 
     def _repr_latex_(self) -> str:
-        """The verdict as LaTeX for notebooks.
+        """The verdict as LaTeX for notebooks: the status, the identity, the evidence.
 
         Examples
         --------
-        >>> prove("a^a == 0", signature=(3, 0), vectors="a")._repr_latex_()
-        '$\\\\textbf{proved}\\\\ \\\\text{in Cl(3,0)}: \\\\quad a^a == 0 ...'
+        >>> print(prove("a^a == 0", signature=(3, 0), vectors="a")._repr_latex_())
+        $\\begin{array}{l}\\textbf{proved}\\text{ in Cl(3,0): }\\texttt{a\\^{}a == 0} ...
         """
-        ident = self.identity.replace("\\", "")
-        head = rf"\textbf{{{self.status}}}\ \text{{in {self.signature}}}: \quad {ident}"
-        head = head.replace("^", r"\wedge ").replace("==", "=").replace("*", r"\,")
-        head = rf"\textbf{{{self.status}}}\ \text{{in {self.signature}}}: \quad " + (
-            self.identity
-        )
-        body = ""
-        if self.counterexample is not None:
-            ce = self.counterexample
-            rows = [
-                f"{name} = {ce._latex(c)}" for name, c in ce.values.items()
-            ] + [rf"\text{{lhs}} = {ce._latex(ce.lhs)}", rf"\text{{rhs}} = {ce._latex(ce.rhs)}"]
-            body = r" \\ ".join(rows)
-            return f"${head} \\\\ \\begin{{aligned}}{body}\\end{{aligned}}$"
-        return f"${head} \\quad \\text{{({_tex_text(self.detail)})}}$"
+        rows = [
+            rf"\textbf{{{self.status}}}\text{{ in {self.signature}: }}"
+            rf"\texttt{{{_tex_text(self.identity)}}}",
+            rf"\text{{assuming {_tex_text(self.assumptions)}}}",
+        ]
+        ce = self.counterexample
+        if ce is not None:
+            rows += [f"{name} = {ce._latex(c)}" for name, c in ce.values.items()]
+            rows += [rf"\text{{lhs}} = {ce._latex(ce.lhs)}", rf"\text{{rhs}} = {ce._latex(ce.rhs)}"]
+        else:
+            rows.append(rf"\text{{{_tex_text(self.detail)}}}")
+        return r"$\begin{array}{l}" + r" \\ ".join(rows) + r"\end{array}$"
 
 
 def _tex_text(text: str) -> str:
-    return text.replace("_", r"\_").replace("^", r"\^{}").replace("#", r"\#")
+    replacements = [
+        ("\\", r"\backslash "),
+        ("{", r"\{"),
+        ("}", r"\}"),
+        ("_", r"\_"),
+        ("^", r"\^{}"),
+        ("#", r"\#"),
+        ("~", r"\~{}"),
+        ("&", r"\&"),
+        ("%", r"\%"),
+    ]
+    out = []
+    for char in text:
+        out.append(next((tex for c, tex in replacements if c == char), char))
+    return "".join(out)
 
 
 # -- the prover --------------------------------------------------------------------------------
@@ -374,8 +385,12 @@ def _exp_nodes(*nodes: Node) -> list[Node]:
         if isinstance(node, Call):
             for a in node.args:
                 walk(a)
-            if node.name == "exp" and node not in found:
-                found.append(node)
+            if node.name == "exp":
+                arg = node.args[0]
+                if isinstance(arg, Unary) and arg.op == "-":  # exp(−X) shares exp(X)'s C, S
+                    node = Call("exp", (arg.operand,))
+                if node not in found:
+                    found.append(node)
         for attr in ("operand", "left", "right"):
             if hasattr(node, attr):
                 walk(getattr(node, attr))
@@ -383,6 +398,12 @@ def _exp_nodes(*nodes: Node) -> list[Node]:
     for n in nodes:
         walk(n)
     return found
+
+
+def _size(x: Element, draws: int) -> np.ndarray:
+    """max |coefficient| of x, draw by draw."""
+    columns = [np.abs(np.broadcast_to(c, (draws,))) for c in x.terms.values()]
+    return np.max(columns, axis=0) if columns else np.zeros(draws)
 
 
 def _ring_names(free, norms, exps) -> tuple[list[str], dict[Node, tuple[str, str]]]:
@@ -539,18 +560,15 @@ def prove(
                 memo: dict = {}
                 a = evaluate(left, env, basis, sample, memo)
                 b = evaluate(right, env, basis, sample, memo)
-            zeros = np.zeros(draws)
-            size = lambda x: np.max(  # noqa: E731
-                [np.abs(np.broadcast_to(c, (draws,))) for c in x.terms.values()] or [zeros],
-                axis=0,
-            )
-            err, scale = size(a - b), 1.0 + size(a) + size(b)
+            err, scale = _size(a - b, draws), 1.0 + _size(a, draws) + _size(b, draws)
             valid = sample.valid & np.isfinite(err) & np.isfinite(scale)
             any_valid |= bool(valid.any())
-            suspects = [j for j in np.argsort(-err / scale) if valid[j] and err[j] > 1e-9 * scale[j]]
+            order = np.argsort(-err / scale)
+            suspects = [j for j in order if valid[j] and err[j] > 1e-9 * scale[j]]
             for j in suspects[:3]:
-                ce = _exact_check(left, right, assumptions, basis, case, sample, int(j), free,
-                                  norms, exps)
+                ce = _exact_check(
+                    left, right, assumptions, basis, case, sample, int(j), free, norms, exps
+                )
                 if ce is not None:
                     return verdict("refuted", "counterexample", ce)
 
@@ -562,7 +580,9 @@ def prove(
             dom.exp_names = exp_names
             env = build_values(assumptions, basis, dom, case)
             memo = {}
-            difference = evaluate(left, env, basis, dom, memo) - evaluate(right, env, basis, dom, memo)
+            difference = evaluate(left, env, basis, dom, memo) - evaluate(
+                right, env, basis, dom, memo
+            )
             terms += sum(len(c) for c in difference.terms.values())
             residue = {b: _reduce(c, dom) for b, c in difference.terms.items()}
             residue = {b: c for b, c in residue.items() if c}
@@ -577,14 +597,17 @@ def prove(
             if len(cases) > 1:
                 notes.append(f"proved on each of the {len(cases)} pieces of the null cone")
             if not any_valid:
-                notes.append("no random draw satisfied the assumptions over the reals; "
-                             "the identity may hold vacuously")
-            return verdict(
-                "proved",
+                notes.append(
+                    "no random draw satisfied the assumptions over the reals; "
+                    "the identity may hold vacuously"
+                )
+            detail = (
                 f"lhs − rhs = 0: {terms} polynomial terms over ℚ in {len(free)} parameters "
-                f"reduce to 0{how}",
-                notes=notes,
+                f"reduce to 0{how}"
+                if terms
+                else f"lhs − rhs expands to 0 in {len(free)} parameters (nothing to reduce)"
             )
+            return verdict("proved", detail, notes=notes)
 
         # 4: a nonzero residue: look for an exact counterexample at more points
         for attempt in range(_EXTRA_POINTS):
@@ -592,8 +615,9 @@ def prove(
             with np.errstate(all="ignore"):
                 build_values(assumptions, basis, sample, case)
             for j in np.flatnonzero(sample.valid)[:2]:
-                ce = _exact_check(left, right, assumptions, basis, case, sample, int(j), free,
-                                  norms, exps)
+                ce = _exact_check(
+                    left, right, assumptions, basis, case, sample, int(j), free, norms, exps
+                )
                 if ce is not None:
                     return verdict("refuted", "counterexample", ce)
         some = next(iter(residue.values()))

@@ -48,6 +48,17 @@ def _blades_of(basis: Basis, keep) -> list[int]:
     return [b for b in basis.blades if keep(b.bit_count())]
 
 
+def _grades_of(kind: str, k: int | None):
+    """Which grades a generic element of a linear kind has."""
+    if kind == "bivector":
+        return lambda g: g == 2
+    if kind == "kvector":
+        return lambda g: g == k
+    if kind == "even":
+        return lambda g: g % 2 == 0
+    return lambda g: True
+
+
 def _nondegenerate(basis: Basis) -> tuple[list[int], list[int], list[int]]:
     """Indices (0-based) of the null, positive and negative basis vectors."""
     null = [i for i, s in enumerate(basis.metric) if s == 0]
@@ -102,12 +113,7 @@ def parameter_names(assumptions: Assumptions, basis: Basis) -> tuple[list[str], 
             free += [f"{name}_{basis.name(b)}" for b in _blades_of(basis, lambda g: g == 2)]
             norms.append(f"c_{name}")
         else:
-            keep = {
-                "bivector": lambda g: g == 2,
-                "kvector": lambda g, k=assumptions.grade_of(name): g == k,
-                "even": lambda g: g % 2 == 0,
-                "multivector": lambda g: True,
-            }[kind]
+            keep = _grades_of(kind, assumptions.grade_of(name))
             free += [f"{name}_{basis.name(b)}" for b in _blades_of(basis, keep)]
     return free, norms
 
@@ -210,16 +216,9 @@ def build_values(
             lam = norm.terms.get(0, domain.const(0))
             values[name] = N.scale(domain.normaliser(f"c_{name}", lam))
         else:
-            keep = {
-                "bivector": lambda g: g == 2,
-                "kvector": lambda g, k=assumptions.grade_of(name): g == k,
-                "even": lambda g: g % 2 == 0,
-                "multivector": lambda g: True,
-            }[kind]
+            keep = _grades_of(kind, assumptions.grade_of(name))
             values[name] = Element(
                 basis,
                 {b: domain.param(f"{name}_{basis.name(b)}") for b in _blades_of(basis, keep)},
             )
     return values
-
-
