@@ -24,6 +24,7 @@ COMMANDS: dict[str, str] = {
     "paper": "ga_rotors.paper",
     "demo": "ga_rotors.demo",
     "verify": "symbolic.verify",
+    "prove": "symbolic.prover.command",
     "bench": "ga_rotors.bench",
     "run": "ga_rotors.run",
     "scenes": "ga_rotors.scenes",

@@ -1,3 +1,29 @@
-"""Prove a user's own geometric-algebra identities in any Cl(p, q, r)."""
+"""Prove a user's own geometric-algebra identities in any Cl(p, q, r).
 
-__all__: list[str] = []
+``prove("(a^b)|c == a*(b|c) - b*(a|c)", signature=(1, 3), vectors="a,b,c")`` returns a
+:class:`~.prove.Verdict`: proved (exactly, by polynomial reduction), refuted (with an
+exact counterexample) or undecided (with the reason).
+
+Modules, each with one job:
+
+* :mod:`.basis`: the blades of Cl(p, q, r) and their multiplication table
+* :mod:`.element`: multivectors over any coefficient ring, with every product
+* :mod:`.grammar`: the identity language (a recursive-descent parser, never ``eval``)
+* :mod:`.assumptions`: kinds of symbols and assumptions on them
+* :mod:`.symbols`: each kind built from free parameters
+* :mod:`.evaluate`: a parsed expression evaluated in a domain
+* :mod:`.prove`: the pre-check, the exact check and the proof; verdicts
+* :mod:`.catalogue`: classical identities and where they hold
+* :mod:`.command`: the ``ga-rotors prove`` command
+
+Examples
+--------
+>>> from symbolic.prover import prove
+>>> prove("R*~R == 1", signature=(3, 0, 1), rotors="R").status
+'proved'
+"""
+
+from .assumptions import Assumptions
+from .prove import Counterexample, Verdict, prove
+
+__all__ = ["Assumptions", "Counterexample", "Verdict", "prove"]

@@ -106,6 +106,8 @@ class _Symbolic:
         return not x.grades() - {0}
 
     def exp_pair(self, node, delta):
+        if not delta:  # X² = 0 identically: exp(X) = 1 + X exactly
+            return self.ring.one, self.ring.one
         c, s = self.exp_names[node]
         if not any(c == name for name, _, _ in self.exps):
             self.exps.append((c, s, delta))
@@ -236,6 +238,8 @@ class Counterexample:
             text = sympy.sstr(c)
             if name == "1":
                 parts.append(text)
+            elif c in (1, -1):
+                parts.append(name if c == 1 else f"-{name}")
             else:
                 atomic = text.lstrip("-").replace("/", "").replace("*", "").isalnum()
                 parts.append(f"{text}*{name}" if atomic else f"({text})*{name}")

@@ -1,0 +1,324 @@
+"""The identity prover (symbolic.prover): its algebra against clifford's tables, the
+grammar and its precedence, verdicts (proved / refuted with an exact counterexample that
+satisfies the assumptions / undecided with a reason), and the hard cases by name.
+"""
+
+from __future__ import annotations
+
+import itertools
+
+import clifford
+import numpy as np
+import pytest
+import sympy
+
+from symbolic.prover import Assumptions, prove
+from symbolic.prover.basis import Basis
+from symbolic.prover.element import DegenerateDualError, Element
+from symbolic.prover.grammar import Binary, Name, ParseError, Unary, parse_expression
+
+SIGNATURES = [(3, 0, 0), (1, 3, 0), (2, 1, 0), (0, 2, 0), (3, 0, 1), (1, 1, 1), (2, 0, 2)]
+
+
+# -- the algebra against clifford's multiplication tables (an independent oracle) ----------
+def _table(layout, name):
+    return np.asarray(getattr(layout, name).todense())
+
+
+@pytest.mark.parametrize("sig", SIGNATURES, ids=str)
+def test_blade_order_and_metric_match_clifford(sig):
+    layout, _ = clifford.Cl(*sig)
+    basis = Basis(*sig)
+    assert tuple(int(s) for s in layout.sig) == basis.metric
+    names = [basis.name(b) for b in basis.blades]
+    assert names == ["1" if not t else "e" + "".join(map(str, t)) for t in layout.bladeTupList]
+
+
+@pytest.mark.parametrize("sig", SIGNATURES, ids=str)
+@pytest.mark.parametrize(
+    "table, product",
+    [
+        ("gmt", Element.__mul__),
+        ("omt", Element.__xor__),
+        ("imt", Element.__or__),
+        ("lcmt", Element.lc),
+    ],
+    ids=["geometric", "outer", "hestenes-inner", "left-contraction"],
+)
+def test_products_of_basis_blades_match_clifford(sig, table, product):
+    layout, _ = clifford.Cl(*sig)
+    t = _table(layout, table)  # t[i, k, j]: coefficient of blade k in blade_i ∘ blade_j
+    basis = Basis(*sig)
+    for i, a in enumerate(basis.blades):
+        for j, b in enumerate(basis.blades):
+            got = product(Element.blade(basis, a, 1), Element.blade(basis, b, 1))
+            want = {basis.blades[k]: int(t[i, k, j]) for k in range(len(basis.blades))}
+            want = {k: v for k, v in want.items() if v}
+            assert got.terms == want, (basis.name(a), basis.name(b))
+
+
+def _random(basis, rng):
+    return Element(basis, {b: int(rng.integers(-3, 4)) for b in basis.blades})
+
+
+@pytest.mark.parametrize("sig", SIGNATURES, ids=str)
+def test_right_contraction_dot_scalar_and_involutions_by_their_definitions(sig):
+    basis, rng = Basis(*sig), np.random.default_rng(1)
+    for _ in range(5):
+        x, y = _random(basis, rng), _random(basis, rng)
+        assert (x.rc(y) - ~((~y).lc(~x))).is_zero()
+        parts = [
+            (r, s, x.grade(r), y.grade(s)) for r in range(basis.n + 1) for s in range(basis.n + 1)
+        ]
+        dot = sum(((xr * ys).grade(abs(r - s)) for r, s, xr, ys in parts), Element(basis, {}))
+        assert (x.dot(y) - dot).is_zero()
+        assert (x.scalar_product(y) - (x * y).grade(0)).is_zero()
+        assert ((x * y).involute() - x.involute() * y.involute()).is_zero()
+        assert ((x * y).conjugate() - y.conjugate() * x.conjugate()).is_zero()
+
+
+def test_dual_is_right_division_by_the_pseudoscalar():
+    basis = Basis(1, 3)
+    rng = np.random.default_rng(2)
+    x = _random(basis, rng)
+    pseudo = Element.blade(basis, basis.full, 1)
+    assert (x.dual() * pseudo - x).is_zero()
+
+
+def test_dual_in_a_degenerate_metric_is_an_error_not_a_guess():
+    with pytest.raises(DegenerateDualError, match="I² = 0 in Cl"):
+        Element.blade(Basis(3, 0, 1), 1, 1).dual()
+
+
+# -- grammar --------------------------------------------------------------------------------------
+def test_outer_and_inner_bind_tighter_than_the_geometric_product():
+    a, b, c = Name("a"), Name("b"), Name("c")
+    assert parse_expression("a^b*c") == Binary("*", Binary("^", a, b), c)
+    assert parse_expression("a*b^c") == Binary("*", a, Binary("^", b, c))
+    assert parse_expression("a|b*c") == Binary("*", Binary("|", a, b), c)
+    assert parse_expression("a + b*c") == Binary("+", a, Binary("*", b, c))
+    assert parse_expression("a^b^c") == Binary("^", Binary("^", a, b), c)
+
+
+def test_reverse_binds_tightest_and_power_binds_tighter_than_minus():
+    a, b = Name("a"), Name("b")
+    assert parse_expression("~a*b") == Binary("*", Unary("~", a), b)
+    assert parse_expression("-a**2").op == "-"
+
+
+def test_precedence_changes_the_verdict_where_python_would_differ():
+    # Python reads a^b*c as a^(b*c); the GA convention reads (a^b)*c
+    assert prove("a^b*c == (a^b)*c", vectors="a,b,c")
+    assert not prove("a^b*c == a^(b*c)", vectors="a,b,c")
+
+
+@pytest.mark.parametrize(
+    "text, message",
+    [
+        ("a^b|c == 0", "ambiguous; add parentheses"),
+        ("a|b|c == 0", "does not chain"),
+        ("a * == b", "column 5"),
+        ("a*b", "no '==' found"),
+        ("a == b == c", "column 8: unexpected '=='"),
+        ("a ** b == 1", "non-negative integer exponent"),
+        ("foo(a) == 1", "unknown function 'foo'"),
+        ("grade(a) == 1", "takes 2 argument"),
+        ("__import__('os').system('true') == 0", "unexpected character"),
+        ("a.b == 1", "unexpected character '.'"),
+        ("lambda: 1 == 1", "unexpected character ':'"),
+        ("(" * 100 + "a" + ")" * 100 + " == a", "nested more than"),
+        ("a+" * 1500 + "a == a", "at most 2000"),
+    ],
+)
+def test_bad_syntax_is_one_clear_error_and_nothing_runs(text, message):
+    with pytest.raises(ParseError, match=message.replace("(", r"\(")):
+        prove(text, vectors="a,b,c")
+
+
+@pytest.mark.parametrize(
+    "kwargs, message",
+    [
+        ({"vectors": "a", "rotors": "a"}, "already declared"),
+        ({"vectors": "e2"}, "basis blade name"),
+        ({"vectors": "exp"}, "function name"),
+        ({"vectors": "a b"}, "is not a name"),
+        ({"blades": "B"}, "expected NAME:GRADE"),
+        ({"blades": "B:x"}, "must be an integer"),
+        ({"rotors": "R", "orthogonal": ["R,a"]}, "is not declared|orthogonality is"),
+        ({"vectors": "a", "orthogonal": ["a,a"]}, "two different names"),
+    ],
+)
+def test_bad_declarations_name_the_argument(kwargs, message):
+    with pytest.raises(ValueError, match=message):
+        Assumptions(**kwargs)
+
+
+@pytest.mark.parametrize(
+    "text, kwargs, message",
+    [
+        ("a*x == 0", {"vectors": "a"}, "'x' is not declared"),
+        ("a/b == 0", {"vectors": "a,b"}, "division is only by a number"),
+        ("a/(1-1) == 0", {"vectors": "a"}, "division by zero"),
+        ("e5 == 0", {}, "no basis vector e5"),
+        ("e11 == 0", {}, "repeats e1"),
+        ("exp(B) == 1", {"bivectors": "B", "signature": (4, 0)}, "not a scalar"),
+        ("dual(a) == a", {"vectors": "a", "signature": (3, 0, 1)}, "I² = 0"),
+        ("a == a", {"vectors": "a", "signature": (3, -1)}, "signature"),
+        ("a == a", {"vectors": "a", "signature": (0, 0)}, "signature"),
+    ],
+)
+def test_expressions_that_cannot_be_formed_are_bad_input(text, kwargs, message):
+    with pytest.raises(ValueError, match=message):
+        prove(text, **kwargs)
+
+
+# -- verdicts ---------------------------------------------------------------------
+def test_the_issue_examples():
+    for sig in [(3, 0), (2, 1), (1, 3), (4, 1)]:
+        assert prove("(a^b)|c == a*(b|c) - b*(a|c)", signature=sig, vectors="a,b,c")
+    verdict = prove("R*v*~R == grade(R*v*~R, 1)", signature=(3, 0, 1), rotors="R", vectors="v")
+    assert verdict.status == "proved" and verdict.exit_code == 0
+
+
+def test_a_false_identity_is_refuted_with_both_sides_exact():
+    verdict = prove("a*b == b*a", signature=(3, 0), vectors="a,b")
+    assert verdict.status == "refuted" and verdict.exit_code == 1
+    ce = verdict.counterexample
+    assert ce.digits is None  # zero-tested exactly
+    basis = Basis(3)
+
+    def element(coeffs):
+        return Element(basis, {b: coeffs.get(basis.name(b), 0) for b in basis.blades})
+
+    a, b = element(ce.values["a"]), element(ce.values["b"])
+    assert all(isinstance(c, sympy.Rational) for c in ce.values["a"].values())
+    assert element(ce.lhs).terms == (a * b).terms
+    assert element(ce.rhs).terms == (b * a).terms
+    assert (a * b - b * a).terms
+
+
+def _element(basis, coeffs):
+    return Element(
+        basis, {b: coeffs[basis.name(b)] for b in basis.blades if basis.name(b) in coeffs}
+    )
+
+
+def _expanded(x):
+    return Element(x.basis, {b: sympy.expand(c) for b, c in x.terms.items()})
+
+
+def test_counterexample_rotor_satisfies_r_reverse_r_equals_one_exactly():
+    verdict = prove("R*a*~R == a", signature=(1, 3), rotors="R", vectors="a")
+    assert verdict.status == "refuted"
+    basis = Basis(1, 3)
+    R = _element(basis, verdict.counterexample.values["R"])
+    assert _expanded(R * ~R).terms == {0: 1}
+
+
+def test_counterexample_unit_and_orthogonal_vectors_satisfy_their_assumptions():
+    verdict = prove("u*w == w", signature=(3, 0), units="u,w", orthogonal=["u,w"])
+    assert verdict.status == "refuted"
+    basis = Basis(3)
+    u = _element(basis, verdict.counterexample.values["u"])
+    w = _element(basis, verdict.counterexample.values["w"])
+    assert _expanded(u * u).terms == {0: 1} and _expanded(w * w).terms == {0: 1}
+    assert _expanded(u | w).is_zero()
+
+
+def test_counterexample_null_vector_squares_to_zero():
+    verdict = prove("n*a == a*n", signature=(1, 3), nulls="n", vectors="a")
+    assert verdict.status == "refuted"
+    n = _element(Basis(1, 3), verdict.counterexample.values["n"])
+    assert _expanded(n * n).is_zero() and not n.is_zero()
+
+
+def test_null_cone_of_cl11_is_two_lines_and_both_are_checked():
+    # n e12 = n on the line e1 + e2 but −n on the line e1 − e2
+    verdict = prove("n*e12 == n", signature=(1, 1), nulls="n")
+    assert verdict.status == "refuted"
+    assert prove("n*e12*n == 0", signature=(1, 1), nulls="n")
+
+
+def test_identity_true_only_for_blades_is_refuted_for_general_bivectors():
+    assert prove("B^B == 0", signature=(4, 0), blades="B:2")
+    assert prove("B^B == 0", signature=(4, 0), bivectors="B").status == "refuted"
+
+
+def test_rotor_identity_needs_the_normalisation():
+    # R v R̃ keeps |v|² only because R R̃ = 1: the proof uses c² λ = 1
+    verdict = prove("(R*v*~R)*(R*v*~R) == v*v", signature=(2, 2), rotors="R", vectors="v")
+    assert verdict.status == "proved"
+    assert "c_R²·λ = 1" in verdict.detail
+
+
+def test_exp_identity_beyond_the_pythagorean_relation_is_undecided_with_its_reason():
+    verdict = prove("exp(B)*exp(B) == exp(2*B)", signature=(3, 0), blades="B:2")
+    assert verdict.status == "undecided" and verdict.exit_code == 3
+    assert "addition theorems" in verdict.detail
+
+
+def test_false_exp_identity_is_refuted_to_fifty_digits():
+    verdict = prove("exp(B) == 1 + B", signature=(3, 0), blades="B:2")
+    assert verdict.status == "refuted"
+    assert verdict.counterexample.digits == 50
+
+
+def test_exp_of_a_null_bivector_is_one_plus_b():
+    assert prove("exp(B) == 1 + B", signature=(2, 0, 1), blades="B:2").status == "refuted"
+    assert prove("exp(x*e12) == 1 + x*e12", signature=(1, 0, 2), scalars="x")
+
+
+def test_orthogonality_to_a_null_vector_is_undecided_not_wrong():
+    verdict = prove("n|a == 0", signature=(1, 3), nulls="n", vectors="a", orthogonal=["n,a"])
+    assert verdict.status == "undecided" and "null" in verdict.detail
+
+
+def test_unit_vectors_that_cannot_exist_make_a_vacuous_proof_say_so():
+    verdict = prove("n*n == 1", signature=(0, 3), units="n")
+    assert verdict.status == "proved"
+    assert any("vacuously" in note for note in verdict.notes)
+
+
+def test_verdict_does_not_depend_on_the_seed():
+    for seed in range(3):
+        assert prove(
+            "(a^b)*(a^b) == (a|b)*(a|b) - (a*a)*(b*b)", signature=(2, 1), vectors="a,b", seed=seed
+        )
+        assert not prove("a^b == a*b", signature=(2, 1), vectors="a,b", seed=seed)
+
+
+def test_assumptions_object_or_keywords_but_not_both():
+    assert prove("a^a", "0", Assumptions(vectors="a"))
+    with pytest.raises(ValueError, match="not both"):
+        prove("a^a == 0", None, Assumptions(vectors="a"), vectors="a")
+
+
+# -- display ----------------------------------------------------------------------
+def test_latex_of_elements_and_verdicts():
+    x = Element(Basis(3), {0: sympy.Rational(1, 2), 0b011: -1})
+    assert x._repr_latex_() == r"$\frac{1}{2} - e_{12}$"
+    refuted = prove("a*b == b*a", vectors="a,b")._repr_latex_()
+    assert refuted.startswith(r"$\begin{array}{l}\textbf{refuted}")
+    assert r"\text{lhs}" in refuted and refuted.endswith(r"\end{array}$")
+    proved = prove("a^a == 0", vectors="a")._repr_latex_()
+    assert r"\textbf{proved}" in proved and r"\^{}" in proved
+
+
+def test_report_lists_the_counterexample():
+    text = prove("a*a == 1", signature=(2, 0), vectors="a").report()
+    assert text.splitlines()[0] == "refuted in Cl(2,0): a*a == 1"
+    assert "counterexample (exact):" in text and "lhs = " in text and "rhs = 1" in text
+
+
+def test_every_product_pair_of_a_small_algebra_through_the_parser():
+    # each operator of the grammar against the Element method it names, on basis blades
+    basis = Basis(2, 1)
+    names = [basis.name(b) if b else "1" for b in basis.blades]
+    ops = {"*": "__mul__", "^": "__xor__", "|": "__or__"}
+    for (i, x), (j, y) in itertools.product(enumerate(names), repeat=2):
+        for op, method in ops.items():
+            ex = Element.blade(basis, basis.blades[i], 1)
+            ey = Element.blade(basis, basis.blades[j], 1)
+            expected = getattr(ex, method)(ey)
+            rhs = repr(expected) if expected.terms else "0"
+            assert prove(f"{x}{op}{y} == {rhs}", signature=(2, 1)), (x, op, y)
