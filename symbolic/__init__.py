@@ -14,6 +14,8 @@ Modules, each with one job:
 * :mod:`symbolic.rotors`: rotor sandwich = quaternion operator; Ṙ = ½RΩ ⟺ q̇ = ½q(0,ω)
 * :mod:`symbolic.audit`: every equation of the two source documents, checked
 * :mod:`symbolic.verify`: the ``ga-rotors verify`` command
+* :mod:`symbolic.prover`: prove a user's own identities in any Cl(p, q, r)
+  (``ga-rotors prove``)
 """
 
 __all__: list[str] = []  # a namespace of submodules: nothing defined here
