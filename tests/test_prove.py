@@ -322,3 +322,10 @@ def test_every_product_pair_of_a_small_algebra_through_the_parser():
             expected = getattr(ex, method)(ey)
             rhs = repr(expected) if expected.terms else "0"
             assert prove(f"{x}{op}{y} == {rhs}", signature=(2, 1)), (x, op, y)
+
+
+def test_a_runaway_identity_stops_at_the_timeout_as_undecided():
+    verdict = prove("(X*Y)**6*X == X*(Y*X)**6", signature=(4, 1), evens="X,Y", timeout=0.5)
+    assert verdict.status == "undecided" and "time limit" in verdict.detail
+    with pytest.raises(ValueError, match="timeout"):
+        prove("a == a", vectors="a", timeout=-1)

@@ -21,10 +21,13 @@ EXAMPLES = [
 @pytest.mark.parametrize("example", EXAMPLES, ids=[e[0][:50] for e in EXAMPLES])
 def test_help_examples_run_with_their_exit_status(example, capsys):
     args = shlex.split(example[0])
-    expected = 1 if len(example) > 1 and "refuted" in example[1] else 0
-    assert main(args) == expected
+    comment = example[1] if len(example) > 1 else ""
+    status = (
+        "refuted" if "refuted" in comment else "undecided" if "undecided" in comment else "proved"
+    )
+    assert main(args) == {"proved": 0, "refuted": 1, "undecided": 3}[status]
     out = capsys.readouterr().out
-    assert ("refuted" if expected else "proved") in out
+    assert status in out
 
 
 def test_examples_cover_every_kind_of_option():
@@ -62,6 +65,7 @@ def test_undecided_exits_3_with_the_reason(capsys):
         (["prove", "a == a", "--vectors", "a", "--blades", "B"], "--blades|blades"),
         (["prove", "dual(a) == a", "--vectors", "a", "--signature", "3,0,1"], "I² = 0"),
         (["prove", "a == a", "--vectors", "a", "--draws", "0"], "--draws"),
+        (["prove", "a == a", "--vectors", "a", "--timeout", "0"], "--timeout"),
         (["prove"], "give an identity"),
         (["prove", "a == a", "--catalogue"], "not both"),
         (["prove", "a == a", "--vectors", "a", "--long"], "go with --catalogue"),

@@ -18,6 +18,7 @@ Examples:
   ga-rotors prove "-n*a*n == a - 2*(a|n)*n" --units n --vectors a
   ga-rotors prove "a*b == -(b*a)" --vectors a,b --orthogonal a,b
   ga-rotors prove "B*~B == grade(B*~B, 0)" --signature 4,1 --blades B:3 --latex
+  ga-rotors prove "(X*Y)**6*X == X*(Y*X)**6" --signature 4,1 --evens X,Y --timeout 1  # undecided
   ga-rotors prove --catalogue --write docs/identities.md
 """
 
@@ -73,6 +74,13 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     )
     parser.add_argument("--draws", type=int, default=16, help="random draws of the pre-check")
     parser.add_argument("--seed", type=int, default=0, help="seed of the draws")
+    parser.add_argument(
+        "--timeout",
+        type=float,
+        default=300.0,
+        metavar="SECONDS",
+        help="give up (undecided, exit 3) after this long (default 300)",
+    )
     parser.add_argument("--latex", action="store_true", help="print the verdict as LaTeX")
     catalogue = parser.add_argument_group("catalogue")
     catalogue.add_argument(
@@ -175,6 +183,8 @@ def run(args: argparse.Namespace) -> int:
         raise InputError("--write, --check, --long and --only go with --catalogue")
     if args.draws < 1:
         raise InputError(f"--draws: expected a positive integer, got {args.draws}")
+    if not args.timeout > 0:
+        raise InputError(f"--timeout: expected a positive number of seconds, got {args.timeout}")
 
     from .prove import prove
 
@@ -184,6 +194,7 @@ def run(args: argparse.Namespace) -> int:
             signature=args.signature,
             draws=args.draws,
             seed=args.seed,
+            timeout=args.timeout,
             **_declarations(args),
         )
     except ValueError as exc:

@@ -30,6 +30,8 @@ Examples
 
 from __future__ import annotations
 
+import signal
+import threading
 import time
 from dataclasses import dataclass, field
 from fractions import Fraction
@@ -177,6 +179,14 @@ class _Point(_Symbolic):
         if not lam.is_ground or lam.LC <= 0:
             raise _InvalidPoint(name)
         return super().normaliser(name, lam)
+
+
+class _OutOfTime(Exception):
+    pass
+
+
+def _out_of_time(signum, frame):
+    raise _OutOfTime
 
 
 def _split(f, i: int) -> dict[int, object]:
@@ -487,6 +497,7 @@ def prove(
     signature=(3, 0),
     draws: int = _DRAWS,
     seed: int = 0,
+    timeout: float | None = None,
     **kinds,
 ) -> Verdict:
     """Decide ``lhs == rhs`` for every value of the symbols allowed by ``assumptions``.
@@ -506,6 +517,10 @@ def prove(
         Random draws of the numeric pre-check.
     seed : int
         Seed of the draws (verdicts do not depend on it; counterexamples may).
+    timeout : float, optional
+        Give up after this many seconds with an *undecided* verdict (main thread only:
+        it uses SIGALRM). A long identity in a large algebra can grow polynomials of
+        millions of terms; this bounds the wait.
 
     Returns
     -------
@@ -554,6 +569,12 @@ def prove(
             list(notes),
         )
 
+    if timeout is not None and (not isinstance(timeout, int | float) or timeout <= 0):
+        raise ValueError(f"timeout: expected a positive number of seconds, got {timeout!r}")
+    alarm = timeout is not None and threading.current_thread() is threading.main_thread()
+    if alarm:
+        previous = signal.signal(signal.SIGALRM, _out_of_time)
+        signal.setitimer(signal.ITIMER_REAL, timeout)
     try:
         # 1-2: numeric pre-check, exact check of the suspects
         any_valid = False
@@ -593,9 +614,10 @@ def prove(
             if residue:
                 break
         else:
-            relations = [f"{c}²·λ = 1" for c, _ in dom.norms] + [
-                f"{c}² − δ·{s}² = 1" for c, s, _ in dom.exps
-            ]
+            what = {"rotor": "N Ñ, N = exp∧(B)", "unit": "w·w"}
+            relations = [
+                f"{c}²·λ = 1 (λ = {what[assumptions.kinds[c[2:]]]})" for c, _ in dom.norms
+            ] + [f"{c}² − δ·{s}² = 1" for c, s, _ in dom.exps]
             how = f" modulo {', '.join(relations)}" if relations else ""
             notes = []
             if len(cases) > 1:
@@ -638,3 +660,9 @@ def prove(
         return verdict("undecided", reason + f" (a residual coefficient has {len(some)} terms)")
     except Unsupported as exc:
         return verdict("undecided", f"not supported: {exc}")
+    except _OutOfTime:
+        return verdict("undecided", f"no decision within the time limit of {timeout:g} s")
+    finally:
+        if alarm:
+            signal.setitimer(signal.ITIMER_REAL, 0)
+            signal.signal(signal.SIGALRM, previous)
