@@ -1,3 +1,5 @@
+"""``python -m ga_rotors``: the ``ga-rotors`` command."""
+
 import sys
 
 from .cli import main

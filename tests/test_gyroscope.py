@@ -15,14 +15,16 @@ import warnings
 import numpy as np
 import pytest
 
-from ga_rotors import euler, paper_scenes, shapes
+from ga_rotors import euler, shapes
 from ga_rotors.crosscheck import cross_check
 from ga_rotors.errors import GimbalLockWarning, InputError, IntegrationStoppedWarning
 from ga_rotors.kinematics import body_omega_from_zyz_rates
+from ga_rotors.paper import models as paper_models
+from ga_rotors.paper.runs import run_all
 from ga_rotors.reference.symmetric_top import SymmetricTop
 from ga_rotors.simulate import simulate
 
-ALL = paper_scenes.run_all()
+ALL = run_all()
 BY_KEY = {s.key: s for s in ALL}
 
 
@@ -54,7 +56,7 @@ def test_rotor_path_error_is_rk4s_rotation_error(key):
 
 def test_omega_along_the_papers_x3_axis_stays_exactly_constant():
     # I_y3 = I_z3 exactly, so ω̇_x3 = (I_y3 - I_z3) ω_y3 ω_z3 / I_x3 is exactly 0.0 every stage.
-    for theta in paper_scenes.THETA0_DEG:
+    for theta in paper_models.THETA0_DEG:
         w = BY_KEY[f"paper_{theta:g}deg"].trajectory.w
         assert np.all(w[:, 0] == w[0, 0])
     # while (ω_y3, ω_z3) turn at rate ω_x3 = -0.0052 rad/s: ω_z3 drops by ~0.021 in 10 s
@@ -63,13 +65,13 @@ def test_omega_along_the_papers_x3_axis_stays_exactly_constant():
 
 
 def test_disk_spin_along_its_symmetry_axis_stays_exactly_constant():
-    for theta in paper_scenes.THETA0_DEG:
+    for theta in paper_models.THETA0_DEG:
         w = BY_KEY[f"disk_{theta:g}deg"].trajectory.w
         assert np.all(w[:, 2] == w[0, 2])
 
 
 def test_euler_angle_path_is_fine_away_from_the_pole():
-    for model in paper_scenes.MODELS:
+    for model in paper_models.MODELS:
         s = BY_KEY[f"{model}_15deg"]
         assert s.watch["unresolved_steps"] == 0 and s.watch["pole_crossings"] == 0
         assert s.watch["complete"] and s.watch["first_unresolved"] is None
@@ -78,7 +80,7 @@ def test_euler_angle_path_is_fine_away_from_the_pole():
 
 
 def test_euler_angle_path_trouble_near_theta_zero_is_detected_and_reported():
-    for model in paper_scenes.MODELS:
+    for model in paper_models.MODELS:
         s = BY_KEY[f"{model}_0.001deg"]
         w = s.watch
         assert w["complete"]  # it never produced a non-finite state
@@ -96,7 +98,7 @@ def test_psi_plus_phi_is_well_defined_through_the_near_pole_passes():
     # ψ and φ swing by ~π each as θ passes near 0; their sum does not. From the rotor path:
     # the largest jump of ψ + φ between samples is the spin ω·h (~0.016 rad), while ψ alone
     # jumps by about π.
-    for model in paper_scenes.MODELS:
+    for model in paper_models.MODELS:
         a = BY_KEY[f"{model}_0.001deg"].trajectory.angles
         psi_jump = np.abs(np.diff(a[:, 0])).max()
         sum_jump = np.abs(np.diff(np.unwrap(a[:, 0] + a[:, 2]))).max()
@@ -105,7 +107,7 @@ def test_psi_plus_phi_is_well_defined_through_the_near_pole_passes():
 
 def test_euler_path_started_exactly_at_the_pole_stops_without_nan():
     angles = np.zeros(3)
-    w0 = body_omega_from_zyz_rates(angles, paper_scenes.RATES)
+    w0 = body_omega_from_zyz_rates(angles, paper_models.RATES)
     with pytest.warns(IntegrationStoppedWarning, match="euler path of rk4 stopped at t = 0 s"):
         tr = simulate(shapes.disk(2.0, 0.075), [1.0, 0, 0, 0], w0, duration=1.0, step=1e-3,
                       paths=("rotor", "euler"), euler_angles=angles)  # fmt: skip
@@ -151,7 +153,7 @@ def test_closed_form_matches_a_fine_independent_integration():
 
     moments = np.array(shapes.disk(2.0, 0.075))
     q0 = euler.to_quaternion("ZYZ", [0.0, math.radians(15.0), 0.0])
-    w0 = body_omega_from_zyz_rates([0.0, math.radians(15.0), 0.0], paper_scenes.RATES)
+    w0 = body_omega_from_zyz_rates([0.0, math.radians(15.0), 0.0], paper_models.RATES)
 
     def rhs(t, y):
         q0_, q1, q2, q3, w1, w2, w3 = y

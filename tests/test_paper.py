@@ -10,10 +10,13 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from ga_rotors import cli, paper_figures, paper_scenes
+from ga_rotors import cli
+from ga_rotors.paper import figures as paper_figures
+from ga_rotors.paper.digest import data_digest
+from ga_rotors.paper.runs import run_all
 
 ROOT = Path(__file__).resolve().parent.parent
-DIGEST = paper_scenes.data_digest(paper_scenes.run_all())
+DIGEST = data_digest(run_all())
 
 
 def test_committed_figures_show_what_the_code_computes():
@@ -70,7 +73,7 @@ def test_full_command_draws_every_figure_in_its_worker(tmp_path):
 
 
 def test_worker_shares_cover_every_figure_once():
-    from ga_rotors.paper import _SHARES
+    from ga_rotors.paper.reproduce import _SHARES
 
     drawn = [stem for share in _SHARES for stem in share]
     assert sorted(drawn) == sorted(paper_figures.FIGURES)
@@ -86,13 +89,13 @@ def test_out_that_is_a_file_is_refused_without_traceback(tmp_path, capsys):
 
 @pytest.mark.skipif(not hasattr(os, "fork"), reason="the worker needs fork")
 def test_figure_worker_failure_is_reported(tmp_path, monkeypatch):
-    from ga_rotors import paper
     from ga_rotors.errors import GaRotorsError
+    from ga_rotors.paper import reproduce
 
     def broken(*args, **kwargs):
         raise RuntimeError("no canvas")
 
     monkeypatch.setattr(paper_figures, "draw_all", broken)  # inherited by the fork
     with pytest.raises(GaRotorsError, match="drawing the figures failed: RuntimeError: no canvas"):
-        paper.reproduce(tmp_path, data=False, parallel=True)
+        reproduce.reproduce(tmp_path, data=False, parallel=True)
     assert not list(tmp_path.glob("*.png")) and not list(tmp_path.glob(".*.tmp"))

@@ -13,7 +13,7 @@ import numpy as np
 import pytest
 
 from ga_rotors.cli import main
-from ga_rotors.run import ProgressBar
+from ga_rotors.cli.run import ProgressBar
 from ga_rotors.scene import Scene, bundled, load_scene
 from ga_rotors.scene import output as scene_output
 

@@ -22,8 +22,9 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from ga_rotors import _generate_paper_scenes as gen
-from ga_rotors import paper_figures, paper_scenes
+from ga_rotors.paper import _generate_scenes as gen
+from ga_rotors.paper import figures as paper_figures
+from ga_rotors.paper import models as paper_models
 from ga_rotors.scene import bundled, load_scene, report, run_scene
 from ga_rotors.scene.figures import DIGEST_PREFIX, data_digest
 
@@ -48,20 +49,20 @@ def rk4_orientation_bound(scene, tr) -> float:
 def test_paper_scenes_are_generated_from_the_papers_constants():
     for name, text in gen.generate().items():
         committed = (gen.TARGET / name).read_text(encoding="utf-8")
-        assert committed == text, "run: python -m ga_rotors._generate_paper_scenes"
+        assert committed == text, "run: python -m ga_rotors.paper._generate_scenes"
     s = load_scene("paper_0.001deg")
-    assert s.body.moments == paper_scenes.MODELS["paper"].moments
-    assert s.steps == paper_scenes.STEPS and s.step == paper_scenes.STEP
-    assert np.allclose(s.euler_angles, np.radians([0.0, paper_scenes.THETA0_DEG[1], 0.0]),
+    assert s.body.moments == paper_models.MODELS["paper"].moments
+    assert s.steps == paper_models.STEPS and s.step == paper_models.STEP
+    assert np.allclose(s.euler_angles, np.radians([0.0, paper_models.THETA0_DEG[1], 0.0]),
                        rtol=0, atol=0)  # fmt: skip
-    assert load_scene("spinning_disk").body.moments == paper_scenes.MODELS["disk"].moments
+    assert load_scene("spinning_disk").body.moments == paper_models.MODELS["disk"].moments
 
 
 def test_paper_scene_starts_where_the_paper_command_starts():
     from ga_rotors.kinematics import body_omega_from_zyz_rates
 
     s = load_scene("paper_15deg")
-    w = body_omega_from_zyz_rates([0.0, math.radians(15.0), 0.0], paper_scenes.RATES)
+    w = body_omega_from_zyz_rates([0.0, math.radians(15.0), 0.0], paper_models.RATES)
     assert np.allclose(s.angular_velocity, w, rtol=0, atol=4 * EPS * 15.7)
 
 

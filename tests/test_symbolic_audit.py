@@ -251,19 +251,6 @@ def test_wrong_source_equations_do_not_fail_verify(audit):
     assert audit.wrong() and audit.ok
 
 
-def test_command_module_imports_only_the_standard_library():
-    code = (
-        "import sys, symbolic.verify\n"
-        "heavy = [m for m in ('sympy', 'numpy', 'clifford', 'scipy', 'ga_rotors') if m in "
-        "sys.modules]\n"
-        "print(heavy)"
-    )
-    out = subprocess.run(
-        [sys.executable, "-c", code], cwd=ROOT, capture_output=True, text=True, check=True
-    ).stdout.strip()
-    assert out == "[]"
-
-
 def test_symbolic_is_independent_of_the_numeric_package():
     code = (
         "import sys\n"

@@ -209,7 +209,7 @@ def figure_png(scene: Scene, trajectory: Trajectory) -> bytes:
     >>> figure_png(scene, run_scene(scene))[1:4]
     b'PNG'
     """
-    from ..paper_figures import palette_png
+    from ..paper.figures import palette_png
 
     return palette_png(draw(scene, trajectory), DIGEST_PREFIX + data_digest(scene, trajectory),
                        dpi=_DPI)  # fmt: skip

@@ -35,7 +35,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 def run(args) -> int:
     if args.which == "ensemble":
-        from .ensemble import benchmark
+        from ..ensemble import benchmark
 
         print(benchmark(args.bodies, args.steps))
         return 0
@@ -46,9 +46,9 @@ def _accuracy(args) -> int:
     import os
     from pathlib import Path
 
-    from . import accuracy as A
-    from .errors import InputError
-    from .files import write_text
+    from .. import accuracy as A
+    from ..errors import InputError
+    from ..files import write_text
 
     available = A.cases()
     chosen = [c for c in args.cases.split(",") if c] or list(available)

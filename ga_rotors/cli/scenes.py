@@ -1,6 +1,6 @@
 """List the bundled scenes; run one with ga-rotors run NAME, print it with ga-rotors show NAME.
 
-The scenes are TOML files shipped in this package (ga_rotors/scene/bundled/*.toml); their schema
+The scenes are TOML files shipped in ga_rotors/scene/bundled/; their schema
 is in docs/scenes.md. With --figures DIR every bundled scene is run and its figure written
 to DIR/<name>.png (how docs/figures/scenes/ is made).
 """

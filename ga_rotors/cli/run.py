@@ -108,8 +108,8 @@ class ProgressBar:
 def run(args: argparse.Namespace) -> int:
     from pathlib import Path
 
-    from .errors import StepLimitWarning
-    from .scene import load_scene, report, run_scene, write_outputs
+    from ..errors import StepLimitWarning
+    from ..scene import load_scene, report, run_scene, write_outputs
 
     start = time.perf_counter()
     scene = load_scene(args.scene)

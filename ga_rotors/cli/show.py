@@ -21,7 +21,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from .scene import load_scene
+    from ..scene import load_scene
 
     scene = load_scene(args.scene)
     print(f"# {scene.name}: resolved from {scene.file}\n")

@@ -1,9 +1,14 @@
-"""The ``ga-rotors`` command.
+"""The ``ga-rotors`` command: one module per sub-command in this package.
 
 Each sub-command lives in its own module, named in :data:`COMMANDS`, which exposes
-``add_arguments(parser)`` and ``run(args) -> int``. Command modules import only the
-standard library at top level, so ``ga-rotors --help`` and light commands start fast;
-heavy imports happen inside ``run``.
+``add_arguments(parser)`` and ``run(args) -> int``. A new command is a module here plus
+one line in :data:`COMMANDS`. Command modules import only the standard library (and
+light parts of ga_rotors) at top level, so ``ga-rotors --help`` and light commands start
+fast; heavy imports happen inside ``run``.
+
+``ga-rotors --version`` prints the installed distribution's version (from its metadata,
+set once in pyproject.toml). A bare ``ga-rotors`` prints the usage and the command list
+on stdout and exits 0.
 
 Errors a user can cause (:class:`ga_rotors.errors.GaRotorsError`) are printed as one line
 on stderr with exit code 2, never as a traceback.
@@ -15,22 +20,39 @@ import argparse
 import importlib
 import sys
 
-from .errors import GaRotorsError
+from ..errors import GaRotorsError
 
-__all__ = ["COMMANDS", "build_parser", "main"]
+__all__ = ["COMMANDS", "build_parser", "main", "version"]
 
-#: sub-command name -> module implementing it.
+#: sub-command name -> module implementing it (one line per command).
 COMMANDS: dict[str, str] = {
-    "paper": "ga_rotors.paper",
-    "demo": "ga_rotors.demo",
-    "verify": "symbolic.verify",
+    "paper": "ga_rotors.cli.paper",
+    "demo": "ga_rotors.cli.demo",
+    "verify": "ga_rotors.cli.verify",
     "prove": "symbolic.prover.command",
-    "bench": "ga_rotors.bench",
-    "run": "ga_rotors.run",
-    "scenes": "ga_rotors.scenes",
-    "show": "ga_rotors.show",
-    "cache": "ga_rotors.cache",
+    "bench": "ga_rotors.cli.bench",
+    "run": "ga_rotors.cli.run",
+    "scenes": "ga_rotors.cli.scenes",
+    "show": "ga_rotors.cli.show",
+    "cache": "ga_rotors.cli.cache",
 }
+
+
+def version() -> str:
+    """The version of the installed ``ga-rotors`` distribution (set once, in pyproject.toml).
+
+    Read from the package metadata; a source tree that was never installed has none and
+    reports ``unknown (not installed)``.
+
+    Examples
+    --------
+    >>> from importlib.metadata import version as installed
+    >>> version() == installed("ga-rotors")
+    True
+    """
+    from .. import __version__
+
+    return __version__
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -42,13 +64,14 @@ def build_parser() -> argparse.ArgumentParser:
     --------
     >>> args = build_parser().parse_args(["verify", "--details", "12", "N9"])
     >>> args.command, args.details, args._run.__module__
-    ('verify', ['12', 'N9'], 'symbolic.verify')
+    ('verify', ['12', 'N9'], 'ga_rotors.cli.verify')
     """
     parser = argparse.ArgumentParser(
         prog="ga-rotors",
         description="Rotations in geometric algebra: rotors, quaternions, rigid bodies.",
     )
-    sub = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
+    parser.add_argument("--version", action="version", version=f"%(prog)s {version()}")
+    sub = parser.add_subparsers(dest="command", metavar="COMMAND")
     for name, modname in COMMANDS.items():
         module = importlib.import_module(modname)
         doc = (module.__doc__ or "").strip().splitlines()
@@ -75,7 +98,8 @@ def main(argv: list[str] | None = None) -> int:
     -------
     int
         The exit status: the command's, 2 for an error the user caused (printed as one
-        line on stderr, no traceback), 130 when interrupted.
+        line on stderr, no traceback), 130 when interrupted; 0 for a bare ``ga-rotors``,
+        which prints the usage and the command list.
 
     Examples
     --------
@@ -89,7 +113,11 @@ def main(argv: list[str] | None = None) -> int:
     >>> status, err.getvalue().split(";")[0]
     (2, 'ga-rotors: error: no_such_scene: no such file, and no bundled scene of that name')
     """
-    args = build_parser().parse_args(argv)
+    parser = build_parser()
+    args = parser.parse_args(argv)
+    if args.command is None:
+        parser.print_help()
+        return 0
     try:
         return int(args._run(args) or 0)
     except GaRotorsError as exc:

@@ -35,7 +35,7 @@ def _modules(n: int) -> str:
 
 
 def run(args: argparse.Namespace) -> int:
-    from .integrators import _codegen
+    from ..integrators import _codegen
 
     directory = _codegen.cache_location()
     if directory is None:

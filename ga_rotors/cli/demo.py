@@ -26,9 +26,9 @@ def run(args: argparse.Namespace) -> int:
 
     import numpy as np
 
-    from . import euler, rotor
-    from . import quaternion as Q
-    from .errors import GimbalLockWarning, InputError
+    from .. import euler, rotor
+    from .. import quaternion as Q
+    from ..errors import GimbalLockWarning, InputError
 
     if args.count < 1:
         raise InputError(f"--count: expected a positive number of rotations, got {args.count}")

@@ -1,9 +1,9 @@
-"""Figures 3–10 of the paper, redrawn from :mod:`ga_rotors.paper_scenes`, plus the errors.
+"""Figures 3–10 of the paper, redrawn from :mod:`ga_rotors.paper.runs`, plus the errors.
 
 Each figure has two columns: the paper's printed inertia (left) and the consistent disk
 (right), so the reader sees at once what the paper's model does and what a disk spinning
 about its symmetry axis does. Every PNG carries the data digest
-(:func:`ga_rotors.paper_scenes.data_digest`) in its ``Description`` metadata, which the
+(:func:`ga_rotors.paper.digest.data_digest`) in its ``Description`` metadata, which the
 tests compare with a fresh run.
 
 Speed: building matplotlib Axes (ticks, spines, text) costs far more than drawing 10,000
@@ -63,8 +63,8 @@ class FigureData:
 
     Examples
     --------
-    >>> from ga_rotors.paper_scenes import run_scene
-    >>> [d] = figure_data([run_scene("disk", 15.0, steps=10)])
+    >>> from ga_rotors.paper.runs import run_case
+    >>> [d] = figure_data([run_case("disk", 15.0, steps=10)])
     >>> d.model, d.theta0_deg, d.arrays["q"].shape
     ('disk', 15.0, (11, 4))
     """
@@ -75,12 +75,12 @@ class FigureData:
     arrays: dict
 
 
-def figure_data(scenes) -> list[FigureData]:
-    """Light copies of :class:`ga_rotors.paper_scenes.Scene` for drawing.
+def figure_data(runs) -> list[FigureData]:
+    """Light copies of :class:`ga_rotors.paper.runs.PaperRun` for drawing.
 
     Examples
     --------
-    >>> from ga_rotors.paper_scenes import run_all
+    >>> from ga_rotors.paper.runs import run_all
     >>> data = figure_data(run_all(steps=10))
     >>> [(d.model, d.theta0_deg) for d in data]
     [('paper', 15.0), ('paper', 0.001), ('disk', 15.0), ('disk', 0.001)]
@@ -89,7 +89,7 @@ def figure_data(scenes) -> list[FigureData]:
     """
     return [
         FigureData(s.model.name, s.model.label, s.theta0_deg, {k: s.trajectory[k] for k in _ARRAYS})
-        for s in scenes
+        for s in runs
     ]
 
 
@@ -221,14 +221,14 @@ def draw_all(data: list[FigureData], out_dir, digest: str, stems=None) -> list[P
     Examples
     --------
     >>> import tempfile
-    >>> from ga_rotors.paper_scenes import run_scene
-    >>> data = figure_data([run_scene(m, 15.0, steps=10) for m in ("paper", "disk")])
+    >>> from ga_rotors.paper.runs import run_case
+    >>> data = figure_data([run_case(m, 15.0, steps=10) for m in ("paper", "disk")])
     >>> with tempfile.TemporaryDirectory() as tmp:
     ...     [png] = draw_all(data, tmp, "0123abcd", stems=["fig04_body_rates_15deg"])
     ...     png.name, read_digest(png)
     ('fig04_body_rates_15deg.png', '0123abcd')
     """
-    from .files import atomic_write
+    from ..files import atomic_write
 
     out_dir = Path(out_dir)
     by_key = {(d.model, d.theta0_deg): d for d in data}

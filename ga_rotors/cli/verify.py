@@ -20,9 +20,7 @@ Examples:
 from __future__ import annotations
 
 import argparse
-import os
 import sys
-import tempfile
 import time
 from pathlib import Path
 
@@ -54,21 +52,9 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     )
 
 
-def _write_atomic(path: Path, text: str) -> None:
-    path = path.resolve()
-    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
-    try:
-        with os.fdopen(fd, "w", encoding="utf-8") as fh:
-            fh.write(text)
-        os.replace(tmp, path)
-    except BaseException:
-        if os.path.exists(tmp):
-            os.unlink(tmp)
-        raise
-
-
 def run(args: argparse.Namespace) -> int:
-    from ga_rotors.errors import InputError
+    from ..errors import InputError
+    from ..files import write_text
 
     for path in (args.write, args.check):
         if path is not None and not path.resolve().parent.is_dir():
@@ -112,7 +98,7 @@ def run(args: argparse.Namespace) -> int:
             file=sys.stderr,
         )
     if args.write is not None:
-        _write_atomic(args.write, audit.markdown())
+        write_text(args.write, audit.markdown())
         print(f"wrote {args.write}")
     if args.check is not None:
         if args.check.read_text(encoding="utf-8") != audit.markdown():

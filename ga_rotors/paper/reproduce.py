@@ -1,25 +1,20 @@
-"""Reproduce the paper's gyroscope: Figures 3–10 through rotors, quaternions and Euler angles.
+"""Reproduce the paper's gyroscope into a directory: summary, CSV data and figures.
 
-Integrates the paper's two torque-free scenes (θ₀ = 15° and 0.001°; RK4, 10,000 steps of
-1 ms) on the paper's printed inertia and on a uniform disk spinning about its symmetry
-axis, each along three orientation paths: the rotor equation dR/dt = ½RΩ in Cl(3,0), the
-quaternion equation, and the paper's z–y′–z″ Euler-angle rates. Prints the rotor/quaternion
-cross-check, every path's error against the exact symmetric-top solution, and what the
-Euler-angle path did near sin θ = 0; writes the figures (PNG) and the data (CSV).
+:func:`reproduce` runs :func:`ga_rotors.paper.runs.run_all` and writes ``summary.txt``,
+one CSV per run and the figures of :mod:`ga_rotors.paper.figures`, drawn in forked
+worker processes while the parent simulates (``ga-rotors paper`` does this).
 """
 
 from __future__ import annotations
 
-import argparse
 import os
 import pickle
 import sys
-import time
 from pathlib import Path
 
-from .errors import GaRotorsError
+from ..errors import GaRotorsError
 
-__all__ = ["add_arguments", "reproduce", "run"]
+__all__ = ["DEFAULT_OUT", "reproduce"]
 
 DEFAULT_OUT = "results"
 #: The figures each forked worker draws (two cores: two workers, while the parent
@@ -32,26 +27,8 @@ _SHARES = (
 )  # fmt: skip
 
 
-def add_arguments(parser: argparse.ArgumentParser) -> None:
-    parser.add_argument(
-        "--out",
-        default=DEFAULT_OUT,
-        metavar="DIR",
-        help=f"output directory, created if missing (default: ./{DEFAULT_OUT})",
-    )
-    what = parser.add_mutually_exclusive_group()
-    what.add_argument(
-        "--no-figures", action="store_true", help="skip the PNG figures (data and summary only)"
-    )
-    what.add_argument(
-        "--figures-only",
-        action="store_true",
-        help="write only the PNG figures (how docs/figures/ is made)",
-    )
-
-
 def _out_dir(path) -> Path:
-    from .errors import InputError
+    from ..errors import InputError
 
     out = Path(path)
     if out.exists() and not out.is_dir():
@@ -88,7 +65,7 @@ class _Drawer:
 
     def _serve(self, children=()) -> None:  # pragma: no cover - runs in a forked child
         try:
-            from . import paper_figures
+            from . import figures
 
             with os.fdopen(self._to_child[0], "rb") as fh:
                 job = pickle.load(fh)
@@ -96,7 +73,7 @@ class _Drawer:
                 result = ("skipped", [])
             else:
                 data, out, digest = job
-                result = ("ok", paper_figures.draw_all(data, out, digest, self.stems))
+                result = ("ok", figures.draw_all(data, out, digest, self.stems))
         except BaseException as exc:  # reported to the parent, which raises it
             result = ("error", f"{type(exc).__name__}: {exc}")
         try:
@@ -140,7 +117,7 @@ def _start_drawers(shares) -> list[_Drawer]:
         try:
             import matplotlib.figure  # noqa: F401
 
-            from . import paper_figures  # noqa: F401
+            from . import figures  # noqa: F401
         except BaseException:  # each drawer imports again, and reports the error
             pass
         children = []
@@ -181,17 +158,17 @@ def reproduce(
 
     Returns
     -------
-    scenes : list of ga_rotors.paper_scenes.Scene
+    runs : list of ga_rotors.paper.runs.PaperRun
     written : list of pathlib.Path
         Files written, each atomically (a failed run leaves no half-written file).
 
     Examples
     --------
     >>> import tempfile
-    >>> scenes, written = reproduce(tempfile.mkdtemp(), figures=False)
+    >>> runs, written = reproduce(tempfile.mkdtemp(), figures=False)
     >>> [p.name for p in written]
     ['summary.txt', 'paper_15deg.csv', 'paper_0.001deg.csv', 'disk_15deg.csv', 'disk_0.001deg.csv']
-    >>> max(s.rotor_vs_quaternion for s in scenes) < 1e-12
+    >>> max(s.rotor_vs_quaternion for s in runs) < 1e-12
     True
     """
     out = _out_dir(out_dir)
@@ -200,21 +177,23 @@ def reproduce(
         drawers = _start_drawers(_SHARES)
     sent = 0
     try:
-        from . import paper_figures, paper_scenes
-        from .files import write_text
+        from ..files import write_text
+        from . import figures as paper_figures
+        from .digest import data_digest
+        from .runs import run_all, summary
 
-        scenes = paper_scenes.run_all()
+        runs = run_all()
         job = None
         if figures:
-            job = (paper_figures.figure_data(scenes), out, paper_scenes.data_digest(scenes))
+            job = (paper_figures.figure_data(runs), out, data_digest(runs))
         for drawer in drawers:
             drawer.send(job)
             sent += 1
         written = []
         if data:
-            text = paper_scenes.summary(scenes) + "\n"
+            text = summary(runs) + "\n"
             written.append(write_text(out / "summary.txt", text))
-            written += [s.trajectory.to_csv(out / f"{s.key}.csv") for s in scenes]
+            written += [s.trajectory.to_csv(out / f"{s.key}.csv") for s in runs]
         if figures and not drawers:
             written += paper_figures.draw_all(*job)
     finally:
@@ -231,19 +210,4 @@ def reproduce(
             raise r
     by_name = {p.stem: p for r in results for p in r}
     written += [by_name[stem] for stem in paper_figures.FIGURES if stem in by_name]
-    return scenes, written
-
-
-def run(args: argparse.Namespace) -> int:
-    start = time.perf_counter()
-    parallel = (os.cpu_count() or 1) > 1
-    scenes, written = reproduce(
-        args.out, figures=not args.no_figures, data=not args.figures_only, parallel=parallel
-    )
-    from .paper_scenes import summary
-
-    print(summary(scenes))
-    print()
-    where = os.path.relpath(Path(args.out).resolve())
-    print(f"wrote {len(written)} files to {where}/ in {time.perf_counter() - start:.1f} s")
-    return 0
+    return runs, written

@@ -1,100 +1,32 @@
-"""The paper's gyroscope: its two scenes, on its printed inertia and on a consistent disk.
+"""The paper's runs: each body and initial nutation on the rotor, quaternion and Euler paths.
 
-The paper (../shared/seeds/000_…, RBEF 2016) integrates a torque-free "gyroscope" with RK4,
-10,000 steps of Δt = 1 ms (printed "1.0×10³ s": the minus sign was lost), from
-ψ = 0, ψ̇ = 0.02 rad/s, θ = 15° (Figs. 3–5) or 0.001° (Figs. 6–10), θ̇ = 0.02 rad/s, φ = 0,
-φ̇ = 15.7 rad/s, with intrinsic z–y′–z″ angles (ψ precession, θ nutation, φ spin about z3).
-
-Two bodies:
-
-* ``paper``: the inertia of eq. (13) as printed, (0.0056, 0.0028, 0.0028) kg·m² on
-  (x3, y3, z3). Its symmetry axis is x3, but the spin φ̇ = 15.7 rad/s is about z3: this
-  body spins about a *diameter* of the disk, not about its symmetry axis.
-* ``disk``: :func:`ga_rotors.shapes.disk` (m = 2 kg, R = 0.075 m), symmetry axis z3 with
-  ½mR² = 0.005625 kg·m², so the spin φ is about the symmetry axis, as section 3 says.
-
-Each scene integrates the rotor, quaternion and Euler-angle paths with RK4, compares rotor
-with quaternion (round-off), every path with the exact symmetric-top solution
+Each run integrates the rotor, quaternion and Euler-angle paths with RK4
+(:mod:`ga_rotors.paper.models` holds the paper's numbers), compares rotor with quaternion
+(round-off), every path with the exact symmetric-top solution
 (:mod:`ga_rotors.reference.symmetric_top`), and records the Euler-angle path's trouble
 near sin θ = 0.
 """
 
 from __future__ import annotations
 
-import hashlib
 from dataclasses import dataclass
 
 import numpy as np
 
-from . import euler, shapes
-from .crosscheck import PathComparison, cross_check
-from .kinematics import body_omega_from_zyz_rates, zyz_rates_from_body_omega
-from .reference.symmetric_top import SymmetricTop
-from .simulate import simulate
-from .trajectory import Trajectory
+from .. import euler
+from ..crosscheck import PathComparison, cross_check
+from ..kinematics import body_omega_from_zyz_rates, zyz_rates_from_body_omega
+from ..reference.symmetric_top import SymmetricTop
+from ..simulate import simulate
+from ..trajectory import Trajectory
+from .models import MODELS, RATES, STEP, STEPS, THETA0_DEG, Model
 
-__all__ = [
-    "DISK_MASS",
-    "DISK_RADIUS",
-    "MODELS",
-    "RATES",
-    "STEP",
-    "STEPS",
-    "THETA0_DEG",
-    "Model",
-    "Scene",
-    "data_digest",
-    "run_all",
-    "run_scene",
-    "summary",
-]
-
-
-@dataclass(frozen=True)
-class Model:
-    """A body for the paper's scenes.
-
-    Examples
-    --------
-    >>> MODELS["disk"].moments  # ¼mR², ¼mR², ½mR² for m = 2 kg, R = 0.075 m
-    (0.0028125, 0.0028125, 0.005625)
-    >>> MODELS["paper"].label
-    "paper's inertia: symmetry axis x3, spin about z3"
-    """
-
-    name: str
-    moments: tuple[float, float, float]
-    label: str
-
-
-#: The paper's gyroscope disk: mass (kg) and radius (m).
-DISK_MASS = 2.0
-DISK_RADIUS = 0.075
-
-MODELS = {
-    "paper": Model(
-        "paper",
-        (0.0056, 0.0028, 0.0028),
-        "paper's inertia: symmetry axis x3, spin about z3",
-    ),
-    "disk": Model(
-        "disk",
-        shapes.disk(DISK_MASS, DISK_RADIUS),
-        "uniform disk: symmetry axis z3 = spin axis",
-    ),
-}
-
-#: The paper's initial nutation angles (degrees): Figs. 3–5 and Figs. 6–10.
-THETA0_DEG = (15.0, 0.001)
-#: (ψ̇, θ̇, φ̇) at t = 0, rad/s.
-RATES = (0.02, 0.02, 15.7)
-STEP = 1e-3
-STEPS = 10_000
+__all__ = ["PaperRun", "run_all", "run_case", "summary"]
 
 
 @dataclass
-class Scene:
-    """One scene's results.
+class PaperRun:
+    """One run's results.
 
     ``trajectory`` holds ``t``, ``w``, ``R`` (rotor path), ``q`` (quaternion path),
     ``euler`` (Euler-angle path), ``angles`` (ZYZ angles of the rotor path, ψ and φ
@@ -104,7 +36,7 @@ class Scene:
 
     Examples
     --------
-    >>> s = run_scene("paper", 0.001, steps=10)
+    >>> s = run_case("paper", 0.001, steps=10)
     >>> s.key, s.trajectory.t.shape, sorted(s.max_error)
     ('paper_0.001deg', (11,), ['R', 'euler', 'q'])
     >>> s.rotor_vs_quaternion < 1e-13  # the same ODE in isomorphic algebras: round-off
@@ -128,12 +60,12 @@ class Scene:
         return next(c.max_angle for c in self.comparisons if c.paths == ("rotor", "quaternion"))
 
 
-def run_scene(model: str, theta0_deg: float, step: float = STEP, steps: int = STEPS) -> Scene:
-    """Integrate one scene on all three paths and measure it.
+def run_case(model: str, theta0_deg: float, step: float = STEP, steps: int = STEPS) -> PaperRun:
+    """Integrate one body and initial nutation on all three paths and measure it.
 
     Examples
     --------
-    >>> s = run_scene("disk", 15.0, steps=1000)
+    >>> s = run_case("disk", 15.0, steps=1000)
     >>> s.rotor_vs_quaternion < 1e-13, s.max_error["R"] < 1e-9
     (True, True)
     """
@@ -177,7 +109,7 @@ def run_scene(model: str, theta0_deg: float, step: float = STEP, steps: int = ST
     euler_status = tr.meta["paths"]["euler"]
     meta = dict(tr.meta)
     meta.update(model=body.name, theta0_deg=theta0_deg, rates=RATES)
-    return Scene(
+    return PaperRun(
         model=body,
         theta0_deg=theta0_deg,
         trajectory=Trajectory(arrays, components, meta),
@@ -188,7 +120,7 @@ def run_scene(model: str, theta0_deg: float, step: float = STEP, steps: int = ST
     )
 
 
-def run_all(step: float = STEP, steps: int = STEPS) -> list[Scene]:
+def run_all(step: float = STEP, steps: int = STEPS) -> list[PaperRun]:
     """Both bodies, both initial nutations: paper θ₀ = 15°, 0.001°, then disk.
 
     ``ga-rotors paper`` runs them at the paper's 10,000 steps of 1 ms.
@@ -198,18 +130,18 @@ def run_all(step: float = STEP, steps: int = STEPS) -> list[Scene]:
     >>> [s.key for s in run_all(steps=10)]
     ['paper_15deg', 'paper_0.001deg', 'disk_15deg', 'disk_0.001deg']
     """
-    return [run_scene(m, th, step, steps) for m in MODELS for th in THETA0_DEG]
+    return [run_case(m, th, step, steps) for m in MODELS for th in THETA0_DEG]
 
 
-def summary(scenes: list[Scene]) -> str:
+def summary(runs: list[PaperRun]) -> str:
     """The table ``ga-rotors paper`` prints.
 
     Examples
     --------
-    >>> print(summary([run_scene("paper", 15.0, steps=100)]).splitlines()[0])
+    >>> print(summary([run_case("paper", 15.0, steps=100)]).splitlines()[0])
     The paper's gyroscope: RK4, 100 steps of 1 ms, torque-free.
     """
-    first = scenes[0].trajectory.meta
+    first = runs[0].trajectory.meta
     lines = [
         f"The paper's gyroscope: RK4, {first['steps']:,} steps of {first['step'] * 1e3:g} ms, "
         "torque-free.",
@@ -219,7 +151,7 @@ def summary(scenes: list[Scene]) -> str:
         f"{'scene':<16}{'rotor-quat':>12}{'rotor':>11}{'quaternion':>12}{'euler':>11}"
         f"{'| |R|-1 |':>11}   Euler-angle path near sin θ = 0",
     ]
-    for s in scenes:
+    for s in runs:
         w = s.watch
         if w["unresolved_steps"]:
             trouble = (
@@ -236,35 +168,3 @@ def summary(scenes: list[Scene]) -> str:
             f"{trouble}"
         )
     return "\n".join(lines)
-
-
-def _significant(a: np.ndarray, digits: int = 9) -> np.ndarray:
-    """``a`` as integer mantissas of ``digits`` significant digits, with their exponents."""
-    a = np.asarray(a, dtype=np.float64).ravel()
-    with np.errstate(divide="ignore"):
-        exponent = np.floor(np.log10(np.abs(a)))
-    exponent = np.where(np.isfinite(exponent), exponent, 0.0)
-    mantissa = np.round(a * 10.0 ** (digits - 1 - exponent))
-    return np.concatenate([mantissa, exponent]).astype(np.int64)
-
-
-def data_digest(scenes: list[Scene]) -> str:
-    """A digest of the plotted data, rounded to 9 significant digits.
-
-    Stored in each PNG's metadata, so a test can tell whether committed figures still
-    show what the code computes, without comparing pixels across matplotlib versions.
-    Rounding keeps the digest independent of last-bit differences between machines.
-
-    Examples
-    --------
-    >>> s = [run_scene("disk", 15.0, steps=10)]
-    >>> data_digest(s) == data_digest([run_scene("disk", 15.0, steps=10)])
-    True
-    """
-    h = hashlib.sha256()
-    for s in scenes:
-        h.update(s.key.encode())
-        for name in s.trajectory.names:
-            h.update(name.encode())
-            h.update(_significant(s.trajectory[name]).tobytes())
-    return h.hexdigest()[:16]
