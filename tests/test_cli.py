@@ -49,8 +49,7 @@ def test_bare_command_lists_every_command_and_exits_0(capsys):
 
 def test_every_command_is_a_module_of_the_cli_package_with_the_protocol():
     for name, modname in COMMANDS.items():
-        # prove's command sits with the prover, as symbolic's one CLI entry
-        assert modname == f"ga_rotors.cli.{name}" or modname.endswith("symbolic.prover.command")
+        assert modname == f"ga_rotors.cli.{name}"
         module = importlib.import_module(modname)
         assert callable(module.add_arguments) and callable(module.run)
         assert (module.__doc__ or "").strip(), f"{modname}: the docstring is the command's help"

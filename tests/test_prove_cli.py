@@ -9,7 +9,7 @@ import shlex
 import pytest
 
 from ga_rotors.cli import main
-from symbolic.prover import command
+from ga_rotors.cli import prove as command
 
 EXAMPLES = [
     line.strip()[len("ga-rotors ") :].split("#")

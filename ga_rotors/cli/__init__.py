@@ -29,7 +29,7 @@ COMMANDS: dict[str, str] = {
     "paper": "ga_rotors.cli.paper",
     "demo": "ga_rotors.cli.demo",
     "verify": "ga_rotors.cli.verify",
-    "prove": "symbolic.prover.command",
+    "prove": "ga_rotors.cli.prove",
     "bench": "ga_rotors.cli.bench",
     "run": "ga_rotors.cli.run",
     "scenes": "ga_rotors.cli.scenes",

@@ -14,7 +14,7 @@ Modules, each with one job:
 * :mod:`.evaluate`: a parsed expression evaluated in a domain
 * :mod:`.prove`: the pre-check, the exact check and the proof; verdicts
 * :mod:`.catalogue`: classical identities and where they hold
-* :mod:`.command`: the ``ga-rotors prove`` command
+* the ``ga-rotors prove`` command is :mod:`ga_rotors.cli.prove`
 
 Examples
 --------

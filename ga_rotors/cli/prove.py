@@ -114,10 +114,7 @@ def _declarations(args: argparse.Namespace) -> dict:
 
 
 def _catalogue(args: argparse.Namespace) -> int:
-    from ga_rotors.errors import InputError
-    from ga_rotors.files import write_text
-
-    from .catalogue import (
+    from symbolic.prover.catalogue import (
         CATALOGUE,
         LONG_SIGNATURES,
         QUICK_SIGNATURES,
@@ -125,6 +122,9 @@ def _catalogue(args: argparse.Namespace) -> int:
         run_catalogue,
         strip_times,
     )
+
+    from ..errors import InputError
+    from ..files import write_text
 
     for path in (args.write, args.check):
         if path is not None and not path.resolve().parent.is_dir():
@@ -171,7 +171,7 @@ def _catalogue(args: argparse.Namespace) -> int:
 
 
 def run(args: argparse.Namespace) -> int:
-    from ga_rotors.errors import InputError
+    from ..errors import InputError
 
     if args.catalogue:
         if args.identity is not None:
@@ -186,7 +186,7 @@ def run(args: argparse.Namespace) -> int:
     if not args.timeout > 0:
         raise InputError(f"--timeout: expected a positive number of seconds, got {args.timeout}")
 
-    from .prove import prove
+    from symbolic.prover.prove import prove
 
     try:
         verdict = prove(
