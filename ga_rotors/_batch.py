@@ -63,7 +63,8 @@ class Batch:
             if k < 0 or a.shape[k:] != trail:
                 expected = ", ".join(["..."] + [str(t) for t in trail])
                 raise InputError(
-                    f"{name}: expected an array of shape ({expected}), got shape {a.shape}"
+                    f"expected an array of shape ({expected}), got shape {a.shape}",
+                    key=name,
                 )
             names.append(name)
             arrays.append(a)
@@ -119,7 +120,9 @@ class Batch:
                 zero = ~np.any(a != 0, axis=axes) if axes else a == 0
                 if np.any(zero):
                     where = tuple(int(i) for i in np.argwhere(zero)[0]) if zero.ndim else ()
-                    raise InputError(f"{name}: expected nonzero values, got zero at index {where}")
+                    raise InputError(
+                        f"expected nonzero values, got zero at index {where}", key=name
+                    )
         rows = ~np.isfinite(out.reshape(self.n, -1)).all(axis=1)
         where = tuple(int(i) for i in np.unravel_index(int(np.argmax(rows)), self.shape))
         raise InputError(

@@ -46,16 +46,17 @@ def as_float_array(x, name: str, *, last: int | None = None, finite: bool = True
     raw = np.asarray(x) if not isinstance(x, np.ndarray) else x
     if raw.dtype.kind not in "fiub":
         if raw.dtype.kind == "c":
-            raise InputError(f"{name}: expected real numbers, got complex values")
+            raise InputError("expected real numbers, got complex values", key=name)
         if raw.dtype.kind == "O":
             raise InputError(
-                f"{name}: expected an array of real numbers, got {type(x).__name__} "
-                "(ragged nesting or non-numeric items)"
+                f"expected an array of real numbers, got {type(x).__name__} "
+                "(ragged nesting or non-numeric items)",
+                key=name,
             )
-        raise InputError(f"{name}: expected real numbers, got {raw.dtype} values")
+        raise InputError(f"expected real numbers, got {raw.dtype} values", key=name)
     a = raw.astype(np.float64, copy=False)
     if last is not None and (a.ndim == 0 or a.shape[-1] != last):
-        raise InputError(f"{name}: expected an array of shape (..., {last}), got shape {a.shape}")
+        raise InputError(f"expected an array of shape (..., {last}), got shape {a.shape}", key=name)
     if finite:
         check_finite(a, name)
     return a
@@ -67,7 +68,7 @@ def check_finite(a: np.ndarray, name: str) -> None:
         bad = np.argwhere(~np.isfinite(np.atleast_1d(a)))[0]
         where = tuple(int(i) for i in bad)
         value = np.atleast_1d(a)[where]
-        raise InputError(f"{name}: contains {value} at index {where}; expected finite numbers")
+        raise InputError(f"contains {value} at index {where}; expected finite numbers", key=name)
 
 
 def require_unit(
@@ -92,9 +93,10 @@ def require_unit(
     if dev.size and not (dev.max() <= tol):
         where = np.unravel_index(int(np.argmax(dev)), dev.shape)
         raise InputError(
-            f"{name}: expected unit {what} (| |{name}| - 1 | <= {tol:g}), got norm "
+            f"expected unit {what} (| |{name}| - 1 | <= {tol:g}), got norm "
             f"{norms[where]:.6g} at index {tuple(int(i) for i in where)}; "
             f"normalise it first (ga_rotors.{'rotor' if what == 'rotors' else 'quaternion'}"
-            ".normalize)"
+            ".normalize)",
+            key=name,
         )
     return q / norms[..., None]

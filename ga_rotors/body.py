@@ -102,7 +102,7 @@ def euler_rates(inertia, w, tau):
 
 def _check_moments(moments: np.ndarray, name: str) -> None:
     if np.any(moments <= 0):
-        raise InputError(f"{name}: principal moments must be positive, got {tuple(moments)}")
+        raise InputError(f"principal moments must be positive, got {tuple(moments)}", key=name)
     # Every loop divides by the moments (ω = L/I, τ/I): each I and 1/I must be a normal
     # float. A subnormal moment (1e-310) made 1/I overflow to inf with no error; a moment
     # above 1/DBL_MIN = 4.5e307 has a subnormal inverse that has lost its digits.
@@ -110,26 +110,29 @@ def _check_moments(moments: np.ndarray, name: str) -> None:
     out = (moments < tiny) | (moments > 1.0 / tiny)
     if np.any(out):
         raise InputError(
-            f"{name}: each principal moment and its inverse must be normal floats "
+            f"each principal moment and its inverse must be normal floats "
             f"({tiny:.3g} <= I <= {1.0 / tiny:.3g}), got {tuple(float(m) for m in moments)}; "
-            "rescale the units"
+            "rescale the units",
+            key=name,
         )
     ratio = moments.min() / moments.max()
     if ratio < MIN_MOMENT_RATIO:
         raise InputError(
-            f"{name}: smallest/largest principal moment = {ratio:.3g} is below "
+            f"smallest/largest principal moment = {ratio:.3g} is below "
             f"{MIN_MOMENT_RATIO:g}: too thin a body for double precision (the triangle "
             "inequality can no longer be checked to the size of the smallest moment); "
-            "treat the thin axis as having the moment I_max·1e-12 or more"
+            "treat the thin axis as having the moment I_max·1e-12 or more",
+            key=name,
         )
     total = moments.sum()
     for k in range(3):
         if 2.0 * moments[k] > total * (1.0 + TRIANGLE_TOLERANCE):
             others = [moments[j] for j in range(3) if j != k]
             raise InputError(
-                f"{name}: moments {tuple(float(m) for m in moments)} violate the triangle "
+                f"moments {tuple(float(m) for m in moments)} violate the triangle "
                 f"inequality: I{k + 1} = {moments[k]:g} > {others[0]:g} + {others[1]:g}; "
-                "no rigid body has this inertia"
+                "no rigid body has this inertia",
+                key=name,
             )
 
 
@@ -163,13 +166,14 @@ class RigidBody:
     def __post_init__(self):
         m = as_float_array(self.moments, "moments", last=3)
         if m.shape != (3,):
-            raise InputError(f"moments: expected 3 principal moments, got shape {m.shape}")
+            raise InputError(f"expected 3 principal moments, got shape {m.shape}", key="moments")
         _check_moments(m, "moments")
         object.__setattr__(self, "moments", tuple(float(x) for x in m))
         p = as_float_array(self.principal_rotation, "principal_rotation", last=4)
         if p.shape != (4,):
             raise InputError(
-                f"principal_rotation: expected one quaternion of shape (4,), got shape {p.shape}"
+                f"expected one quaternion of shape (4,), got shape {p.shape}",
+                key="principal_rotation",
             )
         p = require_unit(p, "principal_rotation")
         object.__setattr__(self, "principal_rotation", tuple(float(x) for x in p))
@@ -190,14 +194,17 @@ class RigidBody:
         """
         t = as_float_array(tensor, "inertia tensor")
         if t.shape != (3, 3):
-            raise InputError(f"inertia tensor: expected a 3x3 matrix, got shape {t.shape}")
+            raise InputError(f"expected a 3x3 matrix, got shape {t.shape}", key="inertia tensor")
         scale = np.abs(t).max()
         if not np.allclose(t, t.T, rtol=0, atol=1e-12 * scale):
-            raise InputError("inertia tensor: expected a symmetric matrix, got an asymmetric one")
+            raise InputError(
+                "expected a symmetric matrix, got an asymmetric one", key="inertia tensor"
+            )
         values, vectors = np.linalg.eigh(0.5 * (t + t.T))
         if values[0] <= 0:
             raise InputError(
-                f"inertia tensor: expected positive definite, got eigenvalues {tuple(values)}"
+                f"expected positive definite, got eigenvalues {tuple(values)}",
+                key="inertia tensor",
             )
         if np.linalg.det(vectors) < 0:
             vectors[:, 2] *= -1.0

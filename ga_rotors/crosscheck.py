@@ -56,7 +56,7 @@ def cross_check(trajectory: Trajectory) -> list[PathComparison]:
 
     Examples
     --------
-    >>> from ga_rotors.simulate import simulate
+    >>> from ga_rotors import simulate
     >>> tr = simulate((1.0, 2.0, 3.0), [1.0, 0, 0, 0], [0.3, 2.0, 0.1], duration=10.0,
     ...               step=1e-2, paths=("rotor", "quaternion"))
     >>> [c] = cross_check(tr)

@@ -67,6 +67,7 @@ __all__ = [
     "inertia_about_pivot",
     "isotropic_damping",
     "load_user_kernel",
+    "register",
     "space_torque",
 ]
 
@@ -373,7 +374,7 @@ _INERTIA_ABOUT = (
     '"pivot": already about the pivot'
 )
 
-#: type name -> EffectType, in the order the docs list them.
+#: type name -> EffectType, in the order the docs list them (:func:`register` adds one).
 EFFECTS: dict[str, EffectType] = {
     e.name: e
     for e in (
@@ -421,6 +422,30 @@ EFFECTS: dict[str, EffectType] = {
         ),
     )
 }
+
+
+def register(effect: EffectType) -> EffectType:
+    """Add an effect type that scenes may declare (``type = effect.name``); return it.
+
+    Names are unique: registering the same object again changes nothing, another under a
+    taken name is refused. See ``docs/extending.md``.
+
+    Examples
+    --------
+    >>> register(EFFECTS["damping"]) is EFFECTS["damping"]
+    True
+    >>> register(EffectType("damping", "mine", (), _build_damping))
+    Traceback (most recent call last):
+    ...
+    ga_rotors.errors.InputError: register: an effect named 'damping' already exists
+    """
+    if not isinstance(effect, EffectType):
+        raise InputError(f"expected an EffectType, got {effect!r}", key="register")
+    existing = EFFECTS.get(effect.name)
+    if existing is not None and existing is not effect:
+        raise InputError(f"an effect named {effect.name!r} already exists", key="register")
+    EFFECTS[effect.name] = effect
+    return effect
 
 
 # ---------------------------------------------------------------------------- user torques

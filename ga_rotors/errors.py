@@ -37,6 +37,17 @@ class GaRotorsError(Exception):
 class InputError(GaRotorsError, ValueError):
     """An argument has the wrong shape, type or value; the message names it.
 
+    The argument's name is data too: ``key`` (None when the message names no single
+    argument) and ``detail``, what is wrong with it, so code that reports the error
+    elsewhere (a scene names its own key) never parses the message.
+
+    Parameters
+    ----------
+    detail : str
+        What is wrong (the whole message when ``key`` is None).
+    key : str, optional
+        The argument at fault; the message is then ``"<key>: <detail>"``.
+
     Examples
     --------
     >>> from ga_rotors import quaternion
@@ -46,7 +57,15 @@ class InputError(GaRotorsError, ValueError):
     ga_rotors.errors.InputError: q: expected ...
     >>> issubclass(InputError, ValueError)  # ``except ValueError`` keeps working
     True
+    >>> exc = InputError("expected a positive number, got -1", key="step")
+    >>> str(exc), exc.key, exc.detail
+    ('step: expected a positive number, got -1', 'step', 'expected a positive number, got -1')
     """
+
+    def __init__(self, detail: str, key: str | None = None):
+        self.key = key
+        self.detail = detail
+        super().__init__(f"{key}: {detail}" if key else detail)
 
 
 class PrecisionError(GaRotorsError, ArithmeticError):
@@ -101,7 +120,7 @@ class IntegrationStoppedWarning(UserWarning):
 
     >>> import warnings
     >>> from ga_rotors import shapes
-    >>> from ga_rotors.simulate import simulate
+    >>> from ga_rotors import simulate
     >>> with warnings.catch_warnings(record=True) as caught:
     ...     warnings.simplefilter("always")
     ...     tr = simulate(shapes.disk(2.0, 0.075), [1.0, 0, 0, 0], [0.02, 0.03, 15.7],
@@ -130,6 +149,8 @@ class SceneError(InputError):
         The scene's file name (``<dict>`` for a scene built in Python).
     key : str
         Dotted path of the offending key (empty when the whole file is at fault).
+    detail : str
+        What is wrong with it.
 
     Examples
     --------
@@ -143,9 +164,10 @@ class SceneError(InputError):
 
     def __init__(self, file: str, key: str, message: str):
         self.file = str(file)
-        self.key = key
         where = f"{self.file}: {key}: " if key else f"{self.file}: "
-        super().__init__(where + message)
+        ValueError.__init__(self, where + message)
+        self.key = key
+        self.detail = message
 
 
 class StepLimitWarning(UserWarning):

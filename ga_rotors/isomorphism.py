@@ -92,8 +92,9 @@ def from_even(c, table=ISOMORPHISM, name: str = "R") -> np.ndarray:
     if np.any(bad):
         where = tuple(int(i) for i in np.argwhere(bad)[0]) if bad.ndim else ()
         raise InputError(
-            f"{name}: expected an even multivector (grades 0 and 2), got odd part "
-            f"{odd[where] * scale[where]:.3g} (e1, e2, e3, e123) at index {where}"
+            f"expected an even multivector (grades 0 and 2), got odd part "
+            f"{odd[where] * scale[where]:.3g} (e1, e2, e3, e123) at index {where}",
+            key=name,
         )
     q = np.empty((*c.shape[:-1], 4))
     for component, blade, sign in table:

@@ -24,9 +24,9 @@ __all__ = ["SHAPES", "box", "cylinder", "disk", "ring", "rod", "sphere"]
 def _positive(**values: float) -> None:
     for name, value in values.items():
         if not isinstance(value, (int, float)) or isinstance(value, bool):
-            raise InputError(f"{name}: expected a number, got {type(value).__name__}")
+            raise InputError(f"expected a number, got {type(value).__name__}", key=name)
         if not (math.isfinite(value) and value > 0):
-            raise InputError(f"{name}: expected a finite positive number, got {value!r}")
+            raise InputError(f"expected a finite positive number, got {value!r}", key=name)
 
 
 def disk(mass: float, radius: float) -> tuple[float, float, float]:

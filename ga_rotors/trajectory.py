@@ -4,7 +4,7 @@ Only what was computed is present: a path that was not asked for has no array, a
 nobody requested is not computed. Whatever paths were integrated, the orientation is
 handed out by name, in one convention: :meth:`Trajectory.quaternions` gives unit
 quaternions (w, x, y, z) and :meth:`Trajectory.rotors` clifford rotors, for any path.
-Names used by :func:`ga_rotors.simulate.simulate`:
+Names used by :func:`ga_rotors.simulation.simulate`:
 
 ============= ========= ==============================================================
 name          shape     meaning
@@ -92,7 +92,7 @@ class Trajectory:
 
         Examples
         --------
-        >>> from ga_rotors.simulate import simulate
+        >>> from ga_rotors import simulate
         >>> simulate((1.0, 2.0, 3.0), [1.0, 0, 0, 0], [0.0, 0.0, 1.0], duration=0.5,
         ...          step=0.1, paths=("quaternion", "rotor")).paths
         ('rotor', 'quaternion')
@@ -140,7 +140,7 @@ class Trajectory:
         clifford's blades, where k is −e12):
 
         >>> import math
-        >>> from ga_rotors.simulate import simulate
+        >>> from ga_rotors import simulate
         >>> tr = simulate((1.0, 1.0, 1.0), [1.0, 0, 0, 0], [0.0, 0.0, math.pi / 2],
         ...               duration=1.0, step=0.01)
         >>> tr.quaternions()[-1].round(9).tolist()
@@ -171,7 +171,7 @@ class Trajectory:
         Examples
         --------
         >>> import math
-        >>> from ga_rotors.simulate import simulate
+        >>> from ga_rotors import simulate
         >>> tr = simulate((1.0, 1.0, 1.0), [1.0, 0, 0, 0], [0.0, 0.0, math.pi / 2],
         ...               duration=1.0, step=0.01, paths="quaternion")
         >>> R = tr.rotors()[-1]

@@ -15,14 +15,13 @@ import warnings
 import numpy as np
 import pytest
 
-from ga_rotors import euler, shapes
+from ga_rotors import euler, shapes, simulate
 from ga_rotors.crosscheck import cross_check
 from ga_rotors.errors import GimbalLockWarning, InputError, IntegrationStoppedWarning
 from ga_rotors.kinematics import body_omega_from_zyz_rates
 from ga_rotors.paper import models as paper_models
 from ga_rotors.paper.runs import run_all
 from ga_rotors.reference.symmetric_top import SymmetricTop
-from ga_rotors.simulate import simulate
 
 ALL = run_all()
 BY_KEY = {s.key: s for s in ALL}

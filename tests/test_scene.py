@@ -471,11 +471,12 @@ def test_docs_describe_every_key_of_the_schema():
     from pathlib import Path
 
     from ga_rotors import effects
-    from ga_rotors.scene.schema import DATA_FORMATS, PLOTS, QUANTITIES, SECTIONS
+    from ga_rotors.scene.formats import FORMATS
+    from ga_rotors.scene.schema import PLOTS, QUANTITIES, SECTIONS
     from ga_rotors.shapes import SHAPES
 
     text = (Path(__file__).resolve().parent.parent / "docs" / "scenes.md").read_text()
-    keys = set(SECTIONS) | set(QUANTITIES) | set(PLOTS) | set(DATA_FORMATS) | set(SHAPES)
+    keys = set(SECTIONS) | set(QUANTITIES) | set(PLOTS) | set(FORMATS) | set(SHAPES)
     keys |= {"name", "description", "moments", "tensor", "shape", "mass", "quaternion",
              "euler", "sequence", "units", "rotor", "axis", "angle", "body", "space",
              "euler_rates", "start", "duration", "output_step", "method", "step", "paths",

@@ -6,10 +6,9 @@ import numpy as np
 import pytest
 from _torques_for_tests import constant_body_torque
 
-from ga_rotors import shapes
+from ga_rotors import shapes, simulate
 from ga_rotors.errors import InputError
 from ga_rotors.integrators import TorqueTerm
-from ga_rotors.simulate import simulate
 
 DISK = shapes.disk(2.0, 0.075)
 Q0 = [1.0, 0.0, 0.0, 0.0]

@@ -19,7 +19,7 @@ import numpy as np
 import pytest
 
 from ga_rotors import quaternion as Q
-from ga_rotors import shapes
+from ga_rotors import shapes, simulate
 from ga_rotors.errors import (
     InputError,
     IntegrationStoppedWarning,
@@ -31,7 +31,6 @@ from ga_rotors.paths import get as get_path
 from ga_rotors.reference import elliptic
 from ga_rotors.reference.asymmetric_top import AsymmetricTop
 from ga_rotors.reference.symmetric_top import SymmetricTop
-from ga_rotors.simulate import simulate
 
 U = 2.0**-53
 EPS = np.finfo(float).eps

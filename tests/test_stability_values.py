@@ -26,14 +26,13 @@ from scipy.spatial.transform import Rotation
 from uncompiled import uncompiled_twin
 
 from ga_rotors import _kernels as K
-from ga_rotors import euler, isomorphism, kinematics, matrix, rotor
+from ga_rotors import euler, isomorphism, kinematics, matrix, rotor, simulate
 from ga_rotors import paths as P
 from ga_rotors import quaternion as Q
 from ga_rotors.body import RigidBody
 from ga_rotors.errors import GimbalLockWarning, InputError, SceneError
 from ga_rotors.integrators import Problem, get
 from ga_rotors.scene import Scene
-from ga_rotors.simulate import simulate
 
 AXIS = np.array([2.0, -3.0, 6.0]) / 7.0  # a unit axis with no zero component
 BASE = np.array([0.3, -0.5, 0.7, 0.2]) / math.sqrt(0.87)  # a generic unit quaternion

@@ -9,9 +9,9 @@ import warnings
 import numpy as np
 import pytest
 
+from ga_rotors import simulate
 from ga_rotors.errors import InputError, StepLimitWarning
 from ga_rotors.integrators import Problem, catalogue, get
-from ga_rotors.simulate import simulate
 
 BODY = (1.0, 1.5, 2.0)
 W0 = (5.0, 3.0, 100.0)

@@ -13,7 +13,7 @@ import numpy as np
 import pytest
 from _torques_for_tests import constant_body_torque, linear_damping
 
-from ga_rotors import effects
+from ga_rotors import effects, simulate
 from ga_rotors.errors import InputError, SceneError
 from ga_rotors.integrators import (
     ANY_TORQUE,
@@ -27,7 +27,6 @@ from ga_rotors.integrators import (
 )
 from ga_rotors.reference.damped_top import DampedSymmetricTop
 from ga_rotors.scene import load_scene
-from ga_rotors.simulate import simulate
 
 ROOT = Path(__file__).resolve().parent.parent
 

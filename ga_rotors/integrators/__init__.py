@@ -3,7 +3,7 @@
 The interface (how to add an integrator, the template slots, torques, the code
 generation that makes numba's cache work) is documented in
 :mod:`ga_rotors.integrators.base`. Use :func:`get` to look one up, :func:`catalogue` to list
-them, and :func:`ga_rotors.simulate.simulate` to run one.
+them, and :func:`ga_rotors.simulation.simulate` to run one.
 """
 
 from .base import (

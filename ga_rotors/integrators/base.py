@@ -94,7 +94,7 @@ its parameters. A prescribed angular velocity is a :class:`PrescribedOmega`:
 Running
 -------
 :meth:`Integrator.run` takes a :class:`Problem` and a path name and returns a
-:class:`LoopResult`; :func:`ga_rotors.simulate.simulate` is the user-facing entry point.
+:class:`LoopResult`; :func:`ga_rotors.simulation.simulate` is the user-facing entry point.
 A non-template integrator (e.g. scipy's DOP853) subclasses :class:`Integrator` and
 implements :meth:`~Integrator.run` itself; :func:`ga_rotors.integrators._codegen.vector_field`
 gives it the same compiled, specialised right-hand side.
@@ -392,25 +392,28 @@ class Integrator(ABC):
         """InputError naming what is unsupported, if anything."""
         if problem.kind not in self.problems:
             raise InputError(
-                f"integrator: {self.name} does not support {problem.kind} problems "
-                f"(supports {', '.join(sorted(self.problems))})"
+                f"{self.name} does not support {problem.kind} problems "
+                f"(supports {', '.join(sorted(self.problems))})",
+                key="integrator",
             )
         if path not in self.paths:
             raise InputError(
-                f"paths: {self.name} cannot step the {path!r} path "
-                f"(supports {', '.join(sorted(self.paths))})"
+                f"{self.name} cannot step the {path!r} path "
+                f"(supports {', '.join(sorted(self.paths))})",
+                key="paths",
             )
         if not getattr(problem, "accept_lower_order", False):
             term = torque_conflict(self, getattr(problem, "torques", ()))
             if term is not None:
                 raise InputError(
-                    f"integrator: {self.name} (order {self.order}) integrates torques of "
+                    f"{self.name} (order {self.order}) integrates torques of "
                     f"orientation and time only at its order, but torque {term.name!r} "
                     "reads ω (depends_on_omega=True, which user kernels default to), and "
                     f"with it {self.name} is first-order accurate. Use a method that "
                     f"handles any torque ({', '.join(any_torque_methods())}), declare "
                     "depends_on_omega=False if the torque does not read ω, or accept "
-                    "first order explicitly (accept_lower_order=True)"
+                    "first order explicitly (accept_lower_order=True)",
+                    key="integrator",
                 )
 
     def check_step(self, problem: Problem, w0, h: float, nsteps: int, where: str = "step"):

@@ -17,7 +17,7 @@ from .. import euler
 from ..crosscheck import PathComparison, cross_check
 from ..kinematics import body_omega_from_zyz_rates, zyz_rates_from_body_omega
 from ..reference.symmetric_top import SymmetricTop
-from ..simulate import simulate
+from ..simulation import simulate
 from ..trajectory import Trajectory
 from .models import MODELS, RATES, STEP, STEPS, THETA0_DEG, Model
 

@@ -19,7 +19,7 @@ from types import ModuleType
 
 from ..errors import InputError
 
-__all__ = ["PATHS", "Path", "get"]
+__all__ = ["PATHS", "Path", "get", "register"]
 
 
 @dataclass(frozen=True)
@@ -38,12 +38,17 @@ class Path:
         Column names of that array.
     on_unit_sphere : bool
         The state is a unit quaternion/rotor (``o_normalize``, ``o_from_quat`` exist).
+    description : str
+        One line for listings.
+    sequence : str or None
+        An Euler-angle path's axis sequence (scipy's naming, e.g. ``"ZYZ"``): its state
+        is those angles, started from :func:`ga_rotors.euler.from_quaternion`.
 
     Examples
     --------
     >>> p = PATHS["euler"]
-    >>> p.array, p.components, p.dim, p.on_unit_sphere
-    ('euler', ('psi', 'theta', 'phi'), 3, False)
+    >>> p.array, p.components, p.dim, p.on_unit_sphere, p.sequence
+    ('euler', ('psi', 'theta', 'phi'), 3, False, 'ZYZ')
     >>> p.load().__name__
     'ga_rotors.paths.euler'
     """
@@ -54,6 +59,7 @@ class Path:
     components: tuple[str, ...]
     on_unit_sphere: bool
     description: str
+    sequence: str | None = None
 
     @property
     def dim(self) -> int:
@@ -64,6 +70,7 @@ class Path:
         return importlib.import_module(self.module)
 
 
+#: path name -> Path, in order of precedence for a simulation's primary path.
 PATHS: dict[str, Path] = {
     p.name: p
     for p in (
@@ -90,6 +97,7 @@ PATHS: dict[str, Path] = {
             ("psi", "theta", "phi"),
             False,
             "the paper's ZYZ Euler-angle rates (singular at sin θ = 0)",
+            sequence="ZYZ",
         ),
     )
 }
@@ -113,3 +121,30 @@ def get(name: str) -> Path:
         raise InputError(
             f"path: unknown path {name!r}; expected one of {', '.join(sorted(PATHS))}"
         ) from None
+
+
+def register(path: Path) -> Path:
+    """Add an orientation path (names and array names are unique) and return it.
+
+    The integrators that can step it must list its name in their ``paths``. See
+    ``docs/extending.md``.
+
+    Examples
+    --------
+    >>> register(PATHS["euler"]) is PATHS["euler"]
+    True
+    >>> register(Path("euler", "my.module", "angles", ("a", "b", "c"), False, "mine"))
+    Traceback (most recent call last):
+    ...
+    ga_rotors.errors.InputError: register: a path named 'euler' already exists
+    """
+    if not isinstance(path, Path):
+        raise InputError(f"expected a Path, got {path!r}", key="register")
+    existing = PATHS.get(path.name)
+    if existing is not None and existing is not path:
+        raise InputError(f"a path named {path.name!r} already exists", key="register")
+    clash = [p.name for p in PATHS.values() if p.array == path.array and p is not path]
+    if clash:
+        raise InputError(f"the array name {path.array!r} is {clash[0]!r}'s", key="register")
+    PATHS[path.name] = path
+    return path

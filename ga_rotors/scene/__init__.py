@@ -11,6 +11,7 @@ Data flows one way, one module per step:
 * :mod:`~ga_rotors.scene.run`: :func:`run_scene`, a scene integrated into a Trajectory;
 * :mod:`~ga_rotors.scene.summary`: the closing summary (invariants, cross-check, exact);
 * :mod:`~ga_rotors.scene.figures`: the run's figure;
+* :mod:`~ga_rotors.scene.formats`: the data formats (``output.data``), a registry;
 * :mod:`~ga_rotors.scene.output`: the run's files, written atomically.
 
 The names below are imported on first use, so ``import ga_rotors.scene.reader`` (which

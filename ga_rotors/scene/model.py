@@ -76,7 +76,7 @@ __all__ = ["Scene"]
 
 def _whole(reader: Reader, span: float, step: float, key: str, message: str) -> int:
     """span / step as a whole number (simulate's rule), or a SceneError at ``key``."""
-    from ..simulate import whole_steps
+    from ..simulation import whole_steps
 
     try:
         return whole_steps(span, step)
@@ -244,20 +244,20 @@ class Scene:
             try:
                 RigidBody(tuple(body["moments"]))
             except InputError as exc:
-                raise reader.error("body.moments", str(exc).partition(": ")[2]) from None
+                raise reader.error("body.moments", exc.detail) from None
             return np.diag(body["moments"]), "body.moments"
         if "tensor" in body:
             try:
                 RigidBody.from_tensor(body["tensor"])
             except InputError as exc:
-                raise reader.error("body.tensor", str(exc).partition(": ")[2]) from None
+                raise reader.error("body.tensor", exc.detail) from None
             t = np.array(body["tensor"], dtype=np.float64)
             return 0.5 * (t + t.T), "body.tensor"
         func, dims = SHAPES[body["shape"]]
         try:
             moments = func(body["mass"], *(body[k] for k in dims))
         except InputError as exc:
-            raise reader.error("body", str(exc)) from None
+            raise reader.error(join("body", exc.key) if exc.key else "body", exc.detail) from None
         return np.diag(moments), "body.shape"
 
     def _about_pivot(self, reader: Reader, tensor: np.ndarray, mass) -> np.ndarray:
@@ -285,11 +285,11 @@ class Scene:
             try:
                 return RigidBody(tuple(np.diag(tensor))), _IDENTITY
             except InputError as exc:
-                raise reader.error(key, str(exc).partition(": ")[2]) from None
+                raise reader.error(key, exc.detail) from None
         try:
             body = RigidBody.from_tensor(tensor)
         except InputError as exc:
-            raise reader.error(key, str(exc).partition(": ")[2]) from None
+            raise reader.error(key, exc.detail) from None
         return RigidBody(body.moments), body.principal_rotation
 
     @staticmethod
@@ -315,7 +315,7 @@ class Scene:
             return require_unit(from_even(c, name="rotor"), "rotor")
         except InputError as exc:
             form = next(f for f in ORIENTATION_FORMS if f in o)
-            raise reader.error(join(key, form), str(exc).partition(": ")[2]) from None
+            raise reader.error(join(key, form), exc.detail) from None
 
     @staticmethod
     def _angular_velocity(reader: Reader, initial: dict, q_user: np.ndarray) -> np.ndarray:
@@ -374,8 +374,8 @@ class Scene:
             try:
                 method.check(problem, path)
             except InputError as exc:
-                key = "integrator.paths" if str(exc).startswith("paths") else "integrator.method"
-                raise reader.error(key, str(exc).partition(": ")[2]) from None
+                key = "integrator.paths" if exc.key == "paths" else "integrator.method"
+                raise reader.error(key, exc.detail) from None
 
     def _exact(self) -> tuple[str | None, str]:
         """(name of the exact solution that applies, or None; and why not)."""

@@ -2,7 +2,7 @@
 
 :func:`write_outputs` writes, into one directory, exactly what ``output`` declares:
 
-* ``<name>.csv`` / ``<name>.npz`` for ``output.data``;
+* ``<name>.csv`` / ``<name>.npz`` (or any registered format) for ``output.data``;
 * ``<name>.png``, one panel per entry of ``output.plots`` (drawn with matplotlib, a
   palette PNG carrying a digest of the data it shows);
 * ``<name>.summary.txt`` when ``output.summary`` is on, and ``<name>.scene.toml``, the
@@ -19,6 +19,7 @@ from __future__ import annotations
 
 from ..trajectory import Trajectory
 from .figures import figure_png
+from .formats import FORMATS
 from .model import Scene
 
 __all__ = ["write_outputs"]
@@ -29,10 +30,8 @@ def _plan(scene: Scene, tr: Trajectory, summary: str | None) -> list[tuple[str, 
     out = scene.data["output"]
     plan: list[tuple[str, object]] = []
     for fmt in out["data"]:
-        if fmt == "csv":
-            plan.append((f"{name}.csv", lambda p: tr.to_csv(p)))
-        else:
-            plan.append((f"{name}.npz", lambda p: tr.to_npz(p)))
+        write = FORMATS[fmt].write
+        plan.append((f"{name}{FORMATS[fmt].suffix}", lambda p, write=write: write(tr, p)))
     if out["plots"]:
         plan.append((f"{name}.png", lambda p: p.write_bytes(figure_png(scene, tr))))
     if not plan:

@@ -1,7 +1,7 @@
 """Run a scene: integrate exactly what it declares, add only the quantities it asks for.
 
 :func:`run_scene` builds the scene's torques (its declared effects, nothing else), runs
-:func:`ga_rotors.simulate.simulate` on the scene's paths and returns the
+:func:`ga_rotors.simulation.simulate` on the scene's paths and returns the
 :class:`~ga_rotors.trajectory.Trajectory`, with ``output.quantities`` added. Quantities
 that nobody listed are not computed. Everything the scene implies (the integrator at its
 tolerance, the gravity terms, the exact solution) comes from the :class:`Scene`, which
@@ -62,7 +62,7 @@ def run_scene(scene, *, progress=None) -> Trajectory:
     >>> tr.meta["torques"], tr.meta["problem"]
     (['gravity'], 'torqued')
     """
-    from .. import simulate as _sim
+    from .. import simulation as _sim
 
     scene = load_scene(scene)
     torques = scene.torques()

@@ -16,12 +16,12 @@ from collections.abc import Mapping
 from .. import effects as _effects
 from .. import paths as _paths
 from ..shapes import SHAPES
+from .formats import FORMATS
 from .reader import Reader, join
 
 __all__ = [
     "ANGLE_UNITS",
     "ANGULAR_VELOCITY_FORMS",
-    "DATA_FORMATS",
     "NAME",
     "ORIENTATION_FORMS",
     "PLOTS",
@@ -76,12 +76,6 @@ PLOTS = {
     "momentum": "space-frame angular momentum components against time",
     "invariants": "drift of the scene's conserved quantities (or their exact decay)",
     "error": "geodesic error of each path against the exact solution",
-}
-
-#: Data files ``ga-rotors run`` writes (``output.data``).
-DATA_FORMATS = {
-    "csv": "every array as CSV columns, full precision",
-    "npz": "every array in one NumPy .npz archive",
 }
 
 #: What ``scene.name`` may be: a file name (the outputs are named after it).
@@ -323,7 +317,7 @@ def _resolve_output(reader: Reader, value) -> dict:
     return {
         "quantities": reader.names(t.get("quantities", []), "output.quantities", QUANTITIES),
         "plots": reader.names(t.get("plots", []), "output.plots", PLOTS),
-        "data": reader.names(t.get("data", []), "output.data", DATA_FORMATS),
+        "data": reader.names(t.get("data", []), "output.data", FORMATS),
         "summary": reader.boolean(t.get("summary", True), "output.summary"),
     }
 

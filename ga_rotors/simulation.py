@@ -6,7 +6,8 @@ integration of (orientation, ω) with the same integrator, so paths not asked fo
 never integrated and outputs not asked for are never computed.
 
 The primary path (whose ω goes into the trajectory's ``w``) is the first of
-``rotor``, ``quaternion``, ``euler`` among those requested.
+``rotor``, ``quaternion``, ``euler`` (the order of :data:`ga_rotors.paths.PATHS`) among
+those requested. The function is also ``ga_rotors.simulate``.
 """
 
 from __future__ import annotations
@@ -25,10 +26,7 @@ from .errors import InputError, IntegrationStoppedWarning, StepLimitWarning
 from .integrators import base
 from .trajectory import Trajectory
 
-__all__ = ["OUTPUTS", "PATH_ORDER", "simulate", "whole_steps"]
-
-#: Paths in order of precedence for the primary path.
-PATH_ORDER = ("rotor", "quaternion", "euler")
+__all__ = ["OUTPUTS", "simulate", "whole_steps"]
 
 #: Derived outputs :func:`simulate` computes on request, from the primary path.
 OUTPUTS = ("energy", "L", "L_space", "angles")
@@ -85,8 +83,9 @@ def _requested(paths) -> list[str]:
         if p not in out:
             out.append(p)
     if not out:
-        raise InputError("paths: expected at least one of rotor, quaternion, euler")
-    return sorted(out, key=PATH_ORDER.index)
+        raise InputError(f"expected at least one of {', '.join(_paths.PATHS)}", key="paths")
+    order = list(_paths.PATHS)  # the registry's order is the order of precedence
+    return sorted(out, key=order.index)
 
 
 def simulate(
@@ -135,7 +134,7 @@ def simulate(
     accept_lower_order : bool
         Run such a combination anyway, accepting first order.
     euler_angles : array_like (3,), optional
-        Initial ZYZ angles (ψ, θ, φ) for the Euler-angle path; they must describe
+        Initial ZYZ angles (ψ, θ, φ) for the (ZYZ) Euler-angle path; they must describe
         ``orientation``. Default: extracted from ``orientation`` with :mod:`ga_rotors.euler`.
     outputs : sequence of {"energy", "L", "L_space", "angles"}
         Derived quantities of the primary path: kinetic energy, body and space angular
@@ -224,11 +223,12 @@ def simulate(
         from . import quaternion as _q
 
         principal = np.array(rigid.principal_rotation)
-        if "euler" in requested:
+        if any(_paths.get(p).sequence for p in requested):
             raise InputError(
-                "paths: the Euler-angle path integrates the angles of the principal frame, "
+                "an Euler-angle path integrates the angles of the principal frame, "
                 "which differ from those of this body's frame; give the body by its "
-                "principal moments to use it"
+                "principal moments to use it",
+                key="paths",
             )
         q0 = _q.multiply(q0, principal)
         w0 = _q.rotate(_q.conjugate(principal), w0)
@@ -239,9 +239,14 @@ def simulate(
 
     starts = {}
     for p in requested:
-        module = _paths.get(p).load()
-        if p == "euler":
+        spec = _paths.get(p)
+        module = spec.load()
+        if spec.sequence == "ZYZ":
             starts[p] = module.initial_state(_euler_start(q0, euler_angles))
+        elif spec.sequence is not None:
+            from . import euler
+
+            starts[p] = module.initial_state(euler.from_quaternion(q0, spec.sequence))
         else:
             starts[p] = module.initial_state(q0)
 
