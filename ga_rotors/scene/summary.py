@@ -229,7 +229,7 @@ def _paths(tr: Trajectory, rep: Report) -> None:
         if spec.on_unit_sphere:
             drift = float(np.abs(np.linalg.norm(tr[spec.array], axis=-1) - 1.0).max())
             rep.values[f"norm_drift_{path}"] = drift
-            line += f", max | |{spec.array}| − 1 | = {drift:.1e}"
+            line += f", max | |{path}| − 1 | = {drift:.1e}"
         watch = info.get("watch")
         if watch and watch.get("unresolved_steps"):
             line += (
