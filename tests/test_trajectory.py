@@ -53,3 +53,33 @@ def test_bad_construction_is_refused(tmp_path):
         Trajectory({"t": np.zeros(2), "w": np.zeros((3, 3))})
     with pytest.raises(InputError, match="does not exist"):
         sample().to_csv(tmp_path / "nowhere" / "x.csv")
+
+
+def test_orientation_by_name_for_every_path_and_primary_first():
+    # Three paths holding one rotation, a quarter turn about z: q = (c, 0, 0, s); on the
+    # rotor's blades (c, −s, 0, 0), since k ↦ −e12; as ZYZ angles, ψ + φ = π/2 at θ = 0.
+    c = s = np.sqrt(0.5)
+    tr = Trajectory(
+        {
+            "t": np.array([0.0]),
+            "rotor_blades": np.array([[c, -s, 0.0, 0.0]]),
+            "q": np.array([[c, 0.0, 0.0, s]]),
+            "euler": np.array([[np.pi / 4, 0.0, np.pi / 4]]),
+        },
+        meta={"primary": "quaternion"},
+    )
+    assert tr.paths == ("quaternion", "rotor", "euler")
+    for path in (None, "rotor", "quaternion", "euler"):
+        assert np.allclose(tr.quaternions(path), [[c, 0.0, 0.0, s]], rtol=0, atol=4e-16), path
+    [R] = tr.rotors("rotor")
+    assert np.allclose(R.value, [c, 0, 0, 0, -s, 0, 0, 0], rtol=0, atol=1e-16)
+    assert tr.extended({"energy": np.ones(1)}).quaternions() is tr.quaternions()
+
+
+def test_orientation_of_a_missing_or_unknown_path_is_refused():
+    with pytest.raises(InputError, match="no 'rotor' path"):
+        sample().quaternions("rotor")
+    with pytest.raises(InputError, match="unknown path 'matrix'"):
+        sample().quaternions("matrix")
+    with pytest.raises(InputError, match="holds no orientation path"):
+        Trajectory({"t": np.zeros(2)}).quaternions()
