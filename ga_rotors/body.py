@@ -4,6 +4,10 @@ Dynamics run in the principal frame, where the inertia tensor is diagonal. A bod
 by a full symmetric tensor is diagonalised once; :attr:`RigidBody.principal_rotation` is
 the unit quaternion P that takes principal axes to the frame the tensor was written in,
 so an orientation q of the principal frame is q ⊗ P* for the user's body frame.
+:meth:`RigidBody.to_principal` and :meth:`RigidBody.from_principal` carry a state
+(orientation, body angular velocity) between the two frames; everything that solves the
+motion (``simulate``, the exact references) works in the principal frame and answers in
+the user's.
 
 Euler's equations in the body (principal) frame, torque τ in that frame::
 
@@ -26,6 +30,8 @@ from ._validate import as_float_array, require_unit
 from .errors import InputError
 
 __all__ = [
+    "EQUAL_MOMENTS_ULPS",
+    "FRAME_CHANGE_ULPS",
     "MIN_MOMENT_RATIO",
     "TRIANGLE_TOLERANCE",
     "RigidBody",
@@ -136,6 +142,30 @@ def _check_moments(moments: np.ndarray, name: str) -> None:
             )
 
 
+#: Eigenvalues of a diagonalised inertia tensor that differ by at most this many ulps of
+#: the largest are one moment: a symmetric eigensolver's eigenvalues carry an error of a
+#: few ulps of the norm (LAPACK's backward error bound, times n = 3 and a margin).
+EQUAL_MOMENTS_ULPS = 32
+
+
+#: Components of ω carried into the principal frame that are at most this many ulps of |ω|
+#: are rounding of the frame change (each component of P* ω P carries a few) and set to 0.
+FRAME_CHANGE_ULPS = 4
+
+
+def _equal_within_rounding(values: np.ndarray) -> tuple[float, float, float]:
+    """Sorted eigenvalues, with those within the eigensolver's rounding made equal."""
+    out = [float(v) for v in values]
+    tol = EQUAL_MOMENTS_ULPS * np.finfo(np.float64).eps * max(abs(v) for v in out)
+    start = 0
+    for k in range(1, 4):
+        if k == 3 or out[k] - out[k - 1] > tol:
+            group = out[start:k]
+            out[start:k] = [sum(group) / len(group)] * len(group)
+            start = k
+    return tuple(out)
+
+
 @dataclass(frozen=True)
 class RigidBody:
     """Inertia of a rigid body, in its principal frame.
@@ -182,7 +212,12 @@ class RigidBody:
     def from_tensor(cls, tensor) -> RigidBody:
         """Diagonalise a symmetric positive-definite inertia tensor.
 
-        Principal axes come out right-handed and sorted by increasing moment.
+        Principal axes come out right-handed and sorted by increasing moment. Moments
+        that differ by no more than the diagonalisation's own rounding
+        (:data:`EQUAL_MOMENTS_ULPS` ulps of the largest) are made exactly equal: a tensor
+        written in a turned frame has its equal moments come out a few ulps apart, and
+        the body is symmetric all the same (:attr:`is_symmetric`, the closed forms of
+        :mod:`ga_rotors.reference.symmetric_top`).
 
         Examples
         --------
@@ -191,6 +226,9 @@ class RigidBody:
         >>> body = RigidBody.from_tensor(R @ np.diag([1.0, 2.0, 2.5]) @ R.T)
         >>> np.round(body.moments, 12)
         array([1. , 2. , 2.5])
+        >>> R = np.array([[c, 0, s], [0, 1, 0], [-s, 0, c]])
+        >>> RigidBody.from_tensor(R @ np.diag([1.5, 1.5, 2.0]) @ R.T).is_symmetric
+        True
         """
         t = as_float_array(tensor, "inertia tensor")
         if t.shape != (3, 3):
@@ -210,7 +248,89 @@ class RigidBody:
             vectors[:, 2] *= -1.0
         from .matrix import to_quaternion  # the one matrix -> quaternion formula
 
-        return cls(tuple(values), tuple(to_quaternion(vectors)))
+        return cls(_equal_within_rounding(values), tuple(to_quaternion(vectors)))
+
+    @property
+    def is_principal(self) -> bool:
+        """True when the body frame is the principal frame (``principal_rotation`` = 1).
+
+        Examples
+        --------
+        >>> RigidBody((1.0, 2.0, 3.0)).is_principal
+        True
+        """
+        return self.principal_rotation == (1.0, 0.0, 0.0, 0.0)
+
+    def to_principal(self, orientation, angular_velocity) -> tuple[np.ndarray, np.ndarray]:
+        """A state of the user's body frame in the principal frame: (q ⊗ P, P* ω P).
+
+        Parameters
+        ----------
+        orientation : array_like, shape (..., 4), or None
+            Orientations of the user's body frame (body to space).
+        angular_velocity : array_like, shape (..., 3), or None
+            Body angular velocities in the user's body frame.
+
+        Returns
+        -------
+        q, w : ndarray or None
+            The same states for the principal frame (returned as given when
+            :attr:`is_principal`, so that case is exact); None where None was given.
+            Components of ``w`` within :data:`FRAME_CHANGE_ULPS` ulps of ``|w|`` (the
+            rounding of the turn) are exactly 0, so ω given along a principal axis is
+            exactly along it.
+
+        Examples
+        --------
+        A body whose principal axes are the user's axes turned by 90° about z:
+
+        >>> from ga_rotors import quaternion as Q
+        >>> P = Q.from_axis_angle([0.0, 0.0, 1.0], 90, degrees=True)
+        >>> body = RigidBody((1.0, 2.0, 3.0), P)
+        >>> q, w = body.to_principal([1.0, 0.0, 0.0, 0.0], [1.0, 0.0, 0.0])
+        >>> w.round(15).tolist()  # the user's x is the principal −y
+        [0.0, -1.0, 0.0]
+        >>> [a.round(15).tolist() for a in body.from_principal(q, w)]
+        [[1.0, 0.0, 0.0, 0.0], [1.0, 0.0, 0.0]]
+        """
+        return self._turn(orientation, angular_velocity, inverse=False)
+
+    def from_principal(self, orientation, angular_velocity) -> tuple[np.ndarray, np.ndarray]:
+        """A state of the principal frame in the user's body frame: (q ⊗ P*, P ω P*).
+
+        The inverse of :meth:`to_principal`; see there for the parameters.
+
+        Examples
+        --------
+        >>> from ga_rotors import quaternion as Q
+        >>> body = RigidBody((1.0, 2.0, 3.0), Q.from_axis_angle([1.0, 1.0, 0.0], 0.5))
+        >>> q, w = body.from_principal(*body.to_principal([0.0, 0.6, 0.0, 0.8], [1.0, 2.0, 3.0]))
+        >>> bool(np.allclose(q, [0.0, 0.6, 0.0, 0.8])), bool(np.allclose(w, [1.0, 2.0, 3.0]))
+        (True, True)
+        """
+        return self._turn(orientation, angular_velocity, inverse=True)
+
+    def _turn(self, orientation, angular_velocity, inverse: bool):
+        q = None if orientation is None else as_float_array(orientation, "orientation", last=4)
+        w = None
+        if angular_velocity is not None:
+            w = as_float_array(angular_velocity, "angular_velocity", last=3)
+        if self.is_principal:
+            return q, w
+        from .quaternion import conjugate, multiply, rotate
+
+        p = np.array(self.principal_rotation)
+        p_star = conjugate(p)
+        if q is not None:
+            q = multiply(q, p_star if inverse else p)
+        if w is not None:
+            w = rotate(p if inverse else p_star, w)
+            if not inverse:
+                # Components within the rotation's rounding of zero are zero: ω given along
+                # a principal axis stays on it exactly (steady rotation, not a 1e-17 wobble).
+                noise = FRAME_CHANGE_ULPS * np.finfo(np.float64).eps
+                w = np.where(np.abs(w) <= noise * np.linalg.norm(w, axis=-1)[..., None], 0.0, w)
+        return q, w
 
     @property
     def is_symmetric(self) -> bool:

@@ -46,6 +46,11 @@ axis, where going through the amplitude would amplify its rounding by 1/√(1 �
 when the bound exceeds ``max_error`` instead of returning a degraded answer. The constructor
 raises it when 1 − m, correctly rounded, is not a normal float (motion within ~1e-154 of the
 separatrix, off it): a subnormal or zero 1 − m would give a wrong flip period.
+
+Frames. A body given by a rotated tensor (:meth:`ga_rotors.body.RigidBody.from_tensor`) is
+solved in its principal frame and answered in the user's body frame, as ``simulate``
+integrates it (:meth:`~ga_rotors.body.RigidBody.to_principal`); the two frame changes
+add a few ulps to the error bound.
 """
 
 from __future__ import annotations
@@ -85,7 +90,7 @@ class State:
     q : ndarray, shape (n, 4)
         Orientation, body to space, unit quaternions (scalar first).
     w : ndarray, shape (n, 3)
-        Body angular velocity in the principal frame.
+        Body angular velocity (in the user's body frame, as ``q``).
     error : ndarray, shape (n,)
         Bound on the geodesic error of ``q`` from floating-point rounding, radians.
 
@@ -118,12 +123,14 @@ class AsymmetricTop:
     ----------
     body : RigidBody or array_like, shape (3,)
         Principal moments (any order), pairwise distinct; a symmetric body has the
-        closed form of :mod:`ga_rotors.reference.symmetric_top`.
+        closed form of :mod:`ga_rotors.reference.symmetric_top`. A RigidBody's
+        ``principal_rotation`` is honoured: orientation and angular velocity, given and
+        returned, are those of the user's body frame.
     orientation : array_like, shape (4,)
         Initial orientation, body to space (unit within
         :data:`ga_rotors._validate.UNIT_TOLERANCE`, renormalised).
     angular_velocity : array_like, shape (3,)
-        Initial body angular velocity (principal frame).
+        Initial body angular velocity.
 
     Attributes
     ----------
@@ -151,7 +158,8 @@ class AsymmetricTop:
     """
 
     def __init__(self, body, orientation, angular_velocity):
-        inertia = (body if isinstance(body, RigidBody) else RigidBody(body)).moments
+        self.body = body if isinstance(body, RigidBody) else RigidBody(body)
+        inertia = self.body.moments
         if len(set(inertia)) < 3:
             raise InputError(
                 f"moments: expected three distinct principal moments, got {inertia}; "
@@ -166,12 +174,15 @@ class AsymmetricTop:
         self.moments = inertia
         self.w0 = tuple(float(x) for x in w)
         self.q0 = tuple(float(x) for x in q)
+        qp, wp = self.body.to_principal(self.q0, self.w0)
+        self._q0 = tuple(float(x) for x in qp)  # the principal frame's, solved below
+        self._w0 = tuple(float(x) for x in wp)
         self._setup()
 
     # -- invariants, exactly ------------------------------------------------------------
 
     def _setup(self):
-        inertia, w = self.moments, self.w0
+        inertia, w = self.moments, self._w0
         ex_i = [Fraction(x) for x in inertia]
         ex_w = [Fraction(x) for x in w]
 
@@ -227,7 +238,8 @@ class AsymmetricTop:
         self._relabel = _RELABEL[a]
         e0 = self._direction(np.array([w]))
         self._frame0 = Q.multiply(
-            Q.multiply(self.q0, Q.conjugate(self._relabel)), Q.conjugate(self._nutation_spin(e0)[0])
+            Q.multiply(self._q0, Q.conjugate(self._relabel)),
+            Q.conjugate(self._nutation_spin(e0)[0]),
         )
         self._pi0 = float(elliptic.pi_integral(self._u0, self._n, self.m, self.m1))
 
@@ -254,9 +266,12 @@ class AsymmetricTop:
         >>> bool(np.isclose(top.energy, 0.5 * (w[1] ** 2 * (1, 2, 3)).sum(), rtol=1e-14))
         True
         """
-        t = _times(t)
+        return self.body.from_principal(None, self._angular_velocity(_times(t)))[1]
+
+    def _angular_velocity(self, t):
+        """ω(t) in the principal frame, shape (n, 3)."""
         if self._steady:
-            return np.tile(self.w0, (t.size, 1))
+            return np.tile(self._w0, (t.size, 1))
         sn, cn, dn = elliptic.jacobi(self.rate * t + self._u0, self.m, self.m1)
         a, b, c = self._axes
         out = np.empty((t.size, 3))
@@ -285,13 +300,13 @@ class AsymmetricTop:
         True
         """
         t = _times(t)
-        w = self.angular_velocity(t)
+        w = self._angular_velocity(t)
         if self._steady:
-            half = 0.5 * t[:, None] * np.asarray(self.w0)
+            half = 0.5 * t[:, None] * np.asarray(self._w0)
             rot = Q.exp(np.concatenate([np.zeros((t.size, 1)), half], axis=1))
-            q = Q.multiply(self.q0, rot)
-            err = 8.0 * _EPS * (1.0 + np.abs(t) * np.abs(self.w0).max())
-            return self._checked(State(q, w, err), max_error)
+            q = Q.multiply(self._q0, rot)
+            err = 8.0 * _EPS * (1.0 + np.abs(t) * np.abs(self._w0).max())
+            return self._checked(self._user_frame(State(q, w, err)), max_error)
         u = self.rate * t + self._u0
         pi = elliptic.pi_integral(u, self._n, self.m, self.m1)
         psi = self.momentum * t / self.moments[self._axes[0]] + self._coef * (pi - self._pi0)
@@ -302,7 +317,14 @@ class AsymmetricTop:
         )
         q = q * np.where(q[:, :1] < 0.0, -1.0, 1.0)
         err = self._rounding_bound(t, u, pi, e)
-        return self._checked(State(q, w, err), max_error)
+        return self._checked(self._user_frame(State(q, w, err)), max_error)
+
+    def _user_frame(self, state: State) -> State:
+        """``state`` (principal frame) in the user's body frame; q ⊗ P* adds a few ulps."""
+        if self.body.is_principal:
+            return state
+        q, w = self.body.from_principal(state.q, state.w)
+        return State(q, w, state.error + 4.0 * _EPS)
 
     def _rounding_bound(self, t, u, pi, e):
         """Bound on the geodesic error of q from rounding, radians.

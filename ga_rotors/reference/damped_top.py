@@ -53,7 +53,10 @@ class DampedSymmetricTop:
     Parameters
     ----------
     body : RigidBody or array_like (3,)
-        Principal moments with two exactly equal (the third axis is the symmetry axis).
+        Principal moments with two exactly equal (the third axis is the symmetry axis). A
+        RigidBody's ``principal_rotation`` is honoured: orientation and angular velocity,
+        given and returned, are those of the user's body frame (the torque −c ω is the
+        same in every frame).
     c : float
         Damping coefficient (N·m·s), ≥ 0.
     orientation : array_like (4,)
@@ -72,7 +75,8 @@ class DampedSymmetricTop:
     """
 
     def __init__(self, body, c, orientation, angular_velocity):
-        moments = body.moments if isinstance(body, RigidBody) else RigidBody(body).moments
+        self.body = body if isinstance(body, RigidBody) else RigidBody(body)
+        moments = self.body.moments
         k = symmetry_axis(moments)
         i1, i2, i3 = moments
         if (
@@ -90,24 +94,28 @@ class DampedSymmetricTop:
         self.c = float(c)
         self.q0 = q0
         self.w0 = w0
+        self._q0, self._w0 = self.body.to_principal(q0, w0)  # solved in the principal frame
         self.spherical = i1 == i2 == i3
 
     def angular_velocity(self, t) -> np.ndarray:
         """Body angular velocity (n, 3) at times ``t`` (s, from the initial state)."""
+        return self.body.from_principal(None, self._angular_velocity(t))[1]
+
+    def _angular_velocity(self, t) -> np.ndarray:
         t = as_float_array(t, "t").reshape(-1)
         k = self.axis
         a, b = (k + 1) % 3, (k + 2) % 3
         i_k, i_perp = self.moments[k], self.moments[a]
         out = np.empty((t.shape[0], 3))
-        out[:, k] = self.w0[k] * np.exp(-self.c * t / i_k)
-        phase = (i_perp - i_k) / i_perp * self.w0[k] * _decayed_time(self.c, i_k, t)
-        z = (self.w0[a] + 1j * self.w0[b]) * np.exp(-self.c * t / i_perp - 1j * phase)
+        out[:, k] = self._w0[k] * np.exp(-self.c * t / i_k)
+        phase = (i_perp - i_k) / i_perp * self._w0[k] * _decayed_time(self.c, i_k, t)
+        z = (self._w0[a] + 1j * self._w0[b]) * np.exp(-self.c * t / i_perp - 1j * phase)
         out[:, a], out[:, b] = z.real, z.imag
         return out
 
     def momentum_norm(self, t) -> np.ndarray:
         """|L(t)| (kg·m²/s)."""
-        return np.linalg.norm(self.angular_velocity(t) * np.asarray(self.moments), axis=-1)
+        return np.linalg.norm(self._angular_velocity(t) * np.asarray(self.moments), axis=-1)
 
     def at(self, t) -> tuple[np.ndarray, np.ndarray]:
         """Orientations (n, 4) and body rates (n, 3); the orientation needs a sphere.
@@ -127,6 +135,7 @@ class DampedSymmetricTop:
                 f"{self.moments} are not all equal (its angular velocity is exact)"
             )
         t = as_float_array(t, "t").reshape(-1)
+        # A sphere turns about the fixed direction of ω in any body frame: no frame change.
         speed = float(np.linalg.norm(self.w0))
         w = self.angular_velocity(t)
         if speed == 0.0:

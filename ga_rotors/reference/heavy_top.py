@@ -39,6 +39,11 @@ Every state carries a rounding-error bound (:attr:`State.error`) and
 :meth:`HeavyTop.state` raises :class:`ga_rotors.errors.PrecisionError` above ``max_error``;
 the constructor raises it when 1 − m is not a normal float (u₃ − u₂ within rounding of the
 separatrix) or the motion reaches a vertical exactly.
+
+Frames. A body given by a rotated tensor (:meth:`ga_rotors.body.RigidBody.from_tensor`) is
+solved in its principal frame, whose z axis is the symmetry axis carrying the centre of
+mass (as :func:`gravity_torque` acts in ``simulate``, which integrates in that frame), and
+answered in the user's body frame (:meth:`~ga_rotors.body.RigidBody.to_principal`).
 """
 
 from __future__ import annotations
@@ -120,9 +125,12 @@ class HeavyTop:
     Parameters
     ----------
     body : RigidBody or array_like, shape (3,)
-        (I⊥, I⊥, I₃) about the fixed point: the first two equal.
+        (I⊥, I⊥, I₃) about the fixed point: the first two equal. A RigidBody's
+        ``principal_rotation`` is honoured: orientation and angular velocity, given and
+        returned, are those of the user's body frame.
     mgl : float
-        Mass × gravity × distance of the centre of mass along body +z (> 0).
+        Mass × gravity × distance of the centre of mass along the principal +z axis
+        (> 0): body +z when the body is given by its principal moments.
     orientation : array_like, shape (4,)
         Initial orientation (body to space); the symmetry axis must not be vertical
         (0 < θ₀ < π), where the z–y′–z″ angles are singular.
@@ -142,6 +150,7 @@ class HeavyTop:
     """
 
     def __init__(self, body, mgl, orientation, angular_velocity):
+        self.body = body if isinstance(body, RigidBody) else None
         moments = body.moments if isinstance(body, RigidBody) else body
         inertia = as_float_array(moments, "moments", last=3)
         if inertia.shape != (3,) or not np.all(inertia > 0):
@@ -163,19 +172,28 @@ class HeavyTop:
         self.q0 = tuple(float(x) for x in q)
         # The solution is computed for the rotation given/|given| exactly: renormalising in
         # floats turns it by an ulp, which next to the separatrix moves 1 − m by ~ε/(1 − m)
-        # relative (2.8e-10 at 1 − m = 1e-14).
+        # relative (2.8e-10 at 1 − m = 1e-14). In a turned frame, given ⊗ P is solved.
+        given, wp = self._to_principal(given, w)
         self._given = tuple(float(x) for x in given)
+        self._w0 = tuple(float(x) for x in wp)
         self._setup()
 
+    def _to_principal(self, q, w):
+        return (q, w) if self.body is None else self.body.to_principal(q, w)
+
+    def _from_principal(self, q, w):
+        return (q, w) if self.body is None else self.body.from_principal(q, w)
+
     def energy(self, q, w):
-        """Total energy ½ Σ I_k ω_k² + mgl cos θ for states (q, ω) of shape (..., 4), (..., 3)."""
-        q, w = np.asarray(q, float), np.asarray(w, float)
+        """Total energy ½ Σ I_k ω_k² + mgl cos θ for states (q, ω) of shape (..., 4), (..., 3)
+        (of the user's body frame, as :meth:`state` returns them)."""
+        q, w = self._to_principal(np.asarray(q, float), np.asarray(w, float))
         zz = q[..., 0] ** 2 - q[..., 1] ** 2 - q[..., 2] ** 2 + q[..., 3] ** 2
         return 0.5 * (w * w * np.asarray(self.moments)).sum(-1) + self.mgl * zz
 
     def _setup(self):
         ip, i3, mgl = Fraction(self.moments[0]), Fraction(self.moments[2]), Fraction(self.mgl)
-        w1, w2, w3 = (Fraction(x) for x in self.w0)
+        w1, w2, w3 = (Fraction(x) for x in self._w0)
         qw, qx, qy, qz = (Fraction(x) for x in self._given)
         # Exact rational arithmetic on the float inputs (the rotation q/|q|): next to the
         # separatrix the coefficients below are O(1) terms cancelling to O(u₃ − u₂), and any
@@ -386,6 +404,9 @@ class HeavyTop:
             )
             / self._sin_min
         )
+        if self.body is not None and not self.body.is_principal:
+            q, w = self._from_principal(q, w)
+            err = err + 4.0 * _EPS  # q ⊗ P*: a few roundings
         worst = float(err.max())
         if not (worst <= max_error) or not np.isfinite(q).all():
             raise PrecisionError(

@@ -13,6 +13,10 @@ q̇ = ½ q ⊗ (0, I⁻¹ q* L_s q) with L_s fixed, which is exactly torque-free
 equations plus the kinematics). The body rate ω(t) = I⁻¹ L_b(t) is the transverse part of
 ω₀ turning about e_k at rate −ν, with ω_k constant.
 
+A body given by a rotated tensor (:meth:`ga_rotors.body.RigidBody.from_tensor`) is solved
+in its principal frame and answered in the user's body frame, as ``simulate`` integrates
+it (:meth:`~ga_rotors.body.RigidBody.to_principal`).
+
 Accuracy: every angle is formed as t·(rate) and reduced by sin/cos once, so the result
 is exact to a few ulp of the total turned angle (|L_s| t/I⊥ ≈ 314 rad in the paper's 10 s
 run: ~1e-13 rad).
@@ -77,11 +81,22 @@ class SymmetricTop:
     Parameters
     ----------
     body : RigidBody or array_like (3,)
-        Principal moments; two must be exactly equal (a sphere, all equal, is allowed).
+        Principal moments; two must be exactly equal (a sphere, all equal, is allowed). A
+        RigidBody's ``principal_rotation`` is honoured: orientation and angular velocity,
+        given and returned, are those of the user's body frame.
     orientation : array_like (4,)
         Initial body->space unit quaternion.
     angular_velocity : array_like (3,)
         Initial body-frame ω.
+
+    Attributes
+    ----------
+    axis : int
+        The symmetry axis k in the principal frame.
+    nu : float
+        ν, the body-frame precession rate about the symmetry axis.
+    space_momentum : ndarray (3,)
+        L_s, the constant space-frame angular momentum.
 
     Examples
     --------
@@ -97,7 +112,8 @@ class SymmetricTop:
     """
 
     def __init__(self, body, orientation, angular_velocity):
-        moments = body.moments if isinstance(body, RigidBody) else tuple(RigidBody(body).moments)
+        self.body = body if isinstance(body, RigidBody) else RigidBody(body)
+        moments = self.body.moments
         k = symmetry_axis(moments)
         q0 = as_float_array(orientation, "orientation", last=4)
         w0 = as_float_array(angular_velocity, "angular_velocity", last=3)
@@ -107,9 +123,11 @@ class SymmetricTop:
         self.axis = k
         self.q0 = tuple(float(c) for c in require_unit(q0, "orientation"))
         self.w0 = tuple(float(c) for c in w0)
+        qp, wp = self.body.to_principal(self.q0, self.w0)
+        self._q0 = tuple(float(c) for c in qp)
         perp = moments[(k + 1) % 3]
-        lb0 = tuple(m * w for m, w in zip(moments, self.w0, strict=True))
-        self.space_momentum = np.array(qrotate(self.q0, lb0))
+        lb0 = tuple(float(m * w) for m, w in zip(moments, wp, strict=True))
+        self.space_momentum = np.array(qrotate(self._q0, lb0))
         self.nu = (1.0 / moments[k] - 1.0 / perp) * lb0[k]
         self._inv_perp = 1.0 / perp
 
@@ -122,10 +140,10 @@ class SymmetricTop:
         q = np.empty((t.shape[0], 4))
         w = np.empty((t.shape[0], 3))
         _orientations(
-            t, self.q0, tuple(self.space_momentum), self._inv_perp, self.nu, self.axis, q, w,
+            t, self._q0, tuple(self.space_momentum), self._inv_perp, self.nu, self.axis, q, w,
             self.moments,
         )  # fmt: skip
-        return q, w
+        return self.body.from_principal(q, w)
 
     def orientation_error(self, t, q) -> np.ndarray:
         """Geodesic angle (rad) between orientations ``q`` (n, 4) and the exact ones at ``t``.
