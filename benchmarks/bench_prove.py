@@ -39,8 +39,8 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
 
-from symbolic.prover.catalogue import CATALOGUE  # noqa: E402
-from symbolic.prover.grammar import (  # noqa: E402
+from ga_rotors.symbolic.prover.catalogue import CATALOGUE  # noqa: E402
+from ga_rotors.symbolic.prover.grammar import (  # noqa: E402
     Binary,
     Call,
     Name,
@@ -49,7 +49,7 @@ from symbolic.prover.grammar import (  # noqa: E402
     names_in,
     parse_identity,
 )
-from symbolic.prover.prove import prove  # noqa: E402
+from ga_rotors.symbolic.prover.prove import prove  # noqa: E402
 
 PEER_KINDS = {"scalars", "vectors", "bivectors", "kvectors", "evens", "multivectors", "blades"}
 PEER_FUNCTIONS = {"grade", "lc", "rc", "inner", "scalar", "comm", "rev", "involute", "conj", "even"}

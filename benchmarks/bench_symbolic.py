@@ -30,7 +30,7 @@ ROOT = Path(__file__).resolve().parent.parent
 
 COLD = (
     "import time; t = time.perf_counter(); c = time.process_time()\n"
-    "from symbolic.audit import run_audit\n"
+    "from ga_rotors.symbolic.audit import run_audit\n"
     "audit = run_audit()\n"
     "assert audit.ok and not audit.failed_checks()\n"
     "print(time.perf_counter() - t, time.process_time() - c)\n"
@@ -61,9 +61,9 @@ def peers(repeats: int) -> list[tuple[str, float, float]]:
     from sympy.algebras.quaternion import Quaternion
 
     sys.path.insert(0, str(ROOT))
-    from symbolic import hamilton, rotations, trig
-    from symbolic.isomorphisms import quaternion_to_rotor
-    from symbolic.rotors import vector
+    from ga_rotors.symbolic import hamilton, rotations, trig
+    from ga_rotors.symbolic.isomorphisms import quaternion_to_rotor
+    from ga_rotors.symbolic.rotors import vector
 
     psi, theta, phi = sympy.symbols("psi theta phi", real=True)
     m = hamilton.rotation_matrix(rotations.euler_quaternion("ZYZ", (psi, theta, phi)))

@@ -1,7 +1,8 @@
 """symbolic: exact geometric algebra in SymPy, and an audit of the sources.
 
-Independent of the numeric package :mod:`ga_rotors` (it imports nothing from it), so
-each can check the other.
+The repository's ``symbolic/`` folder, installed as ``ga_rotors.symbolic``. Independent of
+the numeric package (it imports nothing else of :mod:`ga_rotors`), so each can check the
+other.
 
 Modules, each with one job:
 
@@ -13,9 +14,9 @@ Modules, each with one job:
   Cl⁺(3,0) ≅ ℍ (all 48 signed assignments)
 * :mod:`symbolic.rotors`: rotor sandwich = quaternion operator; Ṙ = ½RΩ ⟺ q̇ = ½q(0,ω)
 * :mod:`symbolic.audit`: every equation of the two source documents, checked
-* :mod:`symbolic.verify`: the ``ga-rotors verify`` command
 * :mod:`symbolic.prover`: prove a user's own identities in any Cl(p, q, r)
   (``ga-rotors prove``)
+* the ``ga-rotors verify`` command is :mod:`ga_rotors.cli.verify`
 """
 
 __all__: list[str] = []  # a namespace of submodules: nothing defined here

@@ -442,7 +442,7 @@ def quaternion_to_rotor(q: Sequence) -> Multivector:
 
     Examples
     --------
-    >>> from symbolic import hamilton
+    >>> from ga_rotors.symbolic import hamilton
     >>> quaternion_to_rotor(hamilton.quat(1, 2, 3, 4))
     1 - 4*e12 + 3*e13 - 2*e23
     """
@@ -454,7 +454,7 @@ def rotor_to_quaternion(r: Multivector) -> hamilton.Quat:
 
     Examples
     --------
-    >>> from symbolic import hamilton
+    >>> from ga_rotors.symbolic import hamilton
     >>> rotor_to_quaternion(quaternion_to_rotor(hamilton.quat(1, 2, 3, 4)))
     (1, 2, 3, 4)
     """

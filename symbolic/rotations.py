@@ -224,7 +224,7 @@ def body_rates_from_matrix(seq: str, angles: Sequence, rates: Sequence) -> tuple
     >>> a, b, c = sympy.symbols("a b c")
     >>> rates = sympy.symbols("ad bd cd")
     >>> w = body_rates_from_matrix("XYZ", (a, b, c), rates)
-    >>> from symbolic.trig import all_identities
+    >>> from ga_rotors.symbolic.trig import all_identities
     >>> all_identities(w, body_rates_by_axes("XYZ", (a, b, c), rates))
     True
     """
@@ -241,7 +241,7 @@ def body_rates_from_quaternion(seq: str, angles: Sequence, rates: Sequence):
     >>> a, b, c = sympy.symbols("a b c")
     >>> ad, bd, cd = sympy.symbols("ad bd cd")
     >>> w, scalar = body_rates_from_quaternion("ZYZ", (a, b, c), (ad, bd, cd))
-    >>> from symbolic.trig import all_identities, is_zero
+    >>> from ga_rotors.symbolic.trig import all_identities, is_zero
     >>> all_identities(w, body_rates_by_axes("ZYZ", (a, b, c), (ad, bd, cd))), is_zero(scalar)
     (True, True)
     """

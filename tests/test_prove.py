@@ -12,10 +12,10 @@ import numpy as np
 import pytest
 import sympy
 
-from symbolic.prover import Assumptions, prove
-from symbolic.prover.basis import Basis
-from symbolic.prover.element import DegenerateDualError, Element
-from symbolic.prover.grammar import Binary, Name, ParseError, Unary, parse_expression
+from ga_rotors.symbolic.prover import Assumptions, prove
+from ga_rotors.symbolic.prover.basis import Basis
+from ga_rotors.symbolic.prover.element import DegenerateDualError, Element
+from ga_rotors.symbolic.prover.grammar import Binary, Name, ParseError, Unary, parse_expression
 
 SIGNATURES = [(3, 0, 0), (1, 3, 0), (2, 1, 0), (0, 2, 0), (3, 0, 1), (1, 1, 1), (2, 0, 2)]
 

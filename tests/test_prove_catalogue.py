@@ -13,8 +13,8 @@ from pathlib import Path
 
 import pytest
 
-from symbolic.prover.basis import cached_basis
-from symbolic.prover.catalogue import (
+from ga_rotors.symbolic.prover.basis import cached_basis
+from ga_rotors.symbolic.prover.catalogue import (
     CATALOGUE,
     LONG_SIGNATURES,
     QUICK_SIGNATURES,

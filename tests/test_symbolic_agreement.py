@@ -20,10 +20,10 @@ import sympy
 
 from ga_rotors import body, euler, isomorphism, kinematics, matrix, rotor
 from ga_rotors import quaternion as Q
-from symbolic import hamilton, rotations, rotors
-from symbolic.audit import notes, paper_dynamics, paper_kinematics
-from symbolic.audit.common import ANGLES, OMEGA, RATES, zyz_body_rates
-from symbolic.isomorphisms import quaternion_to_rotor
+from ga_rotors.symbolic import hamilton, rotations, rotors
+from ga_rotors.symbolic.audit import notes, paper_dynamics, paper_kinematics
+from ga_rotors.symbolic.audit.common import ANGLES, OMEGA, RATES, zyz_body_rates
+from ga_rotors.symbolic.isomorphisms import quaternion_to_rotor
 
 TOL = 1e-14
 ANGLE_TOL = 1e-13

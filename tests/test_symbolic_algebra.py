@@ -16,8 +16,8 @@ import sympy
 from hypothesis import given
 from hypothesis import strategies as st
 
-from symbolic.algebra import CliffordAlgebra, blade_product
-from symbolic.hamilton import UNIT_TABLE, UNITS, mul, symbols, unit
+from ga_rotors.symbolic.algebra import CliffordAlgebra, blade_product
+from ga_rotors.symbolic.hamilton import UNIT_TABLE, UNITS, mul, symbols, unit
 
 SIGNATURES = [(0, 0), (0, 1), (1, 0), (2, 0), (0, 2), (3, 0), (1, 3), (2, 2), (4, 1), (0, 3)]
 

@@ -114,7 +114,9 @@ def _declarations(args: argparse.Namespace) -> dict:
 
 
 def _catalogue(args: argparse.Namespace) -> int:
-    from symbolic.prover.catalogue import (
+    from ..errors import InputError
+    from ..files import write_text
+    from ..symbolic.prover.catalogue import (
         CATALOGUE,
         LONG_SIGNATURES,
         QUICK_SIGNATURES,
@@ -122,9 +124,6 @@ def _catalogue(args: argparse.Namespace) -> int:
         run_catalogue,
         strip_times,
     )
-
-    from ..errors import InputError
-    from ..files import write_text
 
     for path in (args.write, args.check):
         if path is not None and not path.resolve().parent.is_dir():
@@ -186,7 +185,7 @@ def run(args: argparse.Namespace) -> int:
     if not args.timeout > 0:
         raise InputError(f"--timeout: expected a positive number of seconds, got {args.timeout}")
 
-    from symbolic.prover.prove import prove
+    from ..symbolic.prover.prove import prove
 
     try:
         verdict = prove(

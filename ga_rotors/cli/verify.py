@@ -62,7 +62,7 @@ def run(args: argparse.Namespace) -> int:
     if args.check is not None and not args.check.is_file():
         raise InputError(f"--check {args.check}: no such file")
 
-    from symbolic.audit import run_audit
+    from ..symbolic.audit import run_audit
 
     start = time.perf_counter()
     audit = run_audit()

@@ -7,7 +7,7 @@ derivations of :mod:`symbolic.isomorphisms` and :mod:`symbolic.rotors`, and retu
 
 Examples
 --------
->>> from symbolic.audit import find
+>>> from ga_rotors.symbolic.audit import find
 >>> find("N9").verdict.value
 'wrong'
 >>> find("(36)").corrected.split(",")[0]

@@ -62,7 +62,7 @@ def verdict_of(holds_as_printed: bool, holds_under_convention: bool = False) -> 
     rotates v actively; the printed matrix is its transpose (the passive reading).
 
     >>> import sympy
-    >>> from symbolic import hamilton
+    >>> from ga_rotors.symbolic import hamilton
     >>> q, v = hamilton.symbols("q"), sympy.symbols("v1:4")
     >>> active = sympy.Matrix(hamilton.rotate(q, v))
     >>> m = hamilton.rotation_matrix(q)
@@ -105,8 +105,8 @@ class Finding:
     The conjugate has the same norm, checked exactly:
 
     >>> import sympy
-    >>> from symbolic import hamilton
-    >>> from symbolic.derivation import step
+    >>> from ga_rotors.symbolic import hamilton
+    >>> from ga_rotors.symbolic.derivation import step
     >>> q = hamilton.symbols("q")
     >>> holds = sympy.expand(hamilton.norm2(hamilton.conj(q)) - hamilton.norm2(q)) == 0
     >>> f = Finding(

@@ -95,7 +95,7 @@ def render(audit) -> str:
 
     Examples
     --------
-    >>> from symbolic.audit import run_audit
+    >>> from ga_rotors.symbolic.audit import run_audit
     >>> page = render(run_audit())
     >>> page.splitlines()[0]
     '# Audit of the source documents'

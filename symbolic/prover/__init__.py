@@ -18,7 +18,7 @@ Modules, each with one job:
 
 Examples
 --------
->>> from symbolic.prover import prove
+>>> from ga_rotors.symbolic.prover import prove
 >>> prove("R*~R == 1", signature=(3, 0, 1), rotors="R").status
 'proved'
 """

@@ -456,7 +456,7 @@ def markdown(results: list[Result], command: str) -> str:
         "Prove your own (the Python block below runs in the test suite):",
         "",
         "```python",
-        "from symbolic.prover import prove",
+        "from ga_rotors.symbolic.prover import prove",
         "",
         'verdict = prove("(a^b)|c == a*(b|c) - b*(a|c)", signature=(1, 3), vectors="a,b,c")',
         'assert verdict.status == "proved"',

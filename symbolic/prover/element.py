@@ -20,7 +20,7 @@ Products and operations, for blades A of grade r and B of grade s:
 Examples
 --------
 >>> from fractions import Fraction
->>> from symbolic.prover.basis import Basis
+>>> from ga_rotors.symbolic.prover.basis import Basis
 >>> cl3 = Basis(3)
 >>> e1, e2, e3 = (Element.blade(cl3, 1 << i, Fraction(1)) for i in range(3))
 >>> e1 * e2
@@ -47,7 +47,7 @@ class DegenerateDualError(ValueError):
 
     Examples
     --------
-    >>> from symbolic.prover.basis import Basis
+    >>> from ga_rotors.symbolic.prover.basis import Basis
     >>> Element.blade(Basis(3, 0, 1), 1, 1).dual()
     Traceback (most recent call last):
     ...
@@ -77,7 +77,7 @@ class Element:
 
     Examples
     --------
-    >>> from symbolic.prover.basis import Basis
+    >>> from ga_rotors.symbolic.prover.basis import Basis
     >>> x = Element(Basis(2), {0: 3, 0b11: 2})
     >>> x, x.grades()
     (3 + 2*e12, {0, 2})
@@ -97,7 +97,7 @@ class Element:
 
         Examples
         --------
-        >>> from symbolic.prover.basis import Basis
+        >>> from ga_rotors.symbolic.prover.basis import Basis
         >>> Element.blade(Basis(3), 0b101, -2)
         -2*e13
         """
@@ -132,7 +132,7 @@ class Element:
 
         Examples
         --------
-        >>> from symbolic.prover.basis import Basis
+        >>> from ga_rotors.symbolic.prover.basis import Basis
         >>> Element(Basis(1), {0: 1, 1: 2}).scale(3)
         3 + 6*e1
         """
@@ -143,7 +143,7 @@ class Element:
 
         Examples
         --------
-        >>> from symbolic.prover.basis import Basis
+        >>> from ga_rotors.symbolic.prover.basis import Basis
         >>> e1 = Element.blade(Basis(1), 1, 1)
         >>> (e1 * e1 - 1).is_zero()
         True
@@ -155,7 +155,7 @@ class Element:
 
         Examples
         --------
-        >>> from symbolic.prover.basis import Basis
+        >>> from ga_rotors.symbolic.prover.basis import Basis
         >>> Element(Basis(3), {0: 1, 0b111: 1}).grades()
         {0, 3}
         """
@@ -197,7 +197,7 @@ class Element:
 
         Examples
         --------
-        >>> from symbolic.prover.basis import Basis
+        >>> from ga_rotors.symbolic.prover.basis import Basis
         >>> e = [Element.blade(Basis(3), 1 << i, 1) for i in range(3)]
         >>> e[0].lc(e[0] ^ e[1]), (e[0] ^ e[1]).lc(e[0])
         (e2, 0)
@@ -209,7 +209,7 @@ class Element:
 
         Examples
         --------
-        >>> from symbolic.prover.basis import Basis
+        >>> from ga_rotors.symbolic.prover.basis import Basis
         >>> e = [Element.blade(Basis(3), 1 << i, 1) for i in range(3)]
         >>> (e[0] ^ e[1]).rc(e[1])
         e1
@@ -227,7 +227,7 @@ class Element:
 
         Examples
         --------
-        >>> from symbolic.prover.basis import Basis
+        >>> from ga_rotors.symbolic.prover.basis import Basis
         >>> e1 = Element.blade(Basis(2), 1, 1)
         >>> e1.dot(3), e1 | 3
         (3*e1, 0)
@@ -239,7 +239,7 @@ class Element:
 
         Examples
         --------
-        >>> from symbolic.prover.basis import Basis
+        >>> from ga_rotors.symbolic.prover.basis import Basis
         >>> e12 = Element.blade(Basis(2), 3, 1)
         >>> e12.scalar_product(e12)
         -1
@@ -252,7 +252,7 @@ class Element:
         Examples
         --------
         >>> from fractions import Fraction
-        >>> from symbolic.prover.basis import Basis
+        >>> from ga_rotors.symbolic.prover.basis import Basis
         >>> e = [Element.blade(Basis(2), 1 << i, Fraction(1)) for i in range(2)]
         >>> e[0].commutator(e[1])
         e12
@@ -278,7 +278,7 @@ class Element:
 
         Examples
         --------
-        >>> from symbolic.prover.basis import Basis
+        >>> from ga_rotors.symbolic.prover.basis import Basis
         >>> Element(Basis(2), {0: 1, 1: 1, 3: 1}).involute()
         1 - e1 + e12
         """
@@ -289,7 +289,7 @@ class Element:
 
         Examples
         --------
-        >>> from symbolic.prover.basis import Basis
+        >>> from ga_rotors.symbolic.prover.basis import Basis
         >>> Element(Basis(2), {1: 1, 3: 1}).conjugate()
         -e1 - e12
         """
@@ -300,7 +300,7 @@ class Element:
 
         Examples
         --------
-        >>> from symbolic.prover.basis import Basis
+        >>> from ga_rotors.symbolic.prover.basis import Basis
         >>> Element(Basis(2), {0: 4, 1: 2, 3: 1}).grade(1)
         2*e1
         """
@@ -315,7 +315,7 @@ class Element:
 
         Examples
         --------
-        >>> from symbolic.prover.basis import Basis
+        >>> from ga_rotors.symbolic.prover.basis import Basis
         >>> Element.blade(Basis(3), 0b001, 1).dual()    # e1 I⁻¹ = −e1 e123
         -e23
         """
@@ -357,7 +357,7 @@ class Element:
 
         Examples
         --------
-        >>> from symbolic.prover.basis import Basis
+        >>> from ga_rotors.symbolic.prover.basis import Basis
         >>> Element(Basis(2), {0: 2, 3: -1})._repr_latex_()
         '$2 - e_{12}$'
         """
@@ -368,7 +368,7 @@ class Element:
 
         Examples
         --------
-        >>> from symbolic.prover.basis import Basis
+        >>> from ga_rotors.symbolic.prover.basis import Basis
         >>> Element(Basis(3), {1: 3, 0b110: 1}).latex()
         '3 e_{1} + e_{23}'
         """

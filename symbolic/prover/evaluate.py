@@ -8,8 +8,8 @@ in every case C² − δ S² = 1).
 Examples
 --------
 >>> from fractions import Fraction
->>> from symbolic.prover.basis import Basis
->>> from symbolic.prover.grammar import parse_expression
+>>> from ga_rotors.symbolic.prover.basis import Basis
+>>> from ga_rotors.symbolic.prover.grammar import parse_expression
 >>> class Exact:
 ...     def const(self, q): return Fraction(q)
 >>> e1 = Element.blade(Basis(3), 1, Fraction(1))
@@ -33,7 +33,7 @@ class EvaluationError(ValueError):
 
     Examples
     --------
-    >>> from symbolic.prover.grammar import parse_expression
+    >>> from ga_rotors.symbolic.prover.grammar import parse_expression
     >>> evaluate(parse_expression("x + 1"), {}, Basis(2), None)
     Traceback (most recent call last):
     ...
@@ -46,7 +46,7 @@ def constant(node: Node) -> Fraction | None:
 
     Examples
     --------
-    >>> from symbolic.prover.grammar import parse_expression
+    >>> from ga_rotors.symbolic.prover.grammar import parse_expression
     >>> constant(parse_expression("-(1 + 2)/4")), constant(parse_expression("2*a"))
     (Fraction(-3, 4), None)
     """
@@ -88,7 +88,7 @@ def evaluate(node: Node, env: dict[str, Element], basis: Basis, domain, memo=Non
     Examples
     --------
     >>> from fractions import Fraction
-    >>> from symbolic.prover.grammar import parse_expression
+    >>> from ga_rotors.symbolic.prover.grammar import parse_expression
     >>> class Exact:
     ...     def const(self, q): return Fraction(q)
     >>> evaluate(parse_expression("grade(e1*e2 + 3, 0)/2"), {}, Basis(2), Exact())

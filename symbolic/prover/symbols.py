@@ -9,8 +9,8 @@ counterexample: a *domain* supplies the numbers. ``param(name)`` is a free param
 Examples
 --------
 >>> from fractions import Fraction
->>> from symbolic.prover.assumptions import Assumptions
->>> from symbolic.prover.basis import Basis
+>>> from ga_rotors.symbolic.prover.assumptions import Assumptions
+>>> from ga_rotors.symbolic.prover.basis import Basis
 >>> class Ones:                      # every parameter 1, every normaliser 1
 ...     def param(self, name): return Fraction(1)
 ...     def const(self, q): return Fraction(q)
@@ -87,7 +87,7 @@ def parameter_names(assumptions: Assumptions, basis: Basis) -> tuple[list[str], 
 
     Examples
     --------
-    >>> from symbolic.prover.assumptions import Assumptions
+    >>> from ga_rotors.symbolic.prover.assumptions import Assumptions
     >>> parameter_names(Assumptions(units="n", rotors="R"), Basis(2))
     (['n_1', 'n_2', 'R_e12'], ['c_n', 'c_R'])
     """
@@ -140,7 +140,7 @@ def build_values(
     Examples
     --------
     >>> from fractions import Fraction
-    >>> from symbolic.prover.assumptions import Assumptions
+    >>> from ga_rotors.symbolic.prover.assumptions import Assumptions
     >>> class Twos:                   # every parameter 2; c = 1 whatever λ is
     ...     def param(self, name): return Fraction(2)
     ...     def const(self, q): return Fraction(q)
