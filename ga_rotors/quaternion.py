@@ -29,8 +29,8 @@ import math
 import numpy as np
 
 from . import _kernels as K
-from ._batch import Batch, put, residue, row3, row4
-from ._jit import jit
+from . import _quaternion_loops as L
+from ._batch import Batch
 from ._validate import UNIT_TOLERANCE, as_float_array
 from .euler import from_quaternion as to_euler
 from .euler import to_quaternion as from_euler
@@ -94,174 +94,6 @@ def _finite_sum(r) -> bool:
 
 
 # ---------------------------------------------------------------------------------------
-# compiled loops: one per public operation, each a thin shell around one kernel.
-# Each returns True when every result is finite (see _batch.residue). Why checking the
-# result suffices is noted per loop; NaN/inf inputs always reach the result there.
-
-
-@jit
-def _multiply_loop(a, sa, b, sb, out):
-    # every input component multiplies some nonzero component of the other factor, or
-    # multiplies zeros (inf * 0 = nan): non-finite inputs always give a non-finite result.
-    bad = 0.0
-    for n in range(out.shape[0]):
-        r = K.qmul(row4(a, n * sa), row4(b, n * sb))
-        put(out, n, r)
-        bad += residue(r)
-    return bad == 0.0
-
-
-@jit
-def _divide_loop(a, sa, b, sb, out):
-    bad = 0.0
-    for n in range(out.shape[0]):
-        r = K.qmul(row4(a, n * sa), K.qinverse(row4(b, n * sb)))
-        put(out, n, r)
-        bad += residue(r)
-    return bad == 0.0
-
-
-@jit
-def _inverse_loop(a, out):
-    bad = 0.0
-    for n in range(out.shape[0]):
-        r = K.qinverse(row4(a, n))
-        put(out, n, r)
-        bad += residue(r)
-    return bad == 0.0
-
-
-@jit
-def _norm_loop(a, out):
-    bad = 0.0
-    for n in range(out.shape[0]):
-        r = K.qnorm(row4(a, n))
-        out[n] = r
-        bad += r - r
-    return bad == 0.0
-
-
-@jit
-def _normalize_loop(a, out):
-    bad = 0.0
-    for n in range(out.shape[0]):
-        r = K.qnormalize(row4(a, n))
-        put(out, n, r)
-        bad += residue(r)
-    return bad == 0.0
-
-
-@jit
-def _rotate_loop(q, sq, v, sv, out, tol):
-    # qunit turns non-unit and non-finite q into NaN; a non-finite v reaches the result
-    # through its own term v + ...
-    bad = 0.0
-    for n in range(out.shape[0]):
-        r = K.qrotate(K.qunit(row4(q, n * sq), tol), row3(v, n * sv))
-        put(out, n, r)
-        bad += residue(r)
-    return bad == 0.0
-
-
-@jit
-def _rotate_one(q, v, tol):
-    return K.qrotate(K.qunit(q, tol), v)
-
-
-@jit
-def _axis_angle_loop(q, out, tol):
-    bad = 0.0
-    for n in range(out.shape[0]):
-        r = K.axis_angle_from_quat(K.qunit(row4(q, n), tol))
-        put(out, n, r)
-        bad += residue(r)
-    return bad == 0.0
-
-
-@jit
-def _from_axis_angle_loop(u, su, t, st, out):
-    bad = 0.0
-    for n in range(out.shape[0]):
-        r = K.quat_from_axis_angle(row3(u, n * su), t[n * st])
-        put(out, n, r)
-        bad += residue(r)
-    return bad == 0.0
-
-
-@jit
-def _from_rotvec_loop(v, out):
-    bad = 0.0
-    for n in range(out.shape[0]):
-        r = K.quat_from_rotvec(row3(v, n))
-        put(out, n, r)
-        bad += residue(r)
-    return bad == 0.0
-
-
-@jit
-def _to_rotvec_loop(q, out, tol):
-    bad = 0.0
-    for n in range(out.shape[0]):
-        r = K.rotvec_from_quat(K.qunit(row4(q, n), tol))
-        put(out, n, r)
-        bad += residue(r)
-    return bad == 0.0
-
-
-@jit
-def _exp_loop(a, out):
-    # exp(-inf) = 0 would hide an infinite input: check the input too.
-    bad = 0.0
-    for n in range(out.shape[0]):
-        x = row4(a, n)
-        r = K.qexp(x)
-        put(out, n, r)
-        bad += residue(x) + residue(r)
-    return bad == 0.0
-
-
-@jit
-def _log_loop(a, out):
-    bad = 0.0
-    for n in range(out.shape[0]):
-        x = row4(a, n)
-        r = K.qlog(x)
-        put(out, n, r)
-        bad += residue(x) + residue(r)
-    return bad == 0.0
-
-
-@jit
-def _slerp_loop(a, sa, b, sb, t, st, out, tol):
-    bad = 0.0
-    for n in range(out.shape[0]):
-        r = K.qslerp(K.qunit(row4(a, n * sa), tol), K.qunit(row4(b, n * sb), tol), t[n * st])
-        put(out, n, r)
-        bad += residue(r)
-    return bad == 0.0
-
-
-@jit
-def _distance_loop(a, sa, b, sb, out, tol):
-    bad = 0.0
-    for n in range(out.shape[0]):
-        r = K.geodesic_angle(K.qunit(row4(a, n * sa), tol), K.qunit(row4(b, n * sb), tol))
-        out[n] = r
-        bad += r - r
-    return bad == 0.0
-
-
-@jit
-def _two_vectors_loop(u, su, v, sv, out):
-    bad = 0.0
-    for n in range(out.shape[0]):
-        r = K.quat_from_two_vectors(row3(u, n * su), row3(v, n * sv))
-        put(out, n, r)
-        bad += residue(r)
-    return bad == 0.0
-
-
-# ---------------------------------------------------------------------------------------
 # public API
 
 
@@ -296,7 +128,7 @@ def multiply(p, q) -> np.ndarray:
             return np.array(r)
     b = Batch((p, "p", 4), (q, "q", 4))
     out = b.empty(4)
-    b.fail(_multiply_loop(b.flat[0], b.steps[0], b.flat[1], b.steps[1], out), out, what="product")
+    b.fail(L.multiply_loop(b.flat[0], b.steps[0], b.flat[1], b.steps[1], out), out, what="product")
     return b.shaped(out)
 
 
@@ -323,7 +155,7 @@ def norm(q) -> np.ndarray | float:
     """
     b = Batch((q, "q", 4))
     out = b.empty()
-    b.fail(_norm_loop(b.flat[0], out), out, what="norm")
+    b.fail(L.norm_loop(b.flat[0], out), out, what="norm")
     r = b.shaped(out)
     return float(r) if r.ndim == 0 else r
 
@@ -349,7 +181,7 @@ def inverse(q) -> np.ndarray:
     """
     b = Batch((q, "q", 4))
     out = b.empty(4)
-    b.fail(_inverse_loop(b.flat[0], out), out, nonzero=("q",), what="inverse")
+    b.fail(L.inverse_loop(b.flat[0], out), out, nonzero=("q",), what="inverse")
     return b.shaped(out)
 
 
@@ -364,7 +196,7 @@ def divide(p, q) -> np.ndarray:
     """
     b = Batch((p, "p", 4), (q, "q", 4))
     out = b.empty(4)
-    ok = _divide_loop(b.flat[0], b.steps[0], b.flat[1], b.steps[1], out)
+    ok = L.divide_loop(b.flat[0], b.steps[0], b.flat[1], b.steps[1], out)
     b.fail(ok, out, nonzero=("q",), what="quotient")
     return b.shaped(out)
 
@@ -379,7 +211,7 @@ def normalize(q) -> np.ndarray:
     """
     b = Batch((q, "q", 4))
     out = b.empty(4)
-    b.fail(_normalize_loop(b.flat[0], out), out, nonzero=("q",), what="normalised quaternion")
+    b.fail(L.normalize_loop(b.flat[0], out), out, nonzero=("q",), what="normalised quaternion")
     return b.shaped(out)
 
 
@@ -405,12 +237,12 @@ def rotate(q, v) -> np.ndarray:
     """
     single = _single(q, v, 4, 3)
     if single is not None:
-        r = _rotate_one(single[0], single[1], UNIT_TOLERANCE)
+        r = L.rotate_one(single[0], single[1], UNIT_TOLERANCE)
         if _finite_sum(r):
             return np.array(r)
     b = Batch((q, "q", 4), (v, "v", 3))
     out = b.empty(3)
-    ok = _rotate_loop(b.flat[0], b.steps[0], b.flat[1], b.steps[1], out, UNIT_TOLERANCE)
+    ok = L.rotate_loop(b.flat[0], b.steps[0], b.flat[1], b.steps[1], out, UNIT_TOLERANCE)
     b.fail(ok, out, unit=("q",), what="rotated vector")
     return b.shaped(out)
 
@@ -418,7 +250,7 @@ def rotate(q, v) -> np.ndarray:
 def _axis_angle(q) -> np.ndarray:
     b = Batch((q, "q", 4))
     out = b.empty(4)
-    b.fail(_axis_angle_loop(b.flat[0], out, UNIT_TOLERANCE), out, unit=("q",))
+    b.fail(L.axis_angle_loop(b.flat[0], out, UNIT_TOLERANCE), out, unit=("q",))
     return b.shaped(out)
 
 
@@ -517,7 +349,7 @@ def from_axis_angle(axis, angle, degrees: bool = False) -> np.ndarray:
         angle = np.radians(as_float_array(angle, "angle"))
     b = Batch((axis, "axis", 3), (angle, "angle", None))
     out = b.empty(4)
-    ok = _from_axis_angle_loop(b.flat[0], b.steps[0], b.flat[1], b.steps[1], out)
+    ok = L.from_axis_angle_loop(b.flat[0], b.steps[0], b.flat[1], b.steps[1], out)
     b.fail(ok, out, nonzero=("axis",))
     return b.shaped(out)
 
@@ -532,7 +364,7 @@ def from_rotation_vector(r) -> np.ndarray:
     """
     b = Batch((r, "r", 3))
     out = b.empty(4)
-    b.fail(_from_rotvec_loop(b.flat[0], out), out)
+    b.fail(L.from_rotvec_loop(b.flat[0], out), out)
     return b.shaped(out)
 
 
@@ -546,7 +378,7 @@ def to_rotation_vector(q) -> np.ndarray:
     """
     b = Batch((q, "q", 4))
     out = b.empty(3)
-    b.fail(_to_rotvec_loop(b.flat[0], out, UNIT_TOLERANCE), out, unit=("q",))
+    b.fail(L.to_rotvec_loop(b.flat[0], out, UNIT_TOLERANCE), out, unit=("q",))
     return b.shaped(out)
 
 
@@ -562,7 +394,7 @@ def exp(q) -> np.ndarray:
     """
     b = Batch((q, "q", 4))
     out = b.empty(4)
-    b.fail(_exp_loop(b.flat[0], out), out, what="exponential")
+    b.fail(L.exp_loop(b.flat[0], out), out, what="exponential")
     return b.shaped(out)
 
 
@@ -581,7 +413,7 @@ def log(q) -> np.ndarray:
     """
     b = Batch((q, "q", 4))
     out = b.empty(4)
-    b.fail(_log_loop(b.flat[0], out), out, nonzero=("q",), what="logarithm")
+    b.fail(L.log_loop(b.flat[0], out), out, nonzero=("q",), what="logarithm")
     return b.shaped(out)
 
 
@@ -606,7 +438,7 @@ def slerp(q0, q1, t) -> np.ndarray:
     b = Batch((q0, "q0", 4), (q1, "q1", 4), (t, "t", None))
     out = b.empty(4)
     f, s = b.flat, b.steps
-    ok = _slerp_loop(f[0], s[0], f[1], s[1], f[2], s[2], out, UNIT_TOLERANCE)
+    ok = L.slerp_loop(f[0], s[0], f[1], s[1], f[2], s[2], out, UNIT_TOLERANCE)
     b.fail(ok, out, unit=("q0", "q1"))
     return b.shaped(out)
 
@@ -627,7 +459,7 @@ def distance(q0, q1) -> np.ndarray | float:
     """
     b = Batch((q0, "q0", 4), (q1, "q1", 4))
     out = b.empty()
-    ok = _distance_loop(b.flat[0], b.steps[0], b.flat[1], b.steps[1], out, UNIT_TOLERANCE)
+    ok = L.distance_loop(b.flat[0], b.steps[0], b.flat[1], b.steps[1], out, UNIT_TOLERANCE)
     b.fail(ok, out, unit=("q0", "q1"))
     r = b.shaped(out)
     return float(r) if r.ndim == 0 else r
@@ -658,7 +490,7 @@ def from_two_vectors(u, v) -> np.ndarray:
     b = Batch((u, "u", 3), (v, "v", 3))
     out = b.empty(4)
     b.fail(
-        _two_vectors_loop(b.flat[0], b.steps[0], b.flat[1], b.steps[1], out),
+        L.two_vectors_loop(b.flat[0], b.steps[0], b.flat[1], b.steps[1], out),
         out,
         nonzero=("u", "v"),
     )
