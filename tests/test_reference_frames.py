@@ -53,7 +53,7 @@ def rotated(moments, p) -> RigidBody:
 def simulated(body, q0, w0, duration, step=1e-3, integrator="dp8", torques=()):
     tr = simulate(body, q0, w0, duration=duration, step=step, integrator=integrator,
                   paths=("quaternion",), torques=torques)  # fmt: skip
-    return tr.t, tr.q, tr.w
+    return tr.t, tr.quaternions(), tr.w
 
 
 def test_issue_10_references_ignored_the_principal_rotation():
