@@ -152,3 +152,28 @@ def test_rejects_symmetric_body_and_bad_input():
         AsymmetricTop((1.0, 2.0, 3.0), (2.0, 0, 0, 0), (1.0, 0.0, 0.0))
     with pytest.raises(InputError, match="angular_velocity"):
         AsymmetricTop((1.0, 2.0, 3.0), (1.0, 0, 0, 0), (1.0, float("nan"), 0.0))
+
+
+def test_motion_within_1e_77_of_the_middle_axis_is_refused_not_wrong():
+    # Issue 10's review: ω = (−ε/1000, 0.99999, −ε) on (1, 2, 2.97) with ε = 1e-78 gives
+    # 1 − m = 2.9e-156, a normal float, but the Jacobi functions' descending transformation
+    # squares a ratio of size 1/m₁ and overflows: orientations came out 1.4e-8 rad wrong
+    # (0.6 rad at ε = 1e-123) under a stated bound of 1e-11. They refuse now; just above
+    # the limit (ε = 1e-75) they agree with dp8.
+    from ga_rotors import quaternion as Q
+    from ga_rotors.reference import elliptic
+    from ga_rotors.simulate import simulate
+
+    body, q0 = (1.0, 2.0, 2.97), Q.from_axis_angle([0.0, 0.0, 1.0], 3.1)
+    for eps in (1e-78, 1e-123):
+        top = AsymmetricTop(body, q0, (-eps / 1000, 0.99999, -eps))
+        assert 0.0 < top.m1 < elliptic.MIN_M1
+        with pytest.raises(PrecisionError, match="Jacobi elliptic functions lose"):
+            top.state([0.0, 1.0])
+        with pytest.raises(PrecisionError, match="Jacobi elliptic functions lose"):
+            top.angular_velocity([1.0])
+    w0 = (-1e-78, 0.99999, -1e-75)
+    top = AsymmetricTop(body, q0, w0)
+    assert elliptic.MIN_M1 < top.m1 < 1e-148
+    tr = simulate(body, q0, w0, duration=2.0, step=1e-3, integrator="dp8", paths=("quaternion",))
+    assert top.orientation_error(tr.t, tr.quaternions()).max() < 1e-12

@@ -272,6 +272,13 @@ class AsymmetricTop:
         """ω(t) in the principal frame, shape (n, 3)."""
         if self._steady:
             return np.tile(self._w0, (t.size, 1))
+        if self.m1 < elliptic.MIN_M1:
+            raise PrecisionError(
+                f"asymmetric top reference: 1 − m = {self.m1:.3g} is below "
+                f"{elliptic.MIN_M1:.2g}, where the Jacobi elliptic functions lose their "
+                "accuracy; the motion is too close to the separatrix for double precision "
+                "(move the initial ω off it by more than ~1e-77 relative)"
+            )
         sn, cn, dn = elliptic.jacobi(self.rate * t + self._u0, self.m, self.m1)
         a, b, c = self._axes
         out = np.empty((t.size, 3))

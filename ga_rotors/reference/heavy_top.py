@@ -356,6 +356,12 @@ class HeavyTop:
         True
         """
         t = _times(t)
+        if self.m1 < elliptic.MIN_M1:
+            raise PrecisionError(
+                f"heavy top reference: 1 − m = {self.m1:.3g} is below {elliptic.MIN_M1:.2g}, "
+                "where the Jacobi elliptic functions lose their accuracy (u₃ − u₂ within "
+                "~1e-154 of the unstable vertical separatrix)"
+            )
         r = self.rate * t + self._r0
         sn, cn, dn = elliptic.jacobi(r, self.m, self.m1)
         one_minus = self._om1 * (self._n1_plus + self._n_plus * cn * cn)
