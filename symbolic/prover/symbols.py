@@ -40,7 +40,7 @@ class Unsupported(Exception):
     >>> raise Unsupported("orthogonality to a null vector")
     Traceback (most recent call last):
     ...
-    symbolic.prover.symbols.Unsupported: orthogonality to a null vector
+    ga_rotors.symbolic.prover.symbols.Unsupported: orthogonality to a null vector
     """
 
 
