@@ -339,18 +339,43 @@ class RigidBody:
         return i1 == i2 or i2 == i3 or i1 == i3
 
     def energy(self, w) -> np.ndarray | float:
-        """Kinetic energy ½ Σ Iₖ ωₖ², body angular velocity of shape (..., 3)."""
-        w = as_float_array(w, "w", last=3)
+        """Kinetic energy ½ ωᵀ I ω for body angular velocities ω of shape (..., 3).
+
+        ω is in the user's body frame (as ``simulate`` returns it): for a body given by a
+        turned tensor it is carried to the principal frame first, ½ Σ Iₖ ωₖ² there.
+
+        Examples
+        --------
+        >>> from ga_rotors import quaternion as Q
+        >>> body = RigidBody((1.0, 2.0, 3.0), Q.from_axis_angle([0.0, 0.0, 1.0], 0.5))
+        >>> round(body.energy([1.0, 0.0, 0.0]), 12)  # ½ (cos² 0.5 · 1 + sin² 0.5 · 2)
+        0.614924423533
+        """
+        _, w = self.to_principal(None, w)
         e = 0.5 * np.einsum("...i,i,...i->...", w, np.asarray(self.moments), w)
         return float(e) if e.ndim == 0 else e
 
     def momentum(self, w) -> np.ndarray:
-        """Body-frame angular momentum L = I ω, shape (..., 3)."""
-        w = as_float_array(w, "w", last=3)
-        return w * np.asarray(self.moments)
+        """Body-frame angular momentum L = I ω, shape (..., 3), in the frame of ``w``.
+
+        Examples
+        --------
+        >>> RigidBody((1.0, 2.0, 3.0)).momentum([1.0, 1.0, 1.0]).tolist()
+        [1.0, 2.0, 3.0]
+        """
+        _, w_p = self.to_principal(None, w)
+        return self.from_principal(None, w_p * np.asarray(self.moments))[1]
 
     def space_momentum(self, q, w) -> np.ndarray:
-        """Space-frame angular momentum q (I ω) q*: constant in torque-free motion."""
+        """Space-frame angular momentum q (I ω) q*: constant in torque-free motion.
+
+        ``q`` and ``w`` are the user's body frame's orientation and angular velocity.
+
+        Examples
+        --------
+        >>> RigidBody((1.0, 2.0, 3.0)).space_momentum([0.0, 0.0, 0.0, 1.0], [1.0, 0.0, 0.0])
+        array([-1.,  0.,  0.])
+        """
         from .quaternion import rotate
 
         return rotate(q, self.momentum(w))

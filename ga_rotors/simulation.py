@@ -300,17 +300,20 @@ def simulate(
             info["watch"] = module.report(result.stats)
         status[p] = info
 
+    # The loops return principal-frame states: the outputs are read from them on the
+    # principal body (L is carried back to the user's frame below).
+    principal_body = rigid if principal is None or rigid is None else RigidBody(rigid.moments)
     if "energy" in outputs:
-        arrays["energy"] = np.atleast_1d(rigid.energy(primary_w))
+        arrays["energy"] = np.atleast_1d(principal_body.energy(primary_w))
     if "L" in outputs:
-        arrays["L"] = rigid.momentum(primary_w)
+        arrays["L"] = principal_body.momentum(primary_w)
         components["L"] = ("1", "2", "3")
     if "L_space" in outputs or "angles" in outputs:
         primary = _paths.get(requested[0])
         n = primary_w.shape[0]
         q = primary.load().quaternions(arrays[primary.array][:n])
         if "L_space" in outputs:
-            arrays["L_space"] = rigid.space_momentum(q, primary_w)
+            arrays["L_space"] = principal_body.space_momentum(q, primary_w)
             components["L_space"] = ("x", "y", "z")
         if "angles" in outputs:
             from . import euler

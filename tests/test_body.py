@@ -116,3 +116,20 @@ def test_from_tensor_principal_rotation_rebuilds_the_tensor():
     body = RigidBody.from_tensor(tensor)
     P = matrix.from_quaternion(body.principal_rotation)
     assert np.allclose(P @ np.diag(body.moments) @ P.T, tensor, rtol=0, atol=1e-14)
+
+
+def test_energy_and_momentum_of_a_turned_tensor_read_the_users_frame():
+    # Issue 10's trap for the references, in the body itself: for RigidBody.from_tensor(T),
+    # simulate returns ω in the frame T was written in, and energy / momentum must read it
+    # there (½ ωᵀTω, Tω), not as principal-frame components.
+    from ga_rotors import quaternion as Q
+
+    turn = Q.to_matrix(Q.from_axis_angle([1.0, -2.0, 0.5], 1.1))
+    tensor = turn @ np.diag([1.0, 2.0, 2.5]) @ turn.T
+    body = RigidBody.from_tensor(tensor)
+    w = np.array([[0.3, -1.2, 0.7], [2.0, 0.1, -0.4]])
+    assert np.allclose(body.energy(w), 0.5 * np.einsum("ni,ij,nj->n", w, tensor, w),
+                       rtol=1e-14, atol=0)  # fmt: skip
+    assert np.allclose(body.momentum(w), w @ tensor.T, rtol=0, atol=1e-14)
+    q = Q.from_axis_angle([0.2, 0.3, 1.0], 0.8)
+    assert np.allclose(body.space_momentum(q, w), Q.rotate(q, w @ tensor.T), rtol=0, atol=1e-14)
