@@ -20,6 +20,7 @@ from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
 
 from ga_rotors import quaternion as Q
+from ga_rotors import simulate
 from ga_rotors.body import RigidBody
 from ga_rotors.effects import isotropic_damping
 from ga_rotors.errors import InputError
@@ -28,7 +29,6 @@ from ga_rotors.reference.asymmetric_top import AsymmetricTop
 from ga_rotors.reference.damped_top import DampedSymmetricTop
 from ga_rotors.reference.heavy_top import HeavyTop, gravity_torque
 from ga_rotors.reference.symmetric_top import SymmetricTop
-from ga_rotors.simulate import simulate
 
 SETTINGS = settings(max_examples=15, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 
