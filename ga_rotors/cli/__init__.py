@@ -55,6 +55,18 @@ def version() -> str:
     return __version__
 
 
+class _Version(argparse.Action):
+    """``--version``, read from the metadata only when asked: importlib.metadata costs more
+    to import (0.03-0.3 s) than everything else ``ga-rotors --help`` loads."""
+
+    def __init__(self, option_strings, dest, **kwargs):
+        super().__init__(option_strings, dest, nargs=0, default=argparse.SUPPRESS, **kwargs)
+
+    def __call__(self, parser, namespace, values, option_string=None):
+        print(f"{parser.prog} {version()}")
+        parser.exit()
+
+
 def build_parser() -> argparse.ArgumentParser:
     """The ``ga-rotors`` argument parser: one sub-parser per entry of :data:`COMMANDS`.
 
@@ -70,7 +82,7 @@ def build_parser() -> argparse.ArgumentParser:
         prog="ga-rotors",
         description="Rotations in geometric algebra: rotors, quaternions, rigid bodies.",
     )
-    parser.add_argument("--version", action="version", version=f"%(prog)s {version()}")
+    parser.add_argument("--version", action=_Version, help="print the version and exit")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND")
     for name, modname in COMMANDS.items():
         module = importlib.import_module(modname)
