@@ -156,8 +156,17 @@ class HeavyTop:
         if inertia.shape != (3,) or not np.all(inertia > 0):
             raise InputError(f"moments: expected 3 positive moments, got {inertia}")
         if inertia[0] != inertia[1]:
+            turned = self.body is not None and not self.body.is_principal
             raise InputError(
                 f"moments: a symmetric top needs I1 == I2 (symmetry axis = body z), got {inertia}"
+                + (
+                    "; these are the principal moments of a turned tensor, in increasing order "
+                    "(RigidBody.from_tensor), so a top whose distinct moment is the smallest has "
+                    "its symmetry axis on principal x, not on principal z where gravity_torque "
+                    "puts the centre of mass"
+                    if turned
+                    else ""
+                )
             )
         if not (math.isfinite(mgl) and mgl > 0):
             raise InputError(f"mgl: expected a positive finite number, got {mgl!r}")
