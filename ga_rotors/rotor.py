@@ -7,11 +7,16 @@ rotor of the rotation by α about the unit axis u is exp(−I u α/2) = cos(α/2
 clifford's ``Cl(3)`` layout is created once, on first use (importing clifford takes about
 a second), so ``import ga_rotors`` and ``import ga_rotors.rotor`` stay light.
 
-Products, reverses and sandwiches are clifford's geometric product. The scalar formulas
-(exp, log, angles, conversions) are the shared kernels of :mod:`ga_rotors._kernels`,
-reached through the isomorphism: exp and log are exact at angle 0, at tiny angles
-(1e-300 ... 1e-9), at exactly π and π − 1e-12, and at R = ±1, where clifford's own
-``log_rotor`` fails.
+Products and reverses are the geometric product of the even subalgebra
+(:mod:`ga_rotors._rotor_kernels`, generated from clifford's multiplication table); the
+other formulas (sandwich, exp, log, angles, conversions) are the shared kernels of
+:mod:`ga_rotors._kernels`, reached through the isomorphism: exp and log are exact at
+angle 0, at tiny angles (1e-300 ... 1e-9), at exactly π and π − 1e-12, and at R = ±1,
+where clifford's own ``log_rotor`` fails. One rotor at a time, the kernels run
+uncompiled (:func:`ga_rotors._jit.plain`) and the results are built as MultiVectors from
+their coefficients, so no function here calls clifford's products: those are compiled
+by numba, without a cache, the first time a process uses them (3–8 s). ``R * S`` on the
+returned MultiVectors is still clifford's product and pays that once per process.
 
 Inputs: rotors must be even (odd part, grades 1 and 3, at most UNIT_TOLERANCE) and of
 unit norm within UNIT_TOLERANCE (then renormalised); otherwise :class:`InputError`.
@@ -33,9 +38,11 @@ import math
 import numpy as np
 
 from . import _kernels as K
+from . import _rotor_kernels as RK
 from . import euler as _euler
 from . import matrix as _matrix
 from . import quaternion as _quaternion
+from ._jit import plain
 from ._validate import UNIT_TOLERANCE, as_float_array, require_unit
 from .errors import InputError
 from .isomorphism import ISOMORPHISM, from_even, to_even
@@ -65,6 +72,17 @@ __all__ = [
 
 _VECTOR = (1, 2, 3)  # e1, e2, e3 in clifford's blade order
 _BIVECTOR = (4, 5, 6)  # e12, e13, e23
+_EVEN = [0, 4, 5, 6]  # 1, e12, e13, e23: the order of _rotor_kernels' 4-tuples
+
+# The kernels this module calls, one rotor at a time, uncompiled (see the module docstring).
+_rmul, _rrev = plain(RK.rmul), plain(RK.rrev)
+_rotor_from_quat = plain(RK.rotor_from_quat)
+_qrotate, _qunit, _qnormalize = plain(K.qrotate), plain(K.qunit), plain(K.qnormalize)
+_qexp_pure, _qlog_unit, _qslerp = plain(K.qexp_pure), plain(K.qlog_unit), plain(K.qslerp)
+_geodesic_angle, _axis_angle = plain(K.geodesic_angle), plain(K.axis_angle_from_quat)
+_from_axis_angle, _from_rotvec = plain(K.quat_from_axis_angle), plain(K.quat_from_rotvec)
+_to_rotvec, _from_two_vectors = plain(K.rotvec_from_quat), plain(K.quat_from_two_vectors)
+_matrix_from_quat = plain(K.matrix_from_quat)
 
 
 @functools.cache
@@ -133,6 +151,41 @@ def _rotor(q):
     return _multivector(c)
 
 
+def _even(a):
+    """The MultiVector of even coefficients (1, e12, e13, e23), without validation."""
+    c = np.zeros(8)
+    c[_EVEN] = a
+    return _multivector(c)
+
+
+def _finite(values) -> bool:
+    # One sum instead of a test per value: NaN and inf propagate through it, and a sum
+    # that overflows from finite values only sends the call down the checked path.
+    return math.isfinite(sum(values))
+
+
+def _vector3(x):
+    """x as 3 finite floats when it is one plain vector, else None (the checked path)."""
+    if type(x) in (list, tuple) and len(x) == 3:
+        items = x
+    elif isinstance(x, np.ndarray) and x.shape == (3,) and x.dtype.kind in "fiu":
+        items = x.tolist()
+    else:
+        return None
+    if not all(type(v) in (float, int) for v in items):
+        return None
+    v = (float(items[0]), float(items[1]), float(items[2]))
+    return v if _finite(v) else None
+
+
+def _number(x):
+    """x as a finite float when it is one plain real number, else None."""
+    if type(x) in (float, int) or (isinstance(x, np.generic) and x.dtype.kind in "fiu"):
+        x = float(x)
+        return x if math.isfinite(x) else None
+    return None
+
+
 def from_quaternion(q):
     """The rotor of unit quaternion q: w − x e23 − y e31 − z e12.
 
@@ -170,7 +223,10 @@ def normalize(R):
     q = _quaternion_of(R, unit=False)
     if not q.any():
         raise InputError("R: expected nonzero values (an even multivector), got 0")
-    return _multivector(to_even(_quaternion.normalize(q)))
+    n = _qnormalize(tuple(q.tolist()))
+    if not _finite(n):  # only through an overflowing norm; the checked path says why
+        return _multivector(to_even(_quaternion.normalize(q)))
+    return _rotor(n)
 
 
 def compose(*rotors):
@@ -187,9 +243,9 @@ def compose(*rotors):
         raise InputError("rotors: expected at least one rotor")
     out = None
     for n, R in enumerate(rotors):
-        R = _rotor(_unit(R, f"rotors[{n}]"))
-        out = R if out is None else out * R
-    return out
+        a = _rotor_from_quat(_unit(R, f"rotors[{n}]"))
+        out = a if out is None else _rmul(out, a)
+    return _even(out)
 
 
 def inverse(R):
@@ -201,7 +257,7 @@ def inverse(R):
     >>> float((R * inverse(R))[()])
     1.0
     """
-    return ~_rotor(_unit(R))
+    return _even(_rrev(_rotor_from_quat(_unit(R))))
 
 
 def apply(R, v):
@@ -222,18 +278,35 @@ def apply(R, v):
     """
     from clifford import MultiVector
 
-    R = _rotor(_unit(R))
+    q = _unit(R)
     if isinstance(v, MultiVector):
         c = _coefficients(v, "v")
         if np.any(np.delete(c, _VECTOR) != 0):
             raise InputError("v: expected a vector (grade 1 only)")
-        return R * v * ~R
-    v = as_float_array(v, "v", last=3)
-    if v.shape != (3,):
-        raise InputError(f"v: expected one vector of shape (3,), got shape {v.shape}")
-    c = np.zeros(8)
-    c[list(_VECTOR)] = v
-    return (R * _multivector(c) * ~R).value[list(_VECTOR)].copy()
+        out = np.zeros(8)
+        out[list(_VECTOR)] = _rotate(q, tuple(c[list(_VECTOR)].tolist()))
+        return _multivector(out)
+    fast = _vector3(v)
+    if fast is None:
+        v = as_float_array(v, "v", last=3)
+        if v.shape != (3,):
+            raise InputError(f"v: expected one vector of shape (3,), got shape {v.shape}")
+        fast = tuple(v.tolist())
+    return np.array(_rotate(q, fast))
+
+
+def _rotate(q, v):
+    """q v q* for a unit quaternion and finite v, also when |v| is near the largest float."""
+    r = _qrotate(q, v)
+    if _finite(r):
+        return r
+    # The kernel's t = 2 q⃗ × v can overflow where the result does not; rotating is linear
+    # and scaling by a power of two is exact, so rotate v / 2^e and scale back.
+    e = math.frexp(max(abs(x) for x in v))[1]
+    try:
+        return tuple(math.ldexp(x, e) for x in _qrotate(q, tuple(math.ldexp(x, -e) for x in v)))
+    except OverflowError:
+        raise InputError("rotated vector is not finite (overflow of float64)", key="v") from None
 
 
 def _bivector_to_pure(B) -> tuple[float, float, float]:
@@ -263,7 +336,7 @@ def exp(B):
     >>> exp(1e-300 * e12).value[[0, 4]]         # (1, e12) coefficients, exact
     array([1.e+000, 1.e-300])
     """
-    return _multivector(to_even(K.qexp_pure(_bivector_to_pure(B))))
+    return _multivector(to_even(_qexp_pure(_bivector_to_pure(B))))
 
 
 def log(R):
@@ -280,7 +353,7 @@ def log(R):
     >>> log(-1.0 + 0.0 * layout().blades["e12"])
     -(3.14159^e12)
     """
-    return _pure_to_bivector(K.qlog_unit(_unit(R)))
+    return _pure_to_bivector(_qlog_unit(_unit(R)))
 
 
 def slerp(R0, R1, t: float):
@@ -298,14 +371,7 @@ def slerp(R0, R1, t: float):
     t = as_float_array(t, "t")
     if t.shape != ():
         raise InputError(f"t: expected one number, got shape {t.shape}")
-    R0 = _rotor(_unit(R0, "R0"))
-    R1 = _rotor(_unit(R1, "R1"))
-    D = ~R0 * R1
-    d = from_even(D.value, name="R0, R1")
-    if d[0] < 0.0:
-        d = -d
-    h = K.qlog_unit(tuple(d))
-    return R0 * exp(_pure_to_bivector((float(t) * h[0], float(t) * h[1], float(t) * h[2])))
+    return _rotor(_qslerp(_unit(R0, "R0"), _unit(R1, "R1"), float(t)))
 
 
 def distance(R0, R1) -> float:
@@ -319,9 +385,7 @@ def distance(R0, R1) -> float:
     >>> distance(a, compose(a, from_axis_angle([0, 1.0, 0], 1e-12)))
     1e-12
     """
-    R0 = _rotor(_unit(R0, "R0"))
-    R1 = _rotor(_unit(R1, "R1"))
-    return float(K.axis_angle_from_quat(tuple(from_even((~R0 * R1).value, name="R0, R1")))[3])
+    return _geodesic_angle(_unit(R0, "R0"), _unit(R1, "R1"))
 
 
 # --- converters: through the unit quaternion of the same rotation --------------------------
@@ -335,6 +399,11 @@ def from_axis_angle(axis, angle, degrees: bool = False):
     >>> from_axis_angle([0, 0, 1.0], 180, degrees=True).clean(1e-15)
     -(1.0^e12)
     """
+    u, a = _vector3(axis), _number(angle)
+    if u is not None and a is not None:
+        q = _from_axis_angle(u, math.radians(a) if degrees else a)
+        if _finite(q):  # else a zero axis: the checked path names it
+            return from_quaternion(np.array(q))
     return from_quaternion(_quaternion.from_axis_angle(axis, angle, degrees=degrees))
 
 
@@ -346,7 +415,8 @@ def to_axis_angle(R) -> tuple[np.ndarray, float]:
     >>> to_axis_angle(from_axis_angle([0, 2.0, 0], 0.5))
     (array([0., 1., 0.]), 0.5)
     """
-    return _quaternion.to_axis_angle(to_quaternion(R))
+    r = _axis_angle(_qunit(_unit(R), UNIT_TOLERANCE))
+    return np.array(r[:3]), r[3]
 
 
 def from_rotation_vector(r):
@@ -357,6 +427,11 @@ def from_rotation_vector(r):
     >>> from_rotation_vector([0.0, 0.0, 0.0])
     1.0
     """
+    v = _vector3(r)
+    if v is not None:
+        q = _from_rotvec(v)
+        if _finite(q):
+            return from_quaternion(np.array(q))
     return from_quaternion(_quaternion.from_rotation_vector(r))
 
 
@@ -368,7 +443,7 @@ def to_rotation_vector(R) -> np.ndarray:
     >>> to_rotation_vector(from_rotation_vector([0.1, 0.2, 0.3]))
     array([0.1, 0.2, 0.3])
     """
-    return _quaternion.to_rotation_vector(to_quaternion(R))
+    return np.array(_to_rotvec(_qunit(_unit(R), UNIT_TOLERANCE)))
 
 
 def from_two_vectors(u, v):
@@ -381,6 +456,11 @@ def from_two_vectors(u, v):
     >>> np.round(apply(R, [1.0, 0, 0]), 15) + 0.0
     array([0., 0., 1.])
     """
+    a, b = _vector3(u), _vector3(v)
+    if a is not None and b is not None:
+        q = _from_two_vectors(a, b)
+        if _finite(q):  # else a zero vector: the checked path names it
+            return from_quaternion(np.array(q))
     return from_quaternion(_quaternion.from_two_vectors(u, v))
 
 
@@ -405,7 +485,7 @@ def to_matrix(R) -> np.ndarray:
            [0., 1., 0.],
            [0., 0., 1.]])
     """
-    return _matrix.from_quaternion(to_quaternion(R))
+    return np.array(_matrix_from_quat(_qunit(_unit(R), UNIT_TOLERANCE))).reshape(3, 3)
 
 
 def from_euler(seq: str, angles, degrees: bool = False):

@@ -134,6 +134,83 @@ def test_slerp_agrees_with_quaternions(p, q, t):
     assert Q.distance(rotor.to_quaternion(R), Q.slerp(p, q, t)) <= 32 * U
 
 
+@given(unit_quaternions, unit_quaternions, vectors, st.floats(0.0, 1.0))
+def test_operations_agree_with_cliffords_own_products(p, q, v, t):
+    # The functions compute through the package's kernels; clifford's operators on the same
+    # MultiVectors are the path they replaced, and must give the same rotors.
+    Rp, Rq = rotor.from_quaternion(p), rotor.from_quaternion(q)
+    V = rotor.apply(rotor.from_quaternion([1.0, 0, 0, 0]), v[0] * E1 + v[1] * E2 + v[2] * E3)
+    assert np.allclose(rotor.compose(Rp, Rq).value, (Rp * Rq).value, rtol=0, atol=8 * U)
+    assert np.allclose(rotor.compose(Rp, Rq, Rp).value, (Rp * Rq * Rp).value, rtol=0, atol=16 * U)
+    assert np.allclose(rotor.inverse(Rp).value, (~Rp).value, rtol=0, atol=2 * U)
+    size = 16 * U * (1 + np.linalg.norm(v))
+    assert np.allclose(rotor.apply(Rp, V).value, (Rp * V * ~Rp).value, rtol=0, atol=size)
+    assert np.allclose(rotor.apply(Rp, v), (Rp * V * ~Rp).value[1:4], rtol=0, atol=size)
+    D = ~Rp * Rq
+    d = isomorphism.from_even(D.value)
+    step = rotor.log(D if d[0] >= 0 else -D)
+    assert np.allclose(rotor.slerp(Rp, Rq, t).value, (Rp * rotor.exp(t * step)).value, atol=32 * U)
+    assert math.isclose(rotor.distance(Rp, Rq), 2 * rotor.to_axis_angle(D)[1] / 2, abs_tol=8 * U)
+
+
+def test_apply_rotates_vectors_at_the_edge_of_the_float_range():
+    # The sandwich kernel's intermediate 2 q⃗ × v overflows for these; the result does not.
+    R = rotor.from_axis_angle([0, 0, 1.0], 1.0)
+    v = [1e308, 1e308, 0.0]
+    want = (R * (v[0] * E1 + v[1] * E2) * ~R).value[1:4]
+    assert np.allclose(rotor.apply(R, v), want, rtol=4 * U, atol=0)
+    with pytest.raises(InputError, match="v: rotated vector is not finite"):
+        rotor.apply(rotor.from_axis_angle([0, 0, 1.0], math.pi / 4), [1.7e308, 1.7e308, 0.0])
+
+
+_NOTHING_COMPILED = """
+import json, sys
+import numpy as np
+from ga_rotors import rotor
+
+def compiled():
+    # every numba dispatcher of ga_rotors and clifford that has machine code (compiled or
+    # loaded from the cache), and every function clifford's layout compiled for itself
+    out = [f"layout.{k}" for k, v in vars(rotor.layout()).items() if hasattr(v, "signatures")]
+    for name, module in list(sys.modules.items()):
+        if name.startswith(("ga_rotors", "clifford")):
+            for k, v in vars(module).items():
+                if hasattr(v, "py_func") and getattr(v, "signatures", None):
+                    out.append(f"{name}.{k}")
+    return sorted(set(out))
+
+R = rotor.from_axis_angle([0, 0, 1], 0.3)
+S = rotor.from_two_vectors([1.0, 0, 0], [0, 1.0, 0])
+T = rotor.from_rotation_vector(np.array([0.1, 0.2, 0.3]))
+e1 = rotor.layout().blades["e1"]
+rotor.compose(R, S, T), rotor.inverse(R), rotor.apply(R, [1.0, 2.0, 3.0]), rotor.apply(R, e1)
+rotor.exp(rotor.log(R)), rotor.slerp(R, S, 0.3), rotor.distance(R, S), rotor.normalize(2 * R)
+rotor.from_quaternion(rotor.to_quaternion(R)), rotor.to_axis_angle(R)
+rotor.to_rotation_vector(R), rotor.to_matrix(R), rotor.from_axis_angle([0, 0, 1], 90, True)
+str(R), repr(R), R.clean(1e-15), R(2), R + S, 2.0 * R, R == S
+first = compiled()
+# the Euler and matrix converters go through compiled loops, but not clifford's products
+rotor.to_euler(R, "XYZ"), rotor.from_euler("ZYZ", [0.1, 0.2, 0.3]), rotor.from_matrix(np.eye(3))
+print(json.dumps([first, [c for c in compiled() if "clifford" in c or c.startswith("layout")]]))
+"""
+
+
+def test_rotor_functions_compile_nothing_in_a_fresh_process():
+    # The first product in a process must not pay clifford's uncached JIT (seconds) nor
+    # numba's start-up: every function of the module except the Euler and matrix
+    # converters leaves no machine code behind, compiled or loaded.
+    import json
+    import subprocess
+    import sys
+
+    proc = subprocess.run([sys.executable, "-c", _NOTHING_COMPILED], capture_output=True,
+                          text=True, timeout=300)  # fmt: skip
+    assert proc.returncode == 0, proc.stderr[-3000:]
+    first, clifford_compiled = json.loads(proc.stdout.splitlines()[-1])
+    assert first == []
+    assert clifford_compiled == []
+
+
 def test_compose_applies_the_last_rotor_first():
     a = rotor.from_axis_angle([0, 0, 1.0], math.pi / 2)
     b = rotor.from_axis_angle([1.0, 0, 0], math.pi / 2)
@@ -180,6 +257,11 @@ def test_apply_takes_and_returns_clifford_vectors():
         ),
         (lambda: rotor.apply(1.0 + 0 * E12, [np.nan, 0, 0]), "v: contains nan"),
         (lambda: rotor.from_euler("XYZW", [0, 0, 0]), "seq: expected three axes"),
+        (lambda: rotor.from_axis_angle([0, 0, 0.0], 1.0), "axis: expected nonzero"),
+        (lambda: rotor.from_axis_angle([0, 0, 1.0], np.inf), "angle: contains inf"),
+        (lambda: rotor.from_two_vectors([1.0, 0, 0], [0, 0, 0.0]), "v: expected nonzero"),
+        (lambda: rotor.from_rotation_vector([np.nan, 0, 0]), "r: contains nan"),
+        (lambda: rotor.apply(1.0 + 0 * E12, [1.0, 0]), r"v: expected an array of shape"),
     ],
 )
 def test_bad_rotor_input_names_the_argument(call, message):
