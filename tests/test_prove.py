@@ -11,11 +11,20 @@ import clifford
 import numpy as np
 import pytest
 import sympy
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from ga_rotors.symbolic.prover import Assumptions, prove
 from ga_rotors.symbolic.prover.basis import Basis
 from ga_rotors.symbolic.prover.element import DegenerateDualError, Element
-from ga_rotors.symbolic.prover.grammar import Binary, Name, ParseError, Unary, parse_expression
+from ga_rotors.symbolic.prover.grammar import (
+    Binary,
+    Name,
+    ParseError,
+    Unary,
+    parse_expression,
+    parse_identity,
+)
 
 SIGNATURES = [(3, 0, 0), (1, 3, 0), (2, 1, 0), (0, 2, 0), (3, 0, 1), (1, 1, 1), (2, 0, 2)]
 
@@ -329,3 +338,41 @@ def test_a_runaway_identity_stops_at_the_timeout_as_undecided():
     assert verdict.status == "undecided" and "time limit" in verdict.detail
     with pytest.raises(ValueError, match="timeout"):
         prove("a == a", vectors="a", timeout=-1)
+
+
+# -- fuzzing: any text is parsed or rejected cleanly; random trees are decided ------------------
+_ALPHABET = "ab12 ()*^|~+-/=,.eIgradelcxp"
+
+
+@given(st.text(alphabet=_ALPHABET, max_size=40) | st.text(max_size=40))
+def test_any_text_parses_or_fails_with_a_parse_error(text):
+    try:
+        parse_identity(text)
+    except ParseError as exc:
+        assert str(exc)
+
+
+_atoms = st.sampled_from(["a", "b", "e1", "e23", "2", "1/3", "I"])
+_trees = st.recursive(
+    _atoms,
+    lambda sub: st.one_of(
+        st.tuples(sub, st.sampled_from(["+", "-", "*"]), sub).map(
+            lambda t: f"({t[0]}{t[1]}{t[2]})"
+        ),
+        st.tuples(sub, st.sampled_from(["^", "|"]), sub).map(lambda t: f"({t[0]}){t[1]}({t[2]})"),
+        sub.map(lambda s: f"~({s})"),
+        st.tuples(st.sampled_from(["lc", "rc", "dot", "scalar", "comm"]), sub, sub).map(
+            lambda t: f"{t[0]}({t[1]}, {t[2]})"
+        ),
+        st.tuples(sub, st.integers(0, 3)).map(lambda t: f"grade({t[0]}, {t[1]})"),
+    ),
+    max_leaves=6,
+)
+
+
+@settings(max_examples=40)
+@given(_trees)
+def test_random_expressions_equal_themselves_and_differ_from_themselves_plus_a_blade(text):
+    assert prove(f"{text} == {text}", signature=(2, 1), vectors="a,b")
+    shifted = prove(f"{text} == {text} + e12", signature=(2, 1), vectors="a,b")
+    assert shifted.status == "refuted"

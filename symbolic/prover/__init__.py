@@ -24,6 +24,6 @@ Examples
 """
 
 from .assumptions import Assumptions
-from .prove import Counterexample, Verdict, prove
+from .prove import Counterexample, Verdict, elements, prove
 
-__all__ = ["Assumptions", "Counterexample", "Verdict", "prove"]
+__all__ = ["Assumptions", "Counterexample", "Verdict", "elements", "prove"]

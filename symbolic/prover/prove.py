@@ -49,7 +49,7 @@ from .evaluate import evaluate
 from .grammar import Call, Node, Unary, parse_identity
 from .symbols import Unsupported, build_values, null_cases, parameter_names
 
-__all__ = ["Counterexample", "Verdict", "parse_signature", "prove"]
+__all__ = ["Counterexample", "Verdict", "elements", "parse_signature", "prove"]
 
 _DRAWS = 16
 _EXTRA_POINTS = 6
@@ -80,6 +80,30 @@ def parse_signature(signature) -> Basis:
     if sum(numbers) == 0 or sum(numbers) > 6:
         raise ValueError(f"signature: n = p + q + r must be 1..6, got {sum(numbers)}")
     return cached_basis(*numbers)
+
+
+def elements(signature=(3, 0), assumptions: Assumptions | None = None, **kinds):
+    """Symbolic multivectors of each declared kind, to compute with and display.
+
+    Coefficients are exact polynomials over ℚ in the free parameters (SymPy's sparse
+    polynomials; ``c_R``-style symbols are the normalisers, with c² λ = 1). In a
+    notebook each element renders as LaTeX.
+
+    Examples
+    --------
+    >>> x = elements((3, 0), vectors="a", bivectors="B")
+    >>> x["a"]
+    a_1*e1 + a_2*e2 + a_3*e3
+    >>> (x["a"] * x["a"]).grades()
+    {0}
+    >>> x["B"].latex()
+    'B_{e12} e_{12} + B_{e13} e_{13} + B_{e23} e_{23}'
+    """
+    if assumptions is None:
+        assumptions = Assumptions(**kinds)
+    basis = parse_signature(signature)
+    free, norms = parameter_names(assumptions, basis)
+    return build_values(assumptions, basis, _Symbolic(free + norms))
 
 
 # -- domains: where the numbers come from --------------------------------------------------
