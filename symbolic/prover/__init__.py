@@ -12,7 +12,9 @@ Modules, each with one job:
 * :mod:`.assumptions`: kinds of symbols and assumptions on them
 * :mod:`.symbols`: each kind built from free parameters
 * :mod:`.evaluate`: a parsed expression evaluated in a domain
-* :mod:`.prove`: the pre-check, the exact check and the proof; verdicts
+* :mod:`.domains`: polynomials, random draws, one exact point; reduction modulo relations
+* :mod:`.prove`: the pre-check, the exact check and the proof
+* :mod:`.verdict`: proved / refuted / undecided, as text and LaTeX
 * :mod:`.catalogue`: classical identities and where they hold
 * the ``ga-rotors prove`` command is :mod:`ga_rotors.cli.prove`
 
@@ -24,6 +26,7 @@ Examples
 """
 
 from .assumptions import Assumptions
-from .prove import Counterexample, Verdict, elements, prove
+from .prove import elements, prove
+from .verdict import Counterexample, Verdict
 
 __all__ = ["Assumptions", "Counterexample", "Verdict", "elements", "prove"]

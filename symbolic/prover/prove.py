@@ -33,23 +33,21 @@ from __future__ import annotations
 import signal
 import threading
 import time
-from dataclasses import dataclass, field
-from fractions import Fraction
 from itertools import product
 
 import numpy as np
 import sympy
-from sympy.polys.domains import QQ
-from sympy.polys.rings import PolyRing
 
 from .assumptions import Assumptions
 from .basis import Basis, cached_basis
+from .domains import Draws, InvalidPoint, Point, Polynomials, reduce_modulo
 from .element import Element
 from .evaluate import evaluate
 from .grammar import Call, Node, Unary, parse_identity
 from .symbols import Unsupported, build_values, null_cases, parameter_names
+from .verdict import Counterexample, Verdict
 
-__all__ = ["Counterexample", "Verdict", "elements", "parse_signature", "prove"]
+__all__ = ["elements", "parse_signature", "prove"]
 
 _DRAWS = 16
 _EXTRA_POINTS = 6
@@ -103,108 +101,10 @@ def elements(signature=(3, 0), assumptions: Assumptions | None = None, **kinds):
         assumptions = Assumptions(**kinds)
     basis = parse_signature(signature)
     free, norms = parameter_names(assumptions, basis)
-    return build_values(assumptions, basis, _Symbolic(free + norms))
+    return build_values(assumptions, basis, Polynomials(free + norms))
 
 
-# -- domains: where the numbers come from --------------------------------------------------
-class _Symbolic:
-    """Polynomials over ℚ in every free parameter, normaliser and exp coefficient."""
-
-    def __init__(self, names: list[str]):
-        self.ring = PolyRing(names, QQ)
-        self.gen = dict(zip(names, self.ring.gens, strict=True))
-        self.norms: list[tuple[str, object]] = []  # (normaliser, λ)
-        self.exps: list[tuple[str, str, object]] = []  # (C, S, δ)
-        self.exp_names: dict[Node, tuple[str, str]] = {}
-
-    def param(self, name):
-        return self.gen[name]
-
-    def const(self, q):
-        q = Fraction(q)
-        return self.ring(QQ(q.numerator, q.denominator))
-
-    def normaliser(self, name, lam):
-        self.norms.append((name, lam))
-        return self.gen[name]
-
-    def is_scalar(self, x: Element) -> bool:
-        return not x.grades() - {0}
-
-    def exp_pair(self, node, delta):
-        if not delta:  # X² = 0 identically: exp(X) = 1 + X exactly
-            return self.ring.one, self.ring.one
-        c, s = self.exp_names[node]
-        if not any(c == name for name, _, _ in self.exps):
-            self.exps.append((c, s, delta))
-        return self.gen[c], self.gen[s]
-
-
-class _Draws:
-    """Float arrays: column j of every coefficient is random draw j."""
-
-    def __init__(self, count: int, seed: int):
-        self.count = count
-        self.rng = np.random.default_rng(seed)
-        self.exact: dict[str, list[Fraction]] = {}
-        self.signs: dict[str, np.ndarray] = {}
-        self.valid = np.ones(count, dtype=bool)
-
-    def param(self, name):
-        if name not in self.exact:
-            num = self.rng.integers(-5, 6, size=self.count)
-            den = self.rng.integers(1, 4, size=self.count)
-            self.exact[name] = [Fraction(int(a), int(b)) for a, b in zip(num, den, strict=True)]
-        return np.array([float(x) for x in self.exact[name]])
-
-    def const(self, q):
-        return float(q)
-
-    def normaliser(self, name, lam):
-        lam = np.broadcast_to(np.asarray(lam, dtype=float), (self.count,))
-        ok = lam > 1e-6
-        self.valid &= ok
-        # the sign of c is free (−v is a unit vector, −R a rotor): draw it too
-        sign = self.signs.setdefault(name, self.rng.choice([-1.0, 1.0], size=self.count))
-        return sign / np.sqrt(np.where(ok, lam, 1.0))
-
-    def is_scalar(self, x: Element) -> bool:
-        scale = 1.0 + max((np.max(np.abs(c)) for c in x.terms.values()), default=0.0)
-        return all(np.max(np.abs(c)) <= 1e-9 * scale for b, c in x.terms.items() if b)
-
-    def exp_pair(self, node, delta):
-        delta = np.broadcast_to(np.asarray(delta, dtype=float), (self.count,))
-        theta = np.sqrt(np.abs(delta))
-        big = theta > 30
-        self.valid &= ~big
-        theta = np.where(big, 0.0, theta)
-        c = np.where(delta < 0, np.cos(theta), np.cosh(theta))
-        safe = np.where(theta > 0, theta, 1.0)
-        s = np.where(theta > 0, np.where(delta < 0, np.sin(theta), np.sinh(theta)) / safe, 1.0)
-        return c, s
-
-
-class _InvalidPoint(Exception):
-    pass
-
-
-class _Point(_Symbolic):
-    """One rational point: free parameters are numbers, normalisers and exp stay symbols."""
-
-    def __init__(self, values: dict[str, Fraction], signs: dict[str, float], names: list[str]):
-        super().__init__(names)
-        self.values = values
-        self.signs = signs
-
-    def param(self, name):
-        return self.const(self.values[name])
-
-    def normaliser(self, name, lam):
-        if not lam.is_ground or lam.LC <= 0:
-            raise _InvalidPoint(name)
-        return super().normaliser(name, lam)
-
-
+# -- the prover --------------------------------------------------------------------------------
 class _OutOfTime(Exception):
     pass
 
@@ -213,209 +113,6 @@ def _out_of_time(signum, frame):
     raise _OutOfTime
 
 
-def _split(f, i: int) -> dict[int, object]:
-    """f = Σ_e x_i^e f_e: {e: f_e} with x_i removed from f_e."""
-    parts: dict[int, dict] = {}
-    for monom, coeff in f.terms():
-        e = monom[i]
-        parts.setdefault(e, {})[(*monom[:i], 0, *monom[i + 1 :])] = coeff
-    return {e: f.ring.from_dict(d) for e, d in parts.items()}
-
-
-def _reduce(f, domain: _Symbolic):
-    """f modulo C² = 1 + δ S² (each exp) and c² λ = 1 (each normaliser, cleared of λ)."""
-    ring = domain.ring
-    for c, s, delta in reversed(domain.exps):
-        i = ring.gens.index(domain.gen[c])
-        q = 1 + delta * domain.gen[s] ** 2
-        parts = _split(f, i)
-        f = ring.zero
-        for e, fe in parts.items():
-            f += domain.gen[c] ** (e % 2) * q ** (e // 2) * fe
-    for c, lam in domain.norms:
-        i = ring.gens.index(domain.gen[c])
-        parts = _split(f, i)
-        top = max((e // 2 for e in parts), default=0)
-        f = ring.zero
-        for e, fe in parts.items():
-            f += domain.gen[c] ** (e % 2) * lam ** (top - e // 2) * fe
-    return f
-
-
-# -- verdicts ---------------------------------------------------------------------------------
-@dataclass
-class Counterexample:
-    """Exact values of the symbols where the two sides differ, and both sides' values.
-
-    Values are SymPy numbers (a normaliser is 1/√λ with λ rational, exp keeps cos/sin).
-
-    Examples
-    --------
-    >>> v = prove("a*b == b*a", signature=(2, 0), vectors="a,b")
-    >>> sorted(v.counterexample.values)
-    ['a', 'b']
-    >>> v.counterexample.lhs != v.counterexample.rhs
-    True
-    """
-
-    values: dict[str, dict[str, sympy.Expr]]
-    lhs: dict[str, sympy.Expr]
-    rhs: dict[str, sympy.Expr]
-    digits: int | None = None  # None: zero-tested exactly; else at this many digits
-
-    @staticmethod
-    def _show(coeffs: dict[str, sympy.Expr]) -> str:
-        if not coeffs:
-            return "0"
-        parts = []
-        for name, c in coeffs.items():
-            text = sympy.sstr(c)
-            if name == "1":
-                parts.append(text)
-            elif c in (1, -1):
-                parts.append(name if c == 1 else f"-{name}")
-            else:
-                atomic = text.lstrip("-").replace("/", "").replace("*", "").isalnum()
-                parts.append(f"{text}*{name}" if atomic else f"({text})*{name}")
-        return " + ".join(parts).replace("+ -", "- ")
-
-    def lines(self) -> list[str]:
-        """The counterexample as text lines.
-
-        Examples
-        --------
-        >>> v = prove("a*a == 1", signature=(2, 0), vectors="a")
-        >>> v.counterexample.lines()[0].startswith("a = ")
-        True
-        """
-        out = [f"{name} = {self._show(c)}" for name, c in self.values.items()]
-        out.append(f"lhs = {self._show(self.lhs)}")
-        out.append(f"rhs = {self._show(self.rhs)}")
-        return out
-
-    def _latex(self, coeffs) -> str:
-        if not coeffs:
-            return "0"
-        parts = []
-        for name, c in coeffs.items():
-            tex = sympy.latex(c)
-            if isinstance(c, sympy.Add):
-                tex = rf"\left({tex}\right)"
-            parts.append(tex if name == "1" else f"{tex}\\, e_{{{name[1:]}}}")
-        return " + ".join(parts).replace("+ -", "- ")
-
-
-@dataclass
-class Verdict:
-    """The outcome of :func:`prove`: proved, refuted (with a counterexample) or undecided.
-
-    ``bool(verdict)`` is True only when proved; ``exit_code`` is what ``ga-rotors prove``
-    returns (0 proved, 1 refuted, 3 undecided).
-
-    Examples
-    --------
-    >>> v = prove("a^a == 0", signature=(3, 0), vectors="a")
-    >>> bool(v), v.status, v.signature
-    (True, 'proved', 'Cl(3,0)')
-    >>> print(v.report().splitlines()[0])
-    proved in Cl(3,0): a^a == 0
-    """
-
-    status: str
-    identity: str
-    signature: str
-    assumptions: str
-    seconds: float
-    detail: str
-    counterexample: Counterexample | None = None
-    notes: list[str] = field(default_factory=list)
-
-    def __bool__(self) -> bool:
-        return self.status == "proved"
-
-    @property
-    def exit_code(self) -> int:
-        """0 proved, 1 refuted, 3 undecided.
-
-        Examples
-        --------
-        >>> prove("a*b == b*a", signature=(2, 0), vectors="a,b").exit_code
-        1
-        """
-        return {"proved": 0, "refuted": 1, "undecided": 3}[self.status]
-
-    def report(self) -> str:
-        """The verdict as text: status, identity, assumptions, the evidence.
-
-        Examples
-        --------
-        >>> print(prove("a*b == b*a", signature=(2, 0), vectors="a,b").report())
-        refuted in Cl(2,0): a*b == b*a
-          assuming: vectors a, b
-          counterexample (exact):
-            a = ...
-        """
-        lines = [
-            f"{self.status} in {self.signature}: {self.identity}",
-            f"  assuming: {self.assumptions}",
-        ]
-        if self.counterexample is not None:
-            how = (
-                "exact"
-                if self.counterexample.digits is None
-                else f"checked to {self.counterexample.digits} digits"
-            )
-            lines.append(f"  counterexample ({how}):")
-            lines += ["    " + line for line in self.counterexample.lines()]
-        else:
-            lines.append(f"  {self.detail}")
-        lines += [f"  note: {n}" for n in self.notes]
-        lines.append(f"  time: {self.seconds:.3f} s")
-        return "\n".join(lines)
-
-    __str__ = report
-
-    def _repr_latex_(self) -> str:
-        """The verdict as LaTeX for notebooks: the status, the identity, the evidence.
-
-        Examples
-        --------
-        >>> print(prove("a^a == 0", signature=(3, 0), vectors="a")._repr_latex_())
-        $\\begin{array}{l}\\textbf{proved}\\text{ in Cl(3,0): }\\texttt{a\\^{}a == 0} ...
-        """
-        rows = [
-            rf"\textbf{{{self.status}}}\text{{ in {self.signature}: }}"
-            rf"\texttt{{{_tex_text(self.identity)}}}",
-            rf"\text{{assuming {_tex_text(self.assumptions)}}}",
-        ]
-        ce = self.counterexample
-        if ce is not None:
-            rows += [f"{name} = {ce._latex(c)}" for name, c in ce.values.items()]
-            rows += [rf"\text{{lhs}} = {ce._latex(ce.lhs)}", rf"\text{{rhs}} = {ce._latex(ce.rhs)}"]
-        else:
-            rows.append(rf"\text{{{_tex_text(self.detail)}}}")
-        return r"$\begin{array}{l}" + r" \\ ".join(rows) + r"\end{array}$"
-
-
-def _tex_text(text: str) -> str:
-    replacements = [
-        ("\\", r"\backslash "),
-        ("{", r"\{"),
-        ("}", r"\}"),
-        ("_", r"\_"),
-        ("^", r"\^{}"),
-        ("#", r"\#"),
-        ("~", r"\~{}"),
-        ("&", r"\&"),
-        ("%", r"\%"),
-    ]
-    out = []
-    for char in text:
-        out.append(next((tex for c, tex in replacements if c == char), char))
-    return "".join(out)
-
-
-# -- the prover --------------------------------------------------------------------------------
 def _exp_nodes(*nodes: Node) -> list[Node]:
     found: list[Node] = []
 
@@ -449,25 +146,24 @@ def _ring_names(free, norms, exps) -> tuple[list[str], dict[Node, tuple[str, str
     return free + norms + [x for pair in exp_names.values() for x in pair], exp_names
 
 
-def _to_sympy(f, domain: _Symbolic, point_values: dict[str, sympy.Expr]) -> sympy.Expr:
+def _to_sympy(f, domain: Polynomials, point_values: dict[str, sympy.Expr]) -> sympy.Expr:
     return f.as_expr().subs(
         {sympy.Symbol(name): v for name, v in point_values.items()}, simultaneous=True
     )
 
 
-def _exact_check(lhs, rhs, assumptions, basis, case, draws: _Draws, j: int, free, norms, exps):
+def _exact_check(lhs, rhs, assumptions, basis, case, draws: Draws, j: int, free, norms, exps):
     """The exact counterexample at draw j, or None when the sides agree there."""
     values = {name: xs[j] for name, xs in draws.exact.items()}
     signs = {name: s[j] for name, s in draws.signs.items()}
     names, exp_names = _ring_names([], norms, exps)
-    dom = _Point(values, signs, names)
-    dom.exp_names = exp_names
+    dom = Point(values, signs, names, exp_names)
     try:
         env = build_values(assumptions, basis, dom, case)
         memo: dict = {}
         left = evaluate(lhs, env, basis, dom, memo)
         right = evaluate(rhs, env, basis, dom, memo)
-    except _InvalidPoint:
+    except InvalidPoint:
         return None
     # exact values of the normalisers and of exp's C, S at this point
     subst: dict[str, sympy.Expr] = {}
@@ -486,7 +182,7 @@ def _exact_check(lhs, rhs, assumptions, basis, case, draws: _Draws, j: int, free
     difference = left - right
     nonzero = False
     for coeff in difference.terms.values():
-        expr = sympy.expand(_to_sympy(_reduce(coeff, dom), dom, subst))
+        expr = sympy.expand(_to_sympy(reduce_modulo(coeff, dom), dom, subst))
         if digits is None:
             nonzero = expr != 0
         else:
@@ -603,7 +299,7 @@ def prove(
         # 1-2: numeric pre-check, exact check of the suspects
         any_valid = False
         for case in cases:
-            sample = _Draws(draws, seed)
+            sample = Draws(draws, seed)
             with np.errstate(all="ignore"):
                 env = build_values(assumptions, basis, sample, case)
                 memo: dict = {}
@@ -625,15 +321,14 @@ def prove(
         terms = 0
         for case in cases:
             names, exp_names = _ring_names(free, norms, exps)
-            dom = _Symbolic(names)
-            dom.exp_names = exp_names
+            dom = Polynomials(names, exp_names)
             env = build_values(assumptions, basis, dom, case)
             memo = {}
             difference = evaluate(left, env, basis, dom, memo) - evaluate(
                 right, env, basis, dom, memo
             )
             terms += sum(len(c) for c in difference.terms.values())
-            residue = {b: _reduce(c, dom) for b, c in difference.terms.items()}
+            residue = {b: reduce_modulo(c, dom) for b, c in difference.terms.items()}
             residue = {b: c for b, c in residue.items() if c}
             if residue:
                 break
@@ -661,7 +356,7 @@ def prove(
 
         # 4: a nonzero residue: look for an exact counterexample at more points
         for attempt in range(_EXTRA_POINTS):
-            sample = _Draws(draws, seed + 1 + attempt)
+            sample = Draws(draws, seed + 1 + attempt)
             with np.errstate(all="ignore"):
                 build_values(assumptions, basis, sample, case)
             for j in np.flatnonzero(sample.valid)[:2]:
