@@ -30,6 +30,7 @@ Examples
 
 from __future__ import annotations
 
+import gc
 import signal
 import threading
 import time
@@ -105,12 +106,9 @@ def elements(signature=(3, 0), assumptions: Assumptions | None = None, **kinds):
 
 
 # -- the prover --------------------------------------------------------------------------------
-class _OutOfTime(Exception):
-    pass
-
-
-def _out_of_time(signum, frame):
-    raise _OutOfTime
+class _OutOfTime(BaseException):
+    """BaseException, like KeyboardInterrupt: library code that catches Exception
+    (SymPy has such blocks) must not swallow the time limit."""
 
 
 def _exp_nodes(*nodes: Node) -> list[Node]:
@@ -291,97 +289,117 @@ def prove(
 
     if timeout is not None and (not isinstance(timeout, int | float) or timeout <= 0):
         raise ValueError(f"timeout: expected a positive number of seconds, got {timeout!r}")
-    alarm = timeout is not None and threading.current_thread() is threading.main_thread()
-    if alarm:
-        previous = signal.signal(signal.SIGALRM, _out_of_time)
-        signal.setitimer(signal.ITIMER_REAL, timeout)
-    try:
-        # 1-2: numeric pre-check, exact check of the suspects
-        any_valid = False
-        for case in cases:
-            sample = Draws(draws, seed)
-            with np.errstate(all="ignore"):
-                env = build_values(assumptions, basis, sample, case)
-                memo: dict = {}
-                a = evaluate(left, env, basis, sample, memo)
-                b = evaluate(right, env, basis, sample, memo)
-            err, scale = _size(a - b, draws), 1.0 + _size(a, draws) + _size(b, draws)
-            valid = sample.valid & np.isfinite(err) & np.isfinite(scale)
-            any_valid |= bool(valid.any())
-            order = np.argsort(-err / scale)
-            suspects = [j for j in order if valid[j] and err[j] > 1e-9 * scale[j]]
-            for j in suspects[:3]:
-                ce = _exact_check(
-                    left, right, assumptions, basis, case, sample, int(j), free, norms, exps
-                )
-                if ce is not None:
-                    return verdict("refuted", "counterexample", ce)
 
-        # 3: exact proof
-        terms = 0
-        for case in cases:
-            names, exp_names = _ring_names(free, norms, exps)
-            dom = Polynomials(names, exp_names)
-            env = build_values(assumptions, basis, dom, case)
-            memo = {}
-            difference = evaluate(left, env, basis, dom, memo) - evaluate(
-                right, env, basis, dom, memo
-            )
-            terms += sum(len(c) for c in difference.terms.values())
-            residue = {b: reduce_modulo(c, dom) for b, c in difference.terms.items()}
-            residue = {b: c for b, c in residue.items() if c}
-            if residue:
-                break
-        else:
-            what = {"rotor": "N Ñ, N = exp∧(B)", "unit": "w·w"}
-            relations = [
-                f"{c}²·λ = 1 (λ = {what[assumptions.kinds[c[2:]]]})" for c, _ in dom.norms
-            ] + [f"{c}² − δ·{s}² = 1" for c, s, _ in dom.exps]
-            how = f" modulo {', '.join(relations)}" if relations else ""
-            notes = []
-            if len(cases) > 1:
-                notes.append(f"proved on each of the {len(cases)} pieces of the null cone")
-            if not any_valid:
-                notes.append(
-                    "no random draw satisfied the assumptions over the reals; "
-                    "the identity may hold vacuously"
-                )
-            detail = (
-                f"lhs − rhs = 0: {terms} polynomial terms over ℚ in {len(free)} parameters "
-                f"reduce to 0{how}"
-                if terms
-                else f"lhs − rhs expands to 0 in {len(free)} parameters (nothing to reduce)"
-            )
-            return verdict("proved", detail, notes=notes)
+    def decide() -> Verdict:
+        try:
+            # 1-2: numeric pre-check, exact check of the suspects
+            any_valid = False
+            for case in cases:
+                sample = Draws(draws, seed)
+                with np.errstate(all="ignore"):
+                    env = build_values(assumptions, basis, sample, case)
+                    memo: dict = {}
+                    a = evaluate(left, env, basis, sample, memo)
+                    b = evaluate(right, env, basis, sample, memo)
+                err, scale = _size(a - b, draws), 1.0 + _size(a, draws) + _size(b, draws)
+                valid = sample.valid & np.isfinite(err) & np.isfinite(scale)
+                any_valid |= bool(valid.any())
+                order = np.argsort(-err / scale)
+                suspects = [j for j in order if valid[j] and err[j] > 1e-9 * scale[j]]
+                for j in suspects[:3]:
+                    ce = _exact_check(
+                        left, right, assumptions, basis, case, sample, int(j), free, norms, exps
+                    )
+                    if ce is not None:
+                        return verdict("refuted", "counterexample", ce)
 
-        # 4: a nonzero residue: look for an exact counterexample at more points
-        for attempt in range(_EXTRA_POINTS):
-            sample = Draws(draws, seed + 1 + attempt)
-            with np.errstate(all="ignore"):
-                build_values(assumptions, basis, sample, case)
-            for j in np.flatnonzero(sample.valid)[:2]:
-                ce = _exact_check(
-                    left, right, assumptions, basis, case, sample, int(j), free, norms, exps
+            # 3: exact proof
+            terms = 0
+            for case in cases:
+                names, exp_names = _ring_names(free, norms, exps)
+                dom = Polynomials(names, exp_names)
+                env = build_values(assumptions, basis, dom, case)
+                memo = {}
+                difference = evaluate(left, env, basis, dom, memo) - evaluate(
+                    right, env, basis, dom, memo
                 )
-                if ce is not None:
-                    return verdict("refuted", "counterexample", ce)
-        some = next(iter(residue.values()))
-        reason = (
-            "the difference reduces to a nonzero polynomial but no exact counterexample "
-            f"was found at {draws + 2 * _EXTRA_POINTS} random points"
-        )
-        if exps:
+                terms += sum(len(c) for c in difference.terms.values())
+                residue = {b: reduce_modulo(c, dom) for b, c in difference.terms.items()}
+                residue = {b: c for b, c in residue.items() if c}
+                if residue:
+                    break
+            else:
+                what = {"rotor": "N Ñ, N = exp∧(B)", "unit": "w·w"}
+                relations = [
+                    f"{c}²·λ = 1 (λ = {what[assumptions.kinds[c[2:]]]})" for c, _ in dom.norms
+                ] + [f"{c}² − δ·{s}² = 1" for c, s, _ in dom.exps]
+                how = f" modulo {', '.join(relations)}" if relations else ""
+                notes = []
+                if len(cases) > 1:
+                    notes.append(f"proved on each of the {len(cases)} pieces of the null cone")
+                if not any_valid:
+                    notes.append(
+                        "no random draw satisfied the assumptions over the reals; "
+                        "the identity may hold vacuously"
+                    )
+                detail = (
+                    f"lhs − rhs = 0: {terms} polynomial terms over ℚ in {len(free)} parameters "
+                    f"reduce to 0{how}"
+                    if terms
+                    else f"lhs − rhs expands to 0 in {len(free)} parameters (nothing to reduce)"
+                )
+                return verdict("proved", detail, notes=notes)
+
+            # 4: a nonzero residue: look for an exact counterexample at more points
+            for attempt in range(_EXTRA_POINTS):
+                sample = Draws(draws, seed + 1 + attempt)
+                with np.errstate(all="ignore"):
+                    build_values(assumptions, basis, sample, case)
+                for j in np.flatnonzero(sample.valid)[:2]:
+                    ce = _exact_check(
+                        left, right, assumptions, basis, case, sample, int(j), free, norms, exps
+                    )
+                    if ce is not None:
+                        return verdict("refuted", "counterexample", ce)
+            some = next(iter(residue.values()))
             reason = (
-                "the difference does not reduce to 0 using only C² − δS² = 1 for each exp "
-                "(the prover does not use addition theorems such as exp(B)² = exp(2B)), and "
-                "no counterexample was found"
+                "the difference reduces to a nonzero polynomial but no exact counterexample "
+                f"was found at {draws + 2 * _EXTRA_POINTS} random points"
             )
-        return verdict("undecided", reason + f" (a residual coefficient has {len(some)} terms)")
-    except Unsupported as exc:
-        return verdict("undecided", f"not supported: {exc}")
+            if exps:
+                reason = (
+                    "the difference does not reduce to 0 using only C² − δS² = 1 for each exp "
+                    "(the prover does not use addition theorems such as exp(B)² = exp(2B)), and "
+                    "no counterexample was found"
+                )
+            return verdict("undecided", reason + f" (a residual coefficient has {len(some)} terms)")
+        except Unsupported as exc:
+            return verdict("undecided", f"not supported: {exc}")
+
+    if timeout is None or threading.current_thread() is not threading.main_thread():
+        return decide()
+    armed = [True]
+
+    def out_of_time(signum, frame):
+        if armed[0]:
+            raise _OutOfTime
+
+    previous = signal.signal(signal.SIGALRM, out_of_time)
+    # An exception raised in a garbage-collector callback is lost (hypothesis installs
+    # one), so the collector pauses while the limit is armed; and the alarm repeats
+    # every 0.1 s until disarmed, in case code elsewhere swallowed one.
+    collecting = gc.isenabled()
+    gc.disable()
+    signal.setitimer(signal.ITIMER_REAL, timeout, 0.1)
+    try:
+        try:
+            return decide()
+        finally:
+            armed[0] = False  # a signal still pending after this is ignored
+            signal.setitimer(signal.ITIMER_REAL, 0)
     except _OutOfTime:
         return verdict("undecided", f"no decision within the time limit of {timeout:g} s")
     finally:
-        if alarm:
-            signal.setitimer(signal.ITIMER_REAL, 0)
-            signal.signal(signal.SIGALRM, previous)
+        signal.signal(signal.SIGALRM, previous)
+        if collecting:
+            gc.enable()
