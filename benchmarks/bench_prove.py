@@ -9,7 +9,7 @@ vector, bivector, k-vector, even, multivector — or blades built as wedges of v
 no rotor, unit, null or orthogonality assumption, no exp, dual or basis-blade names),
 in each signature, three deciders run interleaved on the same identity:
 
-* ``symbolic.prover.prove`` (numeric pre-check, exact proof or exact counterexample);
+* ``ga_rotors.symbolic.prover.prove`` (numeric pre-check, exact proof or exact counterexample);
 * galgebra: symbolic multivectors (``Ga.mv``), lhs − rhs, ``sympy.expand`` of the result;
 * kingdon: symbolic multivectors (``Algebra.vector(name=...)`` ...), lhs − rhs,
   ``sympy.expand`` of every coefficient.

@@ -1,4 +1,4 @@
-"""The identity prover (symbolic.prover): its algebra against clifford's tables, the
+"""The identity prover (ga_rotors.symbolic.prover): its algebra against clifford's tables, the
 grammar and its precedence, verdicts (proved / refuted with an exact counterexample that
 satisfies the assumptions / undecided with a reason), and the hard cases by name.
 """

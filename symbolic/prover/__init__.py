@@ -1,7 +1,7 @@
 """Prove a user's own geometric-algebra identities in any Cl(p, q, r).
 
 ``prove("(a^b)|c == a*(b|c) - b*(a|c)", signature=(1, 3), vectors="a,b,c")`` returns a
-:class:`~.prove.Verdict`: proved (exactly, by polynomial reduction), refuted (with an
+:class:`~.verdict.Verdict`: proved (exactly, by polynomial reduction), refuted (with an
 exact counterexample) or undecided (with the reason).
 
 Modules, each with one job:

@@ -136,7 +136,7 @@ class InvalidPoint(Exception):
     >>> Point({"x": Fraction(0)}, {}, ["c"]).normaliser("c", Polynomials(["z"]).const(0))
     Traceback (most recent call last):
     ...
-    symbolic.prover.domains.InvalidPoint: c
+    ga_rotors.symbolic.prover.domains.InvalidPoint: c
     """
 
 

@@ -4,7 +4,7 @@ Both display as text (``report``) and as LaTeX in notebooks (``_repr_latex_``).
 
 Examples
 --------
->>> from symbolic.prover import prove
+>>> from ga_rotors.symbolic.prover import prove
 >>> print(prove("a^a == 0", vectors="a").report().splitlines()[0])
 proved in Cl(3,0): a^a == 0
 """
@@ -26,7 +26,7 @@ class Counterexample:
 
     Examples
     --------
-    >>> from symbolic.prover import prove
+    >>> from ga_rotors.symbolic.prover import prove
     >>> v = prove("a*b == b*a", signature=(2, 0), vectors="a,b")
     >>> sorted(v.counterexample.values)
     ['a', 'b']
@@ -60,7 +60,7 @@ class Counterexample:
 
             Examples
             --------
-            >>> from symbolic.prover import prove
+            >>> from ga_rotors.symbolic.prover import prove
         >>> v = prove("a*a == 1", signature=(2, 0), vectors="a")
             >>> v.counterexample.lines()[0].startswith("a = ")
             True
@@ -91,7 +91,7 @@ class Verdict:
 
     Examples
     --------
-    >>> from symbolic.prover import prove
+    >>> from ga_rotors.symbolic.prover import prove
     >>> v = prove("a^a == 0", signature=(3, 0), vectors="a")
     >>> bool(v), v.status, v.signature
     (True, 'proved', 'Cl(3,0)')
@@ -117,7 +117,7 @@ class Verdict:
 
         Examples
         --------
-        >>> from symbolic.prover import prove
+        >>> from ga_rotors.symbolic.prover import prove
         >>> prove("a*b == b*a", signature=(2, 0), vectors="a,b").exit_code
         1
         """
@@ -128,7 +128,7 @@ class Verdict:
 
         Examples
         --------
-        >>> from symbolic.prover import prove
+        >>> from ga_rotors.symbolic.prover import prove
         >>> print(prove("a*b == b*a", signature=(2, 0), vectors="a,b").report())
         refuted in Cl(2,0): a*b == b*a
           assuming: vectors a, b
@@ -160,7 +160,7 @@ class Verdict:
 
         Examples
         --------
-        >>> from symbolic.prover import prove
+        >>> from ga_rotors.symbolic.prover import prove
         >>> print(prove("a^a == 0", signature=(3, 0), vectors="a")._repr_latex_())
         $\\begin{array}{l}\\textbf{proved}\\text{ in Cl(3,0): }\\texttt{a\\^{}a == 0} ...
         """
