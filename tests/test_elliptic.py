@@ -3,6 +3,8 @@ at 30 digits, including m₁ down to 1e-30 where float m = 1 − m₁ has no dig
 
 from __future__ import annotations
 
+import warnings
+
 import mpmath as mp
 import numpy as np
 import pytest
@@ -94,3 +96,17 @@ def test_jacobi_argument_inverts_jacobi_next_to_the_middle_axis(m1_text):
             assert abs(got - float(u)) <= _bound(abs(float(u)) + 2 * float(k)), (m1_text, u)
     with pytest.raises(ValueError, match="both zero"):
         elliptic.jacobi_argument(0.0, 0.0, 0.5, 0.5)
+
+
+@pytest.mark.parametrize("m1", [0.7, 1e-12, 1e-150])
+def test_jacobi_next_to_zero_is_the_identity_not_nan(m1):
+    # sn u ≈ u with u = 5e-167 made the ratio cn/sn of the Gauss transformation overflow
+    # when squared: NaN, found by drawing ω = (1, 5e-167, 1) for the asymmetric top.
+    u = np.array([5e-167, -1e-120, 2e-101, 0.0])
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", RuntimeWarning)
+        sn, cn, dn = elliptic.jacobi(u, 1.0 - m1, m1)
+    assert np.array_equal(sn, u) and np.all(cn == 1.0) and np.all(dn == 1.0)
+    # and continuous with the general path just above the switch (|u| = 1e-100)
+    above = elliptic.jacobi(np.array([1e-99]), 1.0 - m1, m1)
+    assert above[0][0] == pytest.approx(1e-99, rel=1e-15) and above[1][0] == 1.0

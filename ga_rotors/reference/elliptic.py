@@ -43,6 +43,9 @@ __all__ = [
 #: (:func:`complete_first`) stays right down to the smallest normal float.
 MIN_M1 = math.sqrt(sys.float_info.min)
 
+#: Below this |u|, sn u = u and cn u = dn u = 1 to rounding (the next term is ~u³).
+_SMALL_ARGUMENT = 1e-100
+
 _EPS = np.finfo(float).eps
 
 
@@ -75,6 +78,11 @@ def _jacobi_reduced(r, m, m1):
     dn is taken as √(m₁ + m cn²), a sum of non-negative terms (dn ≥ √m₁ > 0), so its
     absolute error stays at the ulp level.
     """
+    # Next to 0 the ratio cn/sn ~ 1/r below would overflow when squared (r = 5e-167 gave
+    # NaN); there sn = r (1 − (1 + m) r²/6 + …) = r and cn = dn = 1 to rounding.
+    given = np.asarray(r, dtype=float)
+    small = np.abs(given) < _SMALL_ARGUMENT
+    r = np.where(small, 0.0, given)
     a, emc = 1.0, m1
     ems, ens = [], []
     while True:
@@ -102,6 +110,9 @@ def _jacobi_reduced(r, m, m1):
     cn_new = cc * sn_new
     sn = np.where(zero, sn, sn_new)
     cn = np.where(zero, cn, cn_new)
+    if small.any():
+        sn = np.where(small, given, sn)
+        cn = np.where(small, 1.0, cn)
     dn = np.sqrt(m1 + m * cn * cn)
     return sn, cn, dn
 
