@@ -37,7 +37,7 @@ Binary(op='|', left=Binary(op='^', left=Name(name='a'), right=Name(name='b')), r
 >>> parse_identity("a^b|c == 0")
 Traceback (most recent call last):
 ...
-ga_rotors.symbolic.prover.grammar.ParseError: column 4: '|' next to '^' is ambiguous; add parentheses
+ga_rotors.symbolic.prover.grammar.ParseError: column 4: '|' next to '^' is ambiguous; add ...
 """
 
 from __future__ import annotations
@@ -93,7 +93,7 @@ class ParseError(ValueError):
     >>> parse_identity("a * == b")
     Traceback (most recent call last):
     ...
-    ga_rotors.symbolic.prover.grammar.ParseError: column 5: expected a number, a name or '(', found '=='
+    ga_rotors.symbolic.prover.grammar.ParseError: column 5: expected a number, a name or '(', ...
     """
 
 
