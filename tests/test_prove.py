@@ -6,6 +6,7 @@ satisfies the assumptions / undecided with a reason), and the hard cases by name
 from __future__ import annotations
 
 import itertools
+from fractions import Fraction
 
 import clifford
 import numpy as np
@@ -390,3 +391,59 @@ def test_random_expressions_equal_themselves_and_differ_from_themselves_plus_a_b
     assert prove(f"{text} == {text}", signature=(2, 1), vectors="a,b")
     shifted = prove(f"{text} == {text} + e12", signature=(2, 1), vectors="a,b")
     assert shifted.status == "refuted"
+
+
+# -- the rotor kind against rotors built another way ---------------------------------------------
+class _Exact:
+    def const(self, q):
+        return Fraction(q)
+
+    def is_scalar(self, x):
+        return not x.grades() - {0}
+
+
+def _plane_rotor(basis, rng):
+    """A rotor as a product of exact rational rotations, one per coordinate plane:
+    (1 + t e_ij)² / (1 − t² e_ij²), which is R R̃ = 1 exactly — not Lipschitz's form."""
+    rotor = Element(basis, {0: Fraction(1)})
+    for i, j in itertools.combinations(range(basis.n), 2):
+        t = Fraction(int(rng.integers(-4, 5)), int(rng.integers(1, 5)))
+        plane = (1 << i) | (1 << j)
+        square = basis.product(plane, plane)[0]  # e_ij² ∈ {−1, 0, +1}
+        if 1 - t * t * square == 0:
+            continue
+        factor = Element(basis, {0: Fraction(1), plane: t})
+        rotor = (rotor * factor * factor).scale(1 / (1 - t * t * square))
+    return rotor
+
+
+@pytest.mark.parametrize("sig", [(3, 0, 0), (1, 3, 0), (2, 2, 0), (3, 0, 1), (4, 1, 0)], ids=str)
+def test_rotor_identities_proved_hold_exactly_on_rotors_built_as_plane_rotations(sig):
+    from ga_rotors.symbolic.prover.catalogue import CATALOGUE
+    from ga_rotors.symbolic.prover.evaluate import evaluate
+
+    basis, rng = Basis(*sig), np.random.default_rng(7)
+    entries = [e for e in CATALOGUE if "rotors" in e.kinds]
+    assert len(entries) >= 6
+    for entry in entries:
+        assert prove(entry.identity, signature=sig, **entry.kinds)
+        lhs, rhs = parse_identity(entry.identity)
+        for _ in range(3):
+            env = {}
+            for kind, names in entry.kinds.items():
+                for name in names.split(","):
+                    if kind == "rotors":
+                        env[name] = _plane_rotor(basis, rng)
+                    else:
+                        grade = {"vectors": 1, "bivectors": 2}[kind]
+                        env[name] = Element(
+                            basis,
+                            {
+                                b: Fraction(int(rng.integers(-5, 6)))
+                                for b in basis.blades
+                                if b.bit_count() == grade
+                            },
+                        )
+            assert (env["R"] * ~env["R"]).terms == {0: 1}
+            difference = evaluate(lhs, env, basis, _Exact()) - evaluate(rhs, env, basis, _Exact())
+            assert difference.is_zero(), (entry.key, basis.label())
