@@ -8,6 +8,10 @@ import numpy as np
 import pytest
 
 from ga_rotors import accuracy as A
+from ga_rotors.accuracy import compiled_peers as C
+from ga_rotors.accuracy import peers as P
+from ga_rotors.accuracy import report as R
+from ga_rotors.accuracy import sweeps as S
 from ga_rotors.cli import main
 
 
@@ -31,21 +35,21 @@ def test_euler_angle_path_is_measured_through_the_same_reference():
 
 def test_dop853_peer_agrees_with_the_reference():
     case = A.cases()["asymmetric_far"]
-    dop = A._dop853(case, 1e-10, 1, 0.1)
+    dop = P.dop853_scipy(case, 1e-10, 1, 0.1)
     assert dop.error < 1e-7 and dop.evaluations > 100
 
 
 def test_numpy_quaternion_peer_agrees_with_the_reference():
     pytest.importorskip("quaternion", reason="numpy-quaternion is an optional peer (extra 'peers')")
     case = A.cases()["asymmetric_far"]
-    npq = A._numpy_quaternion(case, 1e-10, 1, 0.1)
+    npq = P.numpy_quaternion(case, 1e-10, 1, 0.1)
     assert npq.error < 1e-7 and npq.evaluations > 100
 
 
 def test_mujoco_rk4_peer_has_rk4s_order_and_a_comparable_constant():
     pytest.importorskip("mujoco", reason="MuJoCo is an optional peer (extra 'peers')")
     case = A.cases()["asymmetric_far"]
-    muj = A._mujoco(case, "RK4", 2000, 1, 0.1)
+    muj = P.mujoco_run(case, "RK4", 2000, 1, 0.1)
     rk4 = A.measure(case, "rk4", 2000, repeats=1)
     # MuJoCo's RK4 moves the quaternion of each stage by the exponential map instead of
     # q + h·q̇: another order-4 method, with a different error constant.
@@ -55,8 +59,8 @@ def test_mujoco_rk4_peer_has_rk4s_order_and_a_comparable_constant():
 def test_a_peer_that_never_returns_is_cut_off():
     pytest.importorskip("quaternion", reason="numpy-quaternion is an optional peer (extra 'peers')")
     # numpy-quaternion on the fast spinner at 1e-11: scipy's ode never returns (see
-    # accuracy._numpy_quaternion); the forked measurement is killed at the limit.
-    assert A._numpy_quaternion(A.cases()["fast_spinner"], 1e-11, 0, 0.1, limit=1.0) is None
+    # accuracy.peers.numpy_quaternion); the forked measurement is killed at the limit.
+    assert P.numpy_quaternion(A.cases()["fast_spinner"], 1e-11, 0, 0.1, limit=1.0) is None
 
 
 @pytest.mark.parametrize("module", ["quaternion", "mujoco"])
@@ -66,10 +70,10 @@ def test_a_missing_peer_is_skipped_with_a_notice(monkeypatch, module):
     case = A.cases()["asymmetric_far"]
     out = A.Study(case)
     if module == "quaternion":
-        A._numpy_quaternion_sweep(case, out, (1e-6,), 0, 0.01)
+        S.numpy_quaternion_sweep(case, out, (1e-6,), 0, 0.01)
         assert out.notices == ["numpy-quaternion not installed: skipped"]
     else:
-        A._mujoco_sweep(case, out, 2, 0, 0.01)
+        S.mujoco_sweep(case, out, 2, 0, 0.01)
         assert out.notices == ["mujoco not installed: skipped"]
     assert out.points == []
 
@@ -94,7 +98,7 @@ def test_study_stops_at_round_off_and_tables_render():
     assert np.all(np.diff(errors[:3]) < 0)  # order 6: refinement helps until round-off
     assert min(errors) < 1e-12 and len(errors) <= 8  # the sweep stops once round-off wins
     text = A.summary_table([st])
-    assert "| asymmetric_far | 1e-3 | split6 |" in text
+    assert "| asymmetric_far | 1e-3 | split6 |" in text and "| n/a | n/a |" in text
     assert "| split6 |" in A.method_table(st)
 
 
@@ -108,8 +112,91 @@ def test_command_rewrites_only_the_generated_block(tmp_path, capsys):
     text = doc.read_text()
     assert text.startswith("intro\n") and text.endswith("outro\n") and "OLD-CONTENT" not in text
     assert "| split4 |" in text and (tmp_path / "accuracy_asymmetric_far.png").stat().st_size > 0
+    assert "![work-precision, asymmetric_far](accuracy_asymmetric_far.png)" in text
+    assert "Per-call overhead of the public API" in text
 
 
-def test_command_rejects_unknown_case(capsys):
+def test_command_rejects_unknown_case_and_method(capsys):
     assert main(["bench", "accuracy", "--cases", "nope"]) == 2
     assert "--cases: unknown ['nope']" in capsys.readouterr().err
+    assert main(["bench", "accuracy", "--cases", "symmetric", "--methods", "nope"]) == 2
+    assert "unknown integrator 'nope'" in capsys.readouterr().err
+
+
+def test_quick_study_runs_end_to_end_on_every_case_with_every_peer(tmp_path, capsys):
+    # The whole command, every case, every method and every peer installed here, in its
+    # quick mode: lgvi refuses the coarse steps of its sweep (h·|ω| ≥ 1 on the fast
+    # spinner), which is a point "not run there", not a crash; missing peers are notices.
+    doc = tmp_path / "accuracy.md"
+    doc.write_text(f"{R.BEGIN}\n{R.END}\n")
+    figures = tmp_path / "figures"
+    code = main(["bench", "accuracy", "--quick", "--figures", str(figures), "--doc", str(doc)])
+    out = capsys.readouterr().out
+    assert code == 0
+    text = doc.read_text()
+    for name in A.cases():
+        assert f"### {A.cases()[name].title}" in text
+        assert (figures / f"accuracy_{name}.png").stat().st_size > 0
+    assert "## The goal: best ga_rotors method against the fastest compiled peer" in text
+    assert "| fast_spinner | 1e-3 |" in text and "lgvi" in text
+    assert "Not run at the coarsest steps (refused, not failed): lgvi." in text
+    assert "njit_rk4" in text and "njit_dop853" in text
+    assert out.strip() in text
+
+
+def test_refused_step_is_a_point_not_a_crash():
+    p = A.measure(A.cases()["fast_spinner"], "lgvi", 256, repeats=1)
+    assert p.note == "not run: h·|ω| = 3.91 (limit 1)" and p.error == np.inf
+    fine = A.measure(A.cases()["fast_spinner"], "lgvi", 4096, repeats=1)
+    assert fine.note == "" and np.isfinite(fine.error)  # runs (order 2: far from exact)
+
+
+def test_error_is_the_largest_over_the_samples_not_the_final_one():
+    case = A.cases()["symmetric"]
+    exact = case.reference.at(A.measuring.sample_times(case))[0]
+    bent = exact.copy()
+    bent[2] = np.array([bent[2][1], -bent[2][0], bent[2][3], -bent[2][2]])  # a π turn off
+    p = A.measuring.point(case, "x", 1, (1.0, 1.0, 1.0), 0, bent, [case.w0], "ga_rotors")
+    assert p.error == pytest.approx(np.pi)
+
+
+@pytest.mark.parametrize("peer", ["njit_rk4", "njit_dop853", "scipy_njit"])
+def test_compiled_peers_solve_the_same_problem(peer):
+    # Each compiled peer's own right-hand side against the exact references: RK4 and DOP853
+    # of the same steps agree with ours to rounding; scipy at 1e-10 is within 1e-7.
+    for name in ("asymmetric_far", "heavy_top"):
+        case = A.cases()[name]
+        if peer == "scipy_njit":
+            assert C.run_peer(case, peer, 1e-10, 1, 0.1).error < 1e-7
+            continue
+        ours = A.measure(case, "rk4" if peer == "njit_rk4" else "dp8", 800, repeats=1)
+        theirs = C.run_peer(case, peer, 800, 1, 0.1)
+        assert theirs.family == "compiled" and theirs.evaluations == ours.evaluations
+        assert theirs.error == pytest.approx(ours.error, rel=1e-5, abs=1e-13)
+
+
+@pytest.mark.parametrize("peer", ["numbalsoda_dop853", "numbalsoda_lsoda", "diffrax_dopri8"])
+def test_optional_compiled_peers_agree_with_the_reference(peer):
+    pytest.importorskip(C.ADAPTIVE[peer], reason=f"{peer} is an optional peer (extra 'peers')")
+    case = A.cases()["asymmetric_far"]
+    p = C.run_peer(case, peer, 1e-10, 1, 0.1)
+    assert p.error < 1e-6 and p.family == "compiled"
+
+
+def test_missing_compiled_peer_is_a_notice(monkeypatch):
+    monkeypatch.setitem(sys.modules, "numbalsoda", None)
+    assert C.available("numbalsoda_lsoda") == (
+        "numbalsoda_lsoda: numbalsoda not installed (pip install numbalsoda): skipped"
+    )
+
+
+def test_goal_cells_compare_interleaved_medians():
+    case = A.cases()["asymmetric_far"]
+    st = A.Study(case)
+    st.points += [A.measure(case, "dp8", 400, repeats=1)]
+    st.points += [C.run_peer(case, "njit_dop853", 400, 1, 1.0)]
+    (cell,) = A.goal(st, targets=(1e-6,), rounds=3, budget=1.0)
+    assert cell.ours.method == "dp8" and cell.peer.method == "njit_dop853"
+    assert cell.ours_times[1] <= cell.ours_times[0] <= cell.ours_times[2]
+    assert cell.ratio == pytest.approx(cell.peer_times[0] / cell.ours_times[0])
+    assert "| asymmetric_far | 1e-6 | dp8: " in A.goal_table([cell])

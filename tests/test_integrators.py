@@ -216,7 +216,7 @@ def _bad_step(t, x, w, h, inertia, params):
 def test_template_with_an_unresolvable_global_fails_loudly():
     bad = TemplateIntegrator(
         name="bad", order=1, description="", conserves=frozenset(),
-        paths=frozenset({"quaternion"}), steps={FREE: _bad_step},
+        paths=frozenset({"quaternion"}), steps={FREE: _bad_step}, evaluations=1,
     )  # fmt: skip
     text = _codegen.source(bad, Problem(DISK), "quaternion")
     assert "torque_like" not in text.split("def _bad_step")[0]  # generation never guesses

@@ -14,7 +14,7 @@ import pytest
 
 from ga_rotors import effects
 from ga_rotors.integrators import Problem, _codegen, get
-from ga_rotors.integrators.base import TemplateIntegrator
+from ga_rotors.integrators import TemplateIntegrator
 from ga_rotors.scene import Scene, load_scene, run_scene
 from ga_rotors.scene import run as scene_run
 

@@ -33,7 +33,8 @@ from hypothesis import strategies as st
 from ga_rotors import quaternion as Q
 from ga_rotors.body import RigidBody
 from ga_rotors.integrators import Problem, get
-from ga_rotors.integrators.splitting import SUZUKI4, symmetric_pair
+from ga_rotors.integrators._rigid import symmetric_pair
+from ga_rotors.integrators.splitting import SUZUKI4
 
 U = 2.0**-53
 N = 100  # steps per run: long enough for the local errors to add up, fast to bound

@@ -8,6 +8,8 @@ import warnings
 
 import numpy as np
 import pytest
+from hypothesis import given
+from hypothesis import strategies as st
 
 from ga_rotors import simulate
 from ga_rotors.errors import InputError, StepLimitWarning
@@ -112,3 +114,53 @@ def test_scene_and_cli_name_the_file_and_integrator_step(tmp_path, capsys):
     lines = [line for line in err.splitlines() if "StepLimit" in line or "cannot step" in line]
     assert len(lines) == 1 and lines[0].startswith("ga-rotors: warning: ")
     assert "Traceback" not in err
+
+
+def _eig_rate(inertia, w):
+    """ν by a 3×3 eigenvalue solve of ∂ω̇/∂ω = I⁻¹([Iω]× − [ω]× I): the oracle."""
+    moments, w = np.asarray(inertia, dtype=float), np.asarray(w, dtype=float)
+
+    def skew(v):
+        return np.array([[0.0, -v[2], v[1]], [v[2], 0.0, -v[0]], [-v[1], v[0], 0.0]])
+
+    jac = (skew(moments * w) - skew(w) * moments) / moments[:, None]
+    return float(np.max(np.abs(np.linalg.eigvals(jac))))
+
+
+_moment = st.floats(0.01, 100.0)
+_rate = st.floats(-1e3, 1e3)
+
+
+@given(st.tuples(_moment, _moment, _moment), st.tuples(_rate, _rate, _rate))
+def test_linear_rate_in_closed_form_matches_the_eigenvalue_solve(inertia, w):
+    from ga_rotors.integrators.limits import linear_rate
+
+    expected = _eig_rate(inertia, w)
+    scale = max(abs(c) for c in w) * max(inertia) / min(inertia)
+    assert linear_rate(inertia, w) == pytest.approx(expected, rel=1e-6, abs=1e-9 * scale)
+
+
+@pytest.mark.parametrize(
+    "inertia, w",
+    [
+        ((1.0, 1.0, 1.0), (1.0, 2.0, 3.0)),  # sphere: J = 0
+        ((1.0, 1.0, 2.0), (0.0, 0.0, 1000.0)),  # symmetric, about the axis: ±iν
+        ((1.0, 2.0, 3.0), (0.0, 2.0, 0.0)),  # middle axis: real ±ν (unstable)
+        ((1.0, 2.0, 3.0), (1.0, 0.5, 0.2)),  # generic: p, q both nonzero
+        ((1.0, 2.0, 3.0), (0.0, 0.0, 0.0)),  # at rest
+        ((1.0, 2.0, 3.0), (1e-3, 2.0, 1e-3)),  # next to the separatrix
+    ],
+)
+def test_linear_rate_named_cases(inertia, w):
+    from ga_rotors.integrators.limits import linear_rate
+
+    assert linear_rate(inertia, w) == pytest.approx(_eig_rate(inertia, w), rel=1e-9, abs=1e-12)
+
+
+def test_step_limit_text_is_built_only_when_asked():
+    calls = []
+    lim = get("rk4").step_limit(BODY, W0, 1e-5, N)
+    assert not lim.exceeded
+    explain = lim.explain
+    lim = lim._replace(explain=lambda: calls.append(1) or explain())
+    assert calls == [] and "orientation lags" in lim.effect and calls == [1]

@@ -2,8 +2,9 @@
 
 The interface (how to add an integrator, the template slots, torques, the code
 generation that makes numba's cache work) is documented in
-:mod:`ga_rotors.integrators.base`. Use :func:`get` to look one up, :func:`catalogue` to list
-them, and :func:`ga_rotors.simulation.simulate` to run one.
+:mod:`ga_rotors.integrators.base` and, step by step, in ``docs/extending.md``. Use
+:func:`get` to look one up, :func:`catalogue` to list them, and
+:func:`ga_rotors.simulation.simulate` to run one.
 """
 
 from .base import (
@@ -16,7 +17,6 @@ from .base import (
     LoopResult,
     PrescribedOmega,
     Problem,
-    TemplateIntegrator,
     TorqueTerm,
     catalogue,
     get,
@@ -24,6 +24,7 @@ from .base import (
     register,
     torque_conflict,
 )
+from .template import TemplateIntegrator
 
 __all__ = [
     "ANY_TORQUE",

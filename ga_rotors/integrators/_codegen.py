@@ -60,10 +60,11 @@ from ..errors import InputError
 from ..files import write_text
 from ..paths import get as get_path
 from . import loops, slots
-from .base import FREE, KINEMATIC, TORQUED, LoopResult, Problem, TemplateIntegrator
+from .base import FREE, KINEMATIC, TORQUED, Integrator, LoopResult, Problem
 
 __all__ = [
     "Specialisation",
+    "bare_loop",
     "cache_location",
     "clear_cache",
     "run_loop",
@@ -219,13 +220,13 @@ def _accel_source(kind: str, imports: _Imports) -> str:
     )
 
 
-def source(integrator: TemplateIntegrator, problem: Problem, path: str) -> str:
+def source(integrator: Integrator, problem: Problem, path: str) -> str:
     """The text of the module that specialises ``integrator`` for ``problem`` on ``path``."""
     return _generate(integrator, problem, path, cache=True)[0]
 
 
 def _generate(
-    integrator: TemplateIntegrator | None, problem: Problem, path: str, cache: bool
+    integrator: Integrator | None, problem: Problem, path: str, cache: bool
 ) -> tuple[str, list[str]]:
     """Module text and the modules it imports. ``integrator=None``: the vector field."""
     kind = problem.kind
@@ -515,9 +516,7 @@ def _memo_key(integrator, problem: Problem, path: str) -> tuple:
     )
 
 
-def specialise(
-    integrator: TemplateIntegrator | None, problem: Problem, path: str
-) -> Specialisation:
+def specialise(integrator: Integrator | None, problem: Problem, path: str) -> Specialisation:
     """Generate (or reuse) and import the module for this combination.
 
     ``integrator=None`` gives the vector field's module (see :func:`vector_field`).
@@ -554,8 +553,34 @@ def specialise(
 # ---------------------------------------------------------------------------- running
 
 
+@dataclass(frozen=True)
+class _Prepared:
+    """What every run of one (integrator, problem, path) shares, derived once."""
+
+    owner: Integrator  # held, so that the id in the problem's key is never reused
+    loop: object
+    source: Path | None
+    dim: int
+    stats: np.ndarray  # the path's initial watch statistics (copied per run)
+    inertia: tuple[float, float, float]
+    params: np.ndarray
+
+
+def _prepare(integrator: Integrator, problem: Problem, path: str) -> _Prepared:
+    spec = get_path(path)
+    kernels = spec.load()
+    compiled = specialise(integrator, problem, path)
+    stats = (
+        kernels.initial_stats() if hasattr(kernels, "initial_stats") else np.zeros(kernels.NSTATS)
+    )
+    inertia = problem.inertia if problem.inertia is not None else (1.0, 1.0, 1.0)
+    return _Prepared(
+        integrator, compiled.loop, compiled.path, spec.dim, stats, inertia, problem.params()
+    )
+
+
 def run_loop(
-    integrator: TemplateIntegrator,
+    integrator: Integrator,
     problem: Problem,
     path: str,
     x0,
@@ -568,6 +593,11 @@ def run_loop(
 ) -> LoopResult:
     """Run the specialised loop and return the finite samples.
 
+    Everything that depends only on (integrator, problem, path) — the generated module,
+    the path's dimension and statistics, the packed parameters — is derived once and
+    kept by the problem (:meth:`Problem.derived`); a run only checks its counts,
+    allocates its samples and calls the loop.
+
     With ``progress``, the loop runs in chunks of about :data:`CHUNK_STEPS` steps (whole
     multiples of ``every``) and ``progress(steps_done)`` is called after each. Each chunk
     starts from the last stored sample, which is the exact state (samples store the
@@ -576,51 +606,56 @@ def run_loop(
     t0 + (k·chunk + i)·h, can differ in its last bits: a torque that depends on t, or a
     time the watch records, may differ by rounding.
     """
-    spec = get_path(path)
-    kernels = spec.load()
-    if not (isinstance(nsteps, int | np.integer) and nsteps >= 1):
-        raise InputError(f"nsteps: expected a positive integer, got {nsteps!r}")
-    if not (isinstance(every, int | np.integer) and every >= 1):
-        raise InputError(f"every: expected a positive integer, got {every!r}")
-    compiled = specialise(integrator, problem, path)
-    rows = int(nsteps) // int(every) + 1 + (1 if nsteps % every else 0)
-    out_t = np.empty(rows)
-    out_x = np.empty((rows, spec.dim))
-    out_w = np.empty((rows, 3))
-    stats = (
-        kernels.initial_stats() if hasattr(kernels, "initial_stats") else np.zeros(kernels.NSTATS)
+    prep = problem.derived(
+        ("loop", id(integrator), path), lambda: _prepare(integrator, problem, path)
     )
-    x0 = np.ascontiguousarray(x0, dtype=np.float64)
-    w0 = np.ascontiguousarray(w0 if w0 is not None else (0.0, 0.0, 0.0), dtype=np.float64)
-    inertia = problem.inertia if problem.inertia is not None else (1.0, 1.0, 1.0)
-    params = problem.params()
-    nsteps, every = int(nsteps), int(every)
-    chunk = nsteps if progress is None else max(1, CHUNK_STEPS // every) * every
+    if type(nsteps) is not int or type(every) is not int or nsteps < 1 or every < 1:
+        if not (isinstance(nsteps, int | np.integer) and nsteps >= 1):
+            raise InputError(f"nsteps: expected a positive integer, got {nsteps!r}")
+        if not (isinstance(every, int | np.integer) and every >= 1):
+            raise InputError(f"every: expected a positive integer, got {every!r}")
+        nsteps, every = int(nsteps), int(every)
+    rows = nsteps // every + 1 + (1 if nsteps % every else 0)
+    out_t = np.empty(rows)
+    out_x = np.empty((rows, prep.dim))
+    out_w = np.empty((rows, 3))
+    stats = prep.stats.copy() if prep.stats.size else prep.stats  # empty: nothing to copy
+    x = np.ascontiguousarray(x0, dtype=np.float64)
+    w = np.ascontiguousarray(w0 if w0 is not None else (0.0, 0.0, 0.0), dtype=np.float64)
+    t0, h = float(t0), float(h)
+    if progress is None:  # the common case: one call of the compiled loop
+        written = prep.loop(
+            x, w, t0, h, nsteps, every, prep.inertia, prep.params, out_t, out_x, out_w, stats
+        )
+    else:
+        written = _chunked(prep, x, w, t0, h, nsteps, every, out_t, out_x, out_w, stats, progress)
+    return LoopResult(
+        t=out_t[:written] if written < rows else out_t,
+        x=out_x[:written] if written < rows else out_x,
+        w=out_w[:written] if written < rows else out_w,
+        complete=written == rows,
+        stats=stats,
+        source=prep.source,
+    )
+
+
+def _chunked(prep, x, w, t0, h, nsteps, every, out_t, out_x, out_w, stats, progress) -> int:
+    """The loop in chunks of about :data:`CHUNK_STEPS` steps; the number of rows written."""
+    chunk = max(1, CHUNK_STEPS // every) * every
     done = row = 0
-    x, w = x0, w0
     while True:
         n = min(chunk, nsteps - done)
-        got = compiled.loop(
-            x, w, float(t0) + done * float(h), float(h), n, every, inertia, params,
+        got = prep.loop(
+            x, w, t0 + done * h, h, n, every, prep.inertia, prep.params,
             out_t[row:], out_x[row:], out_w[row:], stats,
         )  # fmt: skip
         done += n
         expected = n // every + 1 + (1 if n % every else 0)
-        if progress is not None:
-            progress(done)
+        progress(done)
         if got < expected or done == nsteps:
-            written = row + got
-            break
+            return row + got
         row += got - 1  # the next chunk's first sample is this chunk's last
         x, w = out_x[row].copy(), out_w[row].copy()
-    return LoopResult(
-        t=out_t[:written],
-        x=out_x[:written],
-        w=out_w[:written],
-        complete=written == rows,
-        stats=stats,
-        source=compiled.path,
-    )
 
 
 def vector_field(problem: Problem, path: str):
@@ -651,3 +686,33 @@ def vector_field(problem: Problem, path: str):
         return out
 
     return f
+
+
+def bare_loop(integrator: Integrator, problem: Problem, path: str, x0, w0, t0, h, nsteps, every):
+    """A zero-argument call of the compiled loop alone, its arrays allocated beforehand:
+    the floor :meth:`Integrator.run` is measured against (its per-call overhead is its time
+    minus this one's; ``benchmarks/bench_overhead.py``).
+
+    Examples
+    --------
+    >>> from ga_rotors.integrators import get
+    >>> call = bare_loop(get("rk4"), Problem((1.0, 2.0, 3.0)), "quaternion",
+    ...                  (1.0, 0, 0, 0), (0.0, 0.0, 2.0), 0.0, 0.01, 100, 100)
+    >>> call()  # rows written: the start and the end
+    2
+    """
+    prep = problem.derived(
+        ("loop", id(integrator), path), lambda: _prepare(integrator, problem, path)
+    )
+    rows = nsteps // every + 1 + (1 if nsteps % every else 0)
+    out_t, out_x, out_w = np.empty(rows), np.empty((rows, prep.dim)), np.empty((rows, 3))
+    stats = prep.stats.copy()
+    x = np.ascontiguousarray(x0, dtype=np.float64)
+    w = np.ascontiguousarray(w0, dtype=np.float64)
+    loop, inertia, params = prep.loop, prep.inertia, prep.params
+    t0, h = float(t0), float(h)
+
+    def call():
+        return loop(x, w, t0, h, nsteps, every, inertia, params, out_t, out_x, out_w, stats)
+
+    return call

@@ -96,3 +96,17 @@ def solve3(a, b):
     x1 = b[0] * c01 + b[1] * (a00 * a22 - a02 * a20) + b[2] * (a02 * a10 - a00 * a12)
     x2 = b[0] * c02 + b[1] * (a01 * a20 - a00 * a21) + b[2] * (a00 * a11 - a01 * a10)
     return (x0 / det, x1 / det, x2 / det)
+
+
+@jit
+def symmetric_pair(inertia):
+    """(k, p, r): I_p and I_r the two closest moments (the symmetric top's I⊥ = I_p), k the
+    remaining axis (the symmetric top's axis)."""
+    d01 = abs(inertia[0] - inertia[1])
+    d12 = abs(inertia[1] - inertia[2])
+    d02 = abs(inertia[0] - inertia[2])
+    if d01 <= d12 and d01 <= d02:
+        return 2, 0, 1
+    if d12 <= d02:
+        return 0, 1, 2
+    return 1, 0, 2

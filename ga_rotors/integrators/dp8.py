@@ -18,9 +18,10 @@ from __future__ import annotations
 import numpy as np
 
 from ._arith import axpy3
-from .base import FREE, TORQUED, TemplateIntegrator, register
+from .base import FREE, TORQUED, register
 from .limits import stability_polynomial, wobble_damping
 from .slots import accel, o_axpy, o_load, o_rate
+from .template import TemplateIntegrator
 
 # The step templates below are not in __all__: they are source the code generator
 # specialises (ga_rotors.integrators._codegen), not functions to call; the public entry
@@ -133,5 +134,6 @@ DP8 = register(
         steps={FREE: dp8_step, TORQUED: dp8_step},
         # R from the tableau itself (degree 12, not e^z's Taylor polynomial past z⁸).
         step_limit=wobble_damping(stability_polynomial(A, B), steps_q=True),
+        evaluations=STAGES,
     )
 )

@@ -20,9 +20,10 @@ from __future__ import annotations
 import math
 
 from ._arith import axpy3
-from .base import FREE, TORQUED, TemplateIntegrator, register
+from .base import FREE, TORQUED, register
 from .limits import fixed_point_sweep
 from .slots import accel, o_axpy, o_rate
+from .template import TemplateIntegrator
 
 # The step templates below are not in __all__: they are source the code generator
 # specialises (ga_rotors.integrators._codegen), not functions to call; the public entry
@@ -73,5 +74,6 @@ MIDPOINT = register(
         paths=frozenset({"rotor", "quaternion"}),
         steps={FREE: midpoint_step, TORQUED: midpoint_step},
         step_limit=fixed_point_sweep,
+        evaluations=1,  # its fixed-point sweeps are not counted
     )
 )

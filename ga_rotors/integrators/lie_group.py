@@ -33,9 +33,10 @@ from __future__ import annotations
 from .._kernels import cross
 from ._arith import axpy3, rk4_sum3
 from ._rigid import turn
-from .base import FREE, KINEMATIC, TORQUED, TemplateIntegrator, register
+from .base import FREE, KINEMATIC, TORQUED, register
 from .limits import stability_polynomial, wobble_damping
 from .slots import accel, o_from_quat, o_quat, omega
+from .template import TemplateIntegrator
 
 # The step templates below are not in __all__: they are source the code generator
 # specialises (ga_rotors.integrators._codegen), not functions to call; the public entry
@@ -192,7 +193,7 @@ CG3_POLYNOMIAL = stability_polynomial(
 )
 
 
-def _lie(name, order, description, steps, helpers=(), polynomial=None):
+def _lie(name, order, description, steps, helpers=(), polynomial=None, *, evaluations):
     """Register a Lie-group method: unit norm by construction, sphere paths only."""
     return register(
         TemplateIntegrator(
@@ -204,6 +205,7 @@ def _lie(name, order, description, steps, helpers=(), polynomial=None):
             steps=steps,
             helpers=helpers,
             step_limit=None if polynomial is None else wobble_damping(polynomial, steps_q=False),
+            evaluations=evaluations,
         )
     )
 
@@ -214,6 +216,7 @@ LIE_EULER = _lie(
     "Lie–Euler: q ⊗ Exp(hω), ω + hω̇",
     {FREE: lie_euler_step, TORQUED: lie_euler_step, KINEMATIC: lie_euler_kinematic_step},
     polynomial=LIE_EULER_POLYNOMIAL,
+    evaluations=1,
 )
 RKMK4 = _lie(
     "rkmk4",
@@ -222,6 +225,7 @@ RKMK4 = _lie(
     {FREE: rkmk4_step, TORQUED: rkmk4_step},
     (dexpinv,),
     polynomial=ORDER4_POLYNOMIAL,
+    evaluations=4,
 )
 CF4 = _lie(
     "cf4",
@@ -230,6 +234,7 @@ CF4 = _lie(
     {FREE: cf4_step, TORQUED: cf4_step},
     (tuple_combo,),
     polynomial=ORDER4_POLYNOMIAL,
+    evaluations=4,
 )
 CG3 = _lie(
     "cg3",
@@ -237,10 +242,12 @@ CG3 = _lie(
     "Crouch–Grossman order 3: products of exponentials of frozen rates",
     {FREE: cg3_step, TORQUED: cg3_step},
     polynomial=CG3_POLYNOMIAL,
+    evaluations=3,
 )
 MAGNUS4 = _lie(
     "magnus4",
     4,
     "fourth-order Magnus expansion for a prescribed ω(t) (two Gauss points)",
     {KINEMATIC: magnus4_kinematic_step},
+    evaluations=2,  # ω(t) at two Gauss points
 )

@@ -20,9 +20,10 @@ the state. A run warns once N·|ln |R(ihν)|²| ≥ 1, the energy changed by a f
 from __future__ import annotations
 
 from ._arith import axpy3, rk4_sum3
-from .base import FREE, KINEMATIC, TORQUED, TemplateIntegrator, register
+from .base import FREE, KINEMATIC, TORQUED, register
 from .limits import wobble_damping
 from .slots import accel, o_axpy, o_normalize, o_rate, o_rk4, omega
+from .template import TemplateIntegrator
 
 # The step templates below are not in __all__: they are source the code generator
 # specialises (ga_rotors.integrators._codegen), not functions to call; the public entry
@@ -85,6 +86,7 @@ RK4 = register(
         steps={FREE: rk4_step, TORQUED: rk4_step, KINEMATIC: rk4_kinematic_step},
         # |R(iy)|² = 1 − y⁶/72 + y⁸/576 < 1: the wobble and |q| (q̇ has rate |ω|/2) decay.
         step_limit=wobble_damping(RK4_POLYNOMIAL, steps_q=True),
+        evaluations=4,
     )
 )
 
@@ -103,5 +105,6 @@ RK4_RENORM = register(
         helpers=(rk4_step, rk4_kinematic_step),
         # |q| is projected back each step: only the wobble of ω is damped by |R(ihν)|².
         step_limit=wobble_damping(RK4_POLYNOMIAL, steps_q=False, phase_on_q=True),
+        evaluations=4,
     )
 )

@@ -39,10 +39,11 @@ its remainder rotation h·L_r(1/I_r − 1/I_p), from h|L|·|1/I_r − 1/I_p| = 1
 from __future__ import annotations
 
 from .._kernels import qmul_exp
-from ._rigid import momenta, rates, rotate_about
-from .base import FREE, ORIENTATION_TORQUES, TORQUED, TemplateIntegrator, register
+from ._rigid import momenta, rates, rotate_about, symmetric_pair
+from .base import FREE, ORIENTATION_TORQUES, TORQUED, register
 from .limits import principal_rotation_angle, symmetric_remainder_angle
 from .slots import o_from_quat, o_quat, torque
+from .template import TemplateIntegrator
 
 # The step templates below are not in __all__: they are source the code generator
 # specialises (ga_rotors.integrators._codegen), not functions to call; the public entry
@@ -152,19 +153,6 @@ def kdk6_step(t, x, w, h, inertia, params):
     return o_from_quat(q), rates(L, inertia)
 
 
-def symmetric_pair(inertia):
-    """(k, p, r): I_p and I_r the two closest moments (the symmetric top's I⊥ = I_p), k the
-    remaining axis (the symmetric top's axis)."""
-    d01 = abs(inertia[0] - inertia[1])
-    d12 = abs(inertia[1] - inertia[2])
-    d02 = abs(inertia[0] - inertia[2])
-    if d01 <= d12 and d01 <= d02:
-        return 2, 0, 1
-    if d12 <= d02:
-        return 0, 1, 2
-    return 1, 0, 2
-
-
 def symmetric_flow(q, L, h, inertia, k, p):
     """Exact flow of |L|²/(2I_p) + (1/I_k − 1/I_p) L_k²/2 (a symmetric top) for a time h."""
     a = 1.0 / inertia[p]
@@ -189,7 +177,7 @@ _FREE_PROPS = frozenset(
 _HELPERS = (free_strang, kick, kdk, compose_free, compose_kdk)
 
 
-def _splitting(name, order, description, free_step, torqued_step=None):
+def _splitting(name, order, description, free_step, torqued_step=None, *, evaluations):
     steps = {FREE: free_step}
     if torqued_step is not None:
         steps[TORQUED] = torqued_step
@@ -204,6 +192,7 @@ def _splitting(name, order, description, free_step, torqued_step=None):
             helpers=_HELPERS,
             torques=ORIENTATION_TORQUES,
             step_limit=principal_rotation_angle,
+            evaluations=evaluations,
         )
     )
 
@@ -214,9 +203,15 @@ SPLIT2 = _splitting(
     "Lie–Poisson Strang splitting into exact axis rotations (torqued: kick–drift–kick)",
     split2_step,
     kdk2_step,
+    evaluations=1,
 )
 SPLIT4 = _splitting(
-    "split4", 4, "Suzuki's 5-stage composition of the Strang splitting", split4_step, kdk4_step
+    "split4",
+    4,
+    "Suzuki's 5-stage composition of the Strang splitting",
+    split4_step,
+    kdk4_step,
+    evaluations=5,
 )
 SPLIT4_YOSHIDA = _splitting(
     "split4_yoshida",
@@ -224,6 +219,7 @@ SPLIT4_YOSHIDA = _splitting(
     "Yoshida's triple jump of the Strang splitting",
     split4_yoshida_step,
     kdk4_yoshida_step,
+    evaluations=3,
 )
 SPLIT6 = _splitting(
     "split6",
@@ -231,6 +227,7 @@ SPLIT6 = _splitting(
     "Yoshida's 7-stage order-6 composition of the Strang splitting",
     split6_step,
     kdk6_step,
+    evaluations=7,
 )
 SPLIT_SYM = register(
     TemplateIntegrator(
@@ -240,8 +237,9 @@ SPLIT_SYM = register(
         conserves=_FREE_PROPS,
         paths=_SPHERE,
         steps={FREE: split_sym_step},
-        helpers=(symmetric_pair, symmetric_flow),
+        helpers=(symmetric_flow,),
         torques=ORIENTATION_TORQUES,  # no torqued step yet; a kick would need this too
         step_limit=symmetric_remainder_angle,
+        evaluations=1,
     )
 )

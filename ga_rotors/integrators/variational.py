@@ -36,9 +36,10 @@ from math import sqrt
 
 from .._kernels import cross, qconj, qmul, qrotate
 from ._rigid import momenta, rates, solve3
-from .base import FREE, ORIENTATION_TORQUES, TORQUED, TemplateIntegrator, register
+from .base import FREE, ORIENTATION_TORQUES, TORQUED, register
 from .limits import moser_veselov
 from .slots import o_from_quat, o_quat, torque
+from .template import TemplateIntegrator
 
 # The step templates below are not in __all__: they are source the code generator
 # specialises (ga_rotors.integrators._codegen), not functions to call; the public entry
@@ -160,5 +161,6 @@ LGVI = register(
         torques=ORIENTATION_TORQUES,  # M(q): with M(ω) the explicit M_{k+1} makes it order 1
         step_limit=moser_veselov,
         step_limit_action="raise",  # no step exists past it: refuse rather than stop at t0
+        evaluations=1,  # its Newton iterations for the step's rotation are not counted
     )
 )
