@@ -135,13 +135,13 @@ def test_undeclared_effects_are_never_evaluated_uncompiled(tmp_path):
 
 def test_undeclared_paths_are_never_integrated(monkeypatch):
     ran = []
-    original = TemplateIntegrator.run
+    original = TemplateIntegrator.integrate
 
     def recording(self, problem, path, *args, **kwargs):
         ran.append(path)
         return original(self, problem, path, *args, **kwargs)
 
-    monkeypatch.setattr(TemplateIntegrator, "run", recording)
+    monkeypatch.setattr(TemplateIntegrator, "integrate", recording)
     for paths in (["quaternion"], ["euler", "rotor"]):
         ran.clear()
         s = load_scene("spinning_disk").replace(

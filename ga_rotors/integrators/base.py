@@ -145,6 +145,7 @@ __all__ = [
     "catalogue",
     "get",
     "names",
+    "problem_for",
     "register",
     "torque_conflict",
 ]
@@ -440,10 +441,25 @@ class Integrator(ABC):
         >>> r.t.tolist(), r.complete
         ([0.0, 1.0], True)
         """
-        # Remembered by the problem; the value holds self, so its id is never reused.
-        problem.derived(("checked", id(self), path), lambda: self.check(problem, path) or self)
+        self.check_once(problem, path)
         self.check_step(problem, w0, h, nsteps, where="h")
         return self.integrate(problem, path, x0, w0, t0, h, nsteps, every, progress)
+
+    def check_once(self, problem: Problem, path: str) -> None:
+        """:meth:`check`, remembered by the problem: a problem and path that passed are
+        not checked again (the problem is immutable).
+
+        Examples
+        --------
+        >>> problem = Problem((1.0, 2.0, 3.0))
+        >>> get("rk4").check_once(problem, "rotor")  # checked; the next call looks it up
+        >>> get("split_sym").check_once(Problem((1.0, 1.0, 2.0)), "euler")
+        Traceback (most recent call last):
+        ...
+        ga_rotors.errors.InputError: paths: split_sym cannot step the 'euler' path ...
+        """
+        # The value holds self, so the id in the key is never reused while it is kept.
+        problem.derived(("checked", id(self), path), lambda: self.check(problem, path) or self)
 
     def check(self, problem: Problem, path: str) -> None:
         """InputError naming what is unsupported, if anything."""
@@ -505,15 +521,15 @@ class Integrator(ABC):
         if not limit.exceeded:
             return limit
         # Only now, past the limit, is the text built (it costs more than the check).
-        message = (
-            f"{where}: {self.name} cannot step {limit.quantity} = {limit.value:.3g} "
-            f"(limit {limit.limit:g}): {limit.effect}"
+        detail = (
+            f"{self.name} cannot step {limit.quantity} = {limit.value:.3g} "
+            f"(limit {limit.limit:g}): {limit.effect}; take a smaller step"
         )
         if self.step_limit_action == "raise":
-            raise InputError(message + "; take a smaller step")
+            raise InputError(detail, key=where)
         from ..errors import StepLimitWarning
 
-        warnings.warn(message + "; take a smaller step", StepLimitWarning, stacklevel=3)
+        warnings.warn(f"{where}: {detail}", StepLimitWarning, stacklevel=3)
         return limit
 
     def _validate_declaration(self) -> None:
@@ -541,6 +557,33 @@ class Integrator(ABC):
             )
         if not isinstance(self.adaptive, bool):
             raise InputError(f"{self.name}: adaptive must be True or False, got {self.adaptive!r}")
+
+
+_PROBLEMS: dict[tuple, Problem] = {}
+
+
+def problem_for(inertia, torques=(), accept_lower_order: bool = False) -> Problem:
+    """The :class:`Problem` of these moments and torques, shared by the calls that repeat
+    them (the last 64 kept), so what runs derive from a problem — its checks, its compiled
+    loop — is derived once: :func:`ga_rotors.simulation.simulate` builds its problem here.
+
+    Examples
+    --------
+    >>> problem_for((1.0, 2.0, 3.0)) is problem_for([1, 2, 3])
+    True
+    >>> problem_for((1.0, 2.0, 3.0), accept_lower_order=True).accept_lower_order
+    True
+    """
+    try:
+        key = (tuple(float(i) for i in inertia), tuple(torques), accept_lower_order)
+        found = _PROBLEMS.get(key)
+    except TypeError:  # something unhashable: let Problem say what is wrong with it
+        return Problem(inertia, tuple(torques), accept_lower_order=accept_lower_order)
+    if found is None:
+        if len(_PROBLEMS) >= 64:
+            _PROBLEMS.clear()
+        found = _PROBLEMS[key] = Problem(key[0], key[1], accept_lower_order=accept_lower_order)
+    return found
 
 
 def torque_conflict(integrator: Integrator, torques):
