@@ -19,11 +19,11 @@ from types import ModuleType
 
 from ..errors import InputError
 
-__all__ = ["PATHS", "Path", "get", "register"]
+__all__ = ["PATHS", "OrientationPath", "get", "register"]
 
 
 @dataclass(frozen=True)
-class Path:
+class OrientationPath:
     """One orientation path.
 
     Attributes
@@ -70,11 +70,11 @@ class Path:
         return importlib.import_module(self.module)
 
 
-#: path name -> Path, in order of precedence for a simulation's primary path.
-PATHS: dict[str, Path] = {
+#: path name -> OrientationPath, in order of precedence for a simulation's primary path.
+PATHS: dict[str, OrientationPath] = {
     p.name: p
     for p in (
-        Path(
+        OrientationPath(
             "rotor",
             "ga_rotors.paths.rotor",
             "rotor_blades",
@@ -82,7 +82,7 @@ PATHS: dict[str, Path] = {
             True,
             "rotor equation dR/dt = R Ω / 2 in Cl(3,0)",
         ),
-        Path(
+        OrientationPath(
             "quaternion",
             "ga_rotors.paths.quaternion",
             "q",
@@ -90,7 +90,7 @@ PATHS: dict[str, Path] = {
             True,
             "quaternion kinematics dq/dt = q ⊗ (0, ω) / 2",
         ),
-        Path(
+        OrientationPath(
             "euler",
             "ga_rotors.paths.euler",
             "euler",
@@ -103,7 +103,7 @@ PATHS: dict[str, Path] = {
 }
 
 
-def get(name: str) -> Path:
+def get(name: str) -> OrientationPath:
     """The path called ``name``.
 
     Examples
@@ -123,7 +123,7 @@ def get(name: str) -> Path:
         ) from None
 
 
-def register(path: Path) -> Path:
+def register(path: OrientationPath) -> OrientationPath:
     """Add an orientation path (names and array names are unique) and return it.
 
     The integrators that can step it must list its name in their ``paths``. See
@@ -133,13 +133,13 @@ def register(path: Path) -> Path:
     --------
     >>> register(PATHS["euler"]) is PATHS["euler"]
     True
-    >>> register(Path("euler", "my.module", "angles", ("a", "b", "c"), False, "mine"))
+    >>> register(OrientationPath("euler", "my.module", "angles", ("a", "b", "c"), False, "mine"))
     Traceback (most recent call last):
     ...
     ga_rotors.errors.InputError: register: a path named 'euler' already exists
     """
-    if not isinstance(path, Path):
-        raise InputError(f"expected a Path, got {path!r}", key="register")
+    if not isinstance(path, OrientationPath):
+        raise InputError(f"expected an OrientationPath, got {path!r}", key="register")
     existing = PATHS.get(path.name)
     if existing is not None and existing is not path:
         raise InputError(f"a path named {path.name!r} already exists", key="register")
