@@ -32,18 +32,17 @@ User torques. ``function = "package.module:function"`` names a *numba-compiled* 
 (``@numba.njit``, ideally ``cache=True``) with the signature ``kernel(t, q, w, p)`` that
 returns a 3-tuple of floats. It must be compiled (not a plain function) because the
 generated loop imports it by name and calls it from compiled code; a plain function is
-refused with a message saying how to compile it. The module is imported when the scene
-is simulated (never when it is loaded or shown), from ``sys.path`` and then from the
-scene file's directory. Before use the kernel's Python version is called once at
+refused with a message saying how to compile it. The module is code: it is imported only
+when the user opts in (``ga-rotors run --allow-user-code [DIR]``, see :mod:`ga_rotors.trust`),
+when the validated scene is simulated (never when it is loaded or shown), and only from
+the folders the user named. Before use the kernel's Python version is called once at
 (t = 0, q = 1, ω = 0, p) and must return three finite numbers.
 """
 
 from __future__ import annotations
 
-import importlib
 import math
 import re
-import sys
 from collections.abc import Callable
 from dataclasses import dataclass, field, replace
 from pathlib import Path
@@ -55,6 +54,7 @@ from ._kernels import cross, qconj, qrotate
 from .errors import InputError
 from .integrators.base import TorqueTerm
 from .scene.reader import Reader, join
+from .trust import import_user_module
 
 __all__ = [
     "EFFECTS",
@@ -354,7 +354,7 @@ def _build_space_torque(entry: dict, frame: Frame, reader: Reader, key: str) -> 
 
 
 def _build_user(entry: dict, frame: Frame, reader: Reader, key: str) -> TorqueTerm:
-    kernel = load_user_kernel(entry["function"], frame.base_dir, reader, join(key, "function"))
+    kernel = load_user_kernel(entry["function"], reader, join(key, "function"))
     params = tuple(entry["params"])
     try:
         term = TorqueTerm(kernel, params, name=entry["function"].rpartition(":")[2])
@@ -451,35 +451,37 @@ def register(effect: EffectType) -> EffectType:
 # ---------------------------------------------------------------------------- user torques
 
 
-def _import(module: str, base_dir: Path | None):
-    try:
-        return importlib.import_module(module)
-    except ModuleNotFoundError as exc:
-        missing = exc.name or module
-        if base_dir is None or not (module == missing or module.startswith(missing + ".")):
-            raise
-    sys.path.append(str(base_dir))
-    try:
-        return importlib.import_module(module)
-    finally:
-        sys.path.remove(str(base_dir))
-
-
-def load_user_kernel(spec: str, base_dir: Path | None, reader: Reader, key: str):
+def load_user_kernel(spec: str, reader: Reader, key: str):
     """Import ``"package.module:function"`` and check it is a compiled 4-argument kernel.
+
+    Only with the user's opt-in and only from the folders named there
+    (:mod:`ga_rotors.trust`); ``ga_rotors`` itself counts as such a folder nowhere.
 
     Examples
     --------
-    >>> load_user_kernel("ga_rotors.effects:body_torque", None, Reader("x.toml"), "k").__name__
-    'body_torque'
-    >>> load_user_kernel("math:hypot", None, Reader("x.toml"), "effects[0].function")
+    >>> import os, tempfile
+    >>> folder = tempfile.mkdtemp()
+    >>> with open(os.path.join(folder, "my_torques_doc.py"), "w") as f:
+    ...     print("import math", "from ga_rotors.effects import body_torque", sep=";", file=f)
+    >>> load_user_kernel("my_torques_doc:body_torque", Reader("x.toml"), "k")
     Traceback (most recent call last):
     ...
-    ga_rotors.errors.SceneError: x.toml: effects[0].function: math:hypot is ...
+    ga_rotors.errors.SceneError: x.toml: k: the scene asks to run code (my_torques_doc:...
+    >>> from ga_rotors.trust import allow_user_code
+    >>> with allow_user_code(folder):
+    ...     load_user_kernel("my_torques_doc:body_torque", Reader("x.toml"), "k").__name__
+    'body_torque'
+    >>> with allow_user_code(folder):
+    ...     load_user_kernel("my_torques_doc:math", Reader("x.toml"), "effects[0].function")
+    Traceback (most recent call last):
+    ...
+    ga_rotors.errors.SceneError: x.toml: effects[0].function: my_torques_doc:math is module; ...
     """
     module, _, name = spec.partition(":")
     try:
-        mod = _import(module, base_dir)
+        mod = import_user_module(module, spec)
+    except InputError as exc:
+        raise reader.error(key, str(exc)) from None
     except Exception as exc:  # any failure to import is the scene's problem, reported as such
         raise reader.error(
             key, f"cannot import module {module!r}: {type(exc).__name__}: {exc}"

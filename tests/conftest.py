@@ -5,7 +5,9 @@ call of a compiled kernel includes loading it from numba's cache.
 """
 
 import os
+from pathlib import Path
 
+import pytest
 from hypothesis import HealthCheck, settings
 
 settings.register_profile(
@@ -17,3 +19,10 @@ settings.register_profile(
 )
 settings.register_profile("thorough", deadline=None, max_examples=2000)
 settings.load_profile(os.environ.get("HYPOTHESIS_PROFILE", "default"))
+
+
+@pytest.fixture
+def tests_code(monkeypatch):
+    """Opt in to user torques from this folder (tests/_torques_for_tests.py), as a user
+    would with GA_ROTORS_ALLOW_USER_CODE (ga_rotors.trust)."""
+    monkeypatch.setenv("GA_ROTORS_ALLOW_USER_CODE", str(Path(__file__).resolve().parent))

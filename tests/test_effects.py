@@ -10,6 +10,7 @@ from ga_rotors import effects, shapes
 from ga_rotors import quaternion as Q
 from ga_rotors.errors import SceneError
 from ga_rotors.scene import Scene, run_scene
+from ga_rotors.trust import ENV, allow_user_code
 
 RNG = np.random.default_rng(11)
 
@@ -210,7 +211,8 @@ def test_user_torque_from_the_scene_directory_runs(user_scene):
     make, where = user_scene
     s = make("spin_up", params=(0.4,))
     assert not (where / "imported").exists()  # loading a scene imports nothing
-    tr = run_scene(s)
+    with allow_user_code(where):
+        tr = run_scene(s)
     inertia = 0.4  # ⅖ m R²
     assert np.allclose(tr.w[:, 2], 0.4 * tr.t / inertia, rtol=0, atol=1e-14)
     assert tr.meta["torques"] == ["spin_up"]
@@ -228,18 +230,94 @@ def test_user_torque_from_the_scene_directory_runs(user_scene):
     ],
 )
 def test_bad_user_torques_fail_with_the_key(user_scene, function, message):
-    make, _ = user_scene
+    make, where = user_scene
     s = make(function)
-    with pytest.raises(SceneError) as info:
+    with pytest.raises(SceneError) as info, allow_user_code(where):
         run_scene(s)
     assert info.value.key == "effects[0].function" and message in str(info.value)
 
 
-def test_unimportable_user_module_is_a_scene_error():
+def test_unimportable_user_module_is_a_scene_error(tmp_path):
     s = Scene({"body": {"moments": [1, 2, 2.5]}, "time": {"duration": 1.0},
                "integrator": {"step": 0.5},
                "effects": [{"type": "user", "function": "no_such_pkg.torques:f"}]})  # fmt: skip
-    with pytest.raises(SceneError) as info:
+    with pytest.raises(SceneError) as info, allow_user_code(tmp_path):
         run_scene(s)
     assert info.value.key == "effects[0].function"
-    assert "cannot import module 'no_such_pkg.torques'" in str(info.value)
+    assert "no module 'no_such_pkg' in the allowed folders" in str(info.value)
+
+
+# ---------------------------------------------------------------------------- trust model
+
+
+def test_a_scene_runs_no_code_without_the_opt_in(user_scene, monkeypatch):
+    # The scene's own folder holds the module, and it is on sys.path too: still nothing
+    # is imported, and the one-line refusal names both ways to opt in.
+    make, where = user_scene
+    monkeypatch.delenv(ENV, raising=False)
+    monkeypatch.syspath_prepend(str(where))
+    s = make("spin_up")
+    with pytest.raises(SceneError) as info:
+        run_scene(s)
+    text = str(info.value)
+    assert info.value.key == "effects[0].function" and "\n" not in text
+    assert "--allow-user-code" in text and ENV in text
+    assert not (where / "imported").exists()
+
+
+@pytest.mark.parametrize("function", ["os:system", "json:loads", "ga_rotors.effects:gravity"])
+def test_installed_modules_are_never_user_code(tmp_path, function):
+    # With an opt-in for a folder, a name that resolves anywhere else on sys.path (the
+    # standard library, ga_rotors itself) is refused, imported or not.
+    s = Scene({"body": {"moments": [1, 2, 2.5]}, "time": {"duration": 1.0},
+               "integrator": {"step": 0.5},
+               "effects": [{"type": "user", "function": function}]})  # fmt: skip
+    with pytest.raises(SceneError) as info, allow_user_code(tmp_path):
+        run_scene(s)
+    assert info.value.key == "effects[0].function"
+    assert "allowed folders" in str(info.value)
+
+
+def test_user_code_from_another_folder_is_refused(user_scene, tmp_path_factory):
+    make, where = user_scene
+    other = tmp_path_factory.mktemp("elsewhere")
+    s = make("spin_up")
+    with pytest.raises(SceneError, match=r"no module .* in the allowed folders"):
+        with allow_user_code(other):
+            run_scene(s)
+    assert not (where / "imported").exists()
+
+
+def test_env_setting_opts_in(user_scene, monkeypatch):
+    make, where = user_scene
+    monkeypatch.setenv(ENV, str(where))
+    tr = run_scene(make("spin_up", params=(0.4,)))
+    assert tr.meta["torques"] == ["spin_up"] and (where / "imported").exists()
+
+
+def test_cli_run_asks_for_the_flag_and_runs_with_it(tmp_path):
+    import subprocess
+    import sys
+
+    (tmp_path / "cli_torque_mod.py").write_text(USER)
+    scene = tmp_path / "user.toml"
+    scene.write_text(
+        '[body]\nshape = "sphere"\nmass = 1.0\nradius = 1.0\n'
+        '[time]\nduration = 0.02\n[integrator]\nstep = 0.01\npaths = ["quaternion"]\n'
+        '[[effects]]\ntype = "user"\nfunction = "cli_torque_mod:spin_up"\nparams = [1.0]\n'
+    )
+    env = {k: v for k, v in __import__("os").environ.items() if k != ENV}
+    base = [sys.executable, "-m", "ga_rotors", "run", str(scene), "--out", str(tmp_path / "o")]
+    refused = subprocess.run(base, capture_output=True, text=True, timeout=300, env=env)
+    assert refused.returncode == 2, refused.stderr
+    assert refused.stderr.count("\n") == 1 and "--allow-user-code" in refused.stderr
+    ran = subprocess.run(
+        [*base, "--allow-user-code"], capture_output=True, text=True, timeout=300, env=env
+    )
+    assert ran.returncode == 0, ran.stderr
+    assert "torques: spin_up" in ran.stdout
+    named = subprocess.run(  # the folder named explicitly
+        [*base, "--allow-user-code", str(tmp_path)], capture_output=True, text=True,
+        timeout=300, env=env,
+    )  # fmt: skip
+    assert named.returncode == 0 and "torques: spin_up" in named.stdout, named.stderr

@@ -58,7 +58,7 @@ def imported_kernels(text: str) -> set[str]:
 
 
 @pytest.mark.parametrize("name", sorted(ENTRIES))
-def test_only_the_declared_effect_is_in_the_generated_loop(name):
+def test_only_the_declared_effect_is_in_the_generated_loop(name, tests_code):
     entry, kernel = ENTRIES[name]
     for path in ("rotor", "quaternion"):
         text = generated_source(scene_with(entry), path)
@@ -220,7 +220,7 @@ def test_numba_failure_of_a_user_kernel_names_the_effect(tmp_path, monkeypatch):
         "import numba\n\ndef helper(t):\n    return 1.0\n\n"
         "@numba.njit(cache=False)\ndef k(t, q, w, p):\n    return (0.0, 0.0, helper(t))\n"
     )
-    monkeypatch.syspath_prepend(str(tmp_path))
+    monkeypatch.setenv("GA_ROTORS_ALLOW_USER_CODE", str(tmp_path))
     s = Scene({"body": {"moments": [1, 2, 2.5]}, "time": {"duration": 0.1},
                "integrator": {"step": 0.05},
                "effects": [{"type": "user", "function": "bad_kernel_mod:k"}]})  # fmt: skip

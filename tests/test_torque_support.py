@@ -142,7 +142,7 @@ def _scene(tmp_path, effect="damping", effect_keys="coefficient = 0.3", extra=""
     return path
 
 
-def test_scene_refuses_at_integrator_method_naming_file_and_effect(tmp_path):
+def test_scene_refuses_at_integrator_method_naming_file_and_effect(tmp_path, tests_code):
     with pytest.raises(SceneError) as info:
         load_scene(_scene(tmp_path))
     text = str(info.value)

@@ -29,6 +29,15 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         default=None,
         help=f"output directory (default: ./{DEFAULT_OUT}/<scene name>)",
     )
+    parser.add_argument(
+        "--allow-user-code",
+        metavar="DIR",
+        nargs="?",
+        const="",
+        default=None,
+        help="let the scene's user torques run: import them from DIR only (default: the "
+        "scene file's folder); without it a scene runs no code (docs/scenes.md)",
+    )
     bar = parser.add_mutually_exclusive_group()
     bar.add_argument(
         "--progress",
@@ -105,6 +114,21 @@ class ProgressBar:
             self.stream.flush()
 
 
+def _user_code(args: argparse.Namespace, scene):
+    """The opt-in of --allow-user-code: DIR, or the scene file's folder (ga_rotors.trust)."""
+    import contextlib
+
+    from .errors import InputError
+    from .trust import allow_user_code
+
+    if args.allow_user_code is None:
+        return contextlib.nullcontext()
+    folder = args.allow_user_code or scene.base_dir
+    if folder is None:
+        raise InputError("--allow-user-code: a bundled scene has no folder; name one: DIR")
+    return allow_user_code(folder)
+
+
 def run(args: argparse.Namespace) -> int:
     from pathlib import Path
 
@@ -114,7 +138,7 @@ def run(args: argparse.Namespace) -> int:
     start = time.perf_counter()
     scene = load_scene(args.scene)
     bar = ProgressBar(sys.stderr, args.progress)
-    with warnings.catch_warnings(record=True) as caught:
+    with warnings.catch_warnings(record=True) as caught, _user_code(args, scene):
         warnings.simplefilter("always", StepLimitWarning)
         try:
             trajectory = run_scene(scene, progress=bar)
