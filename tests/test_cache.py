@@ -3,12 +3,16 @@
 from __future__ import annotations
 
 import os
+import stat
+import tempfile
 import time
+from pathlib import Path
 
 import pytest
 from _torques_for_tests import constant_omega
 
 from ga_rotors.cli import main
+from ga_rotors.errors import InputError
 from ga_rotors.integrators import PrescribedOmega, Problem, _codegen, get
 
 DAY = 86400.0
@@ -85,9 +89,19 @@ def test_cache_command_reports_and_clears(cache, capsys):
     assert f"cache: {cache}" in out
     assert f"this version ({_codegen.version_tag()}): 1 module" in out
     assert "other versions: 1 module, 3 B (deleted 14 days after they were made)" in out
+    # --clear says what it removes and keeps other versions' modules.
     assert main(["cache", "--clear"]) == 0
-    assert "removed 4 files" in capsys.readouterr().out
+    out = capsys.readouterr().out
+    assert f"removing 1 module of this version ({_codegen.version_tag()})" in out
+    assert "kept 1 module of other versions" in out
+    assert [f.name.split("_")[-2] for f in cache.glob("gen_*")] == ["deadbeef"]
+    # --clear --all removes every version's.
+    assert main(["cache", "--clear", "--all"]) == 0
+    out = capsys.readouterr().out
+    assert "removing 1 module of every version, 3 B" in out and "removed 3 files" in out
     assert list(cache.glob("gen_*")) == [] and list((cache / "__pycache__").iterdir()) == []
+    assert main(["cache", "--all"]) == 2  # --all alone is a mistake: one line
+    assert "--all: only with --clear" in capsys.readouterr().err
 
 
 def test_cache_command_without_a_writable_directory(tmp_path, monkeypatch, capsys):
@@ -98,5 +112,59 @@ def test_cache_command_without_a_writable_directory(tmp_path, monkeypatch, capsy
     try:
         assert main(["cache"]) == 0
         assert "compiled in memory" in capsys.readouterr().out
+    finally:
+        _codegen.cache_location.cache_clear()
+
+
+# ---------------------------------------------------------------------------- a private cache
+
+
+@pytest.fixture
+def env_cache(tmp_path, monkeypatch):
+    monkeypatch.setenv("GA_ROTORS_CACHE_DIR", str(tmp_path / "c"))
+    _codegen.cache_location.cache_clear()
+    yield tmp_path / "c"
+    _codegen.cache_location.cache_clear()
+
+
+def test_a_new_cache_is_private(env_cache):
+    where = _codegen.cache_location()
+    assert where == env_cache / "generated"
+    for folder in (where, env_cache):
+        assert stat.S_IMODE(os.stat(folder).st_mode) == 0o700
+
+
+@pytest.mark.parametrize("folder", ["c", "c/generated"])
+def test_a_cache_others_can_write_into_is_refused(env_cache, capsys, folder):
+    (env_cache / "generated").mkdir(parents=True)
+    os.chmod(env_cache.parent / folder, 0o777)
+    with pytest.raises(InputError, match=r"can be written by others \(mode 777\)"):
+        _codegen.cache_location()
+    assert main(["cache"]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "GA_ROTORS_CACHE_DIR" in err and "chmod 700" in err
+
+
+@pytest.mark.skipif(not hasattr(os, "geteuid") or os.geteuid() != 0, reason="needs chown")
+def test_a_cache_owned_by_someone_else_is_refused(env_cache):
+    (env_cache / "generated").mkdir(parents=True, mode=0o700)
+    os.chown(env_cache / "generated", 4242, 4242)
+    with pytest.raises(InputError, match="belongs to user id 4242, not to you"):
+        _codegen.cache_location()
+
+
+def test_no_shared_temporary_fallback(tmp_path, monkeypatch):
+    # No usable cache folder (HOME read-only): loops compile in memory; nothing is
+    # written under the shared temporary folder at a predictable name.
+    blocker = tmp_path / "file"
+    blocker.write_text("not a directory")
+    monkeypatch.delenv("GA_ROTORS_CACHE_DIR", raising=False)
+    monkeypatch.setenv("XDG_CACHE_HOME", str(blocker))
+    monkeypatch.setattr(_codegen, "_MEMO", {})
+    _codegen.cache_location.cache_clear()
+    try:
+        assert _codegen.cache_location() is None
+        assert _specialise().path is None
+        assert not list(Path(tempfile.gettempdir()).glob("ga_rotors-*/generated/gen_*"))
     finally:
         _codegen.cache_location.cache_clear()

@@ -6,7 +6,9 @@ The first run of a combination compiles it (a few seconds); later runs load the 
 code from this cache (milliseconds). The directory is $GA_ROTORS_CACHE_DIR if set, else
 $XDG_CACHE_HOME/ga_rotors/generated or ~/.cache/ga_rotors/generated. Modules made by other
 versions of ga_rotors are deleted 14 days after they were made (a version still in use
-recompiles then, once); --clear deletes everything (the next runs compile again).
+recompiles then, once); --clear says what it removes and deletes this version's modules
+(the next runs compile them again), --clear --all every version's. The folder is private
+(mode 0700); one writable by others or owned by someone else is refused.
 """
 
 from __future__ import annotations
@@ -18,7 +20,12 @@ __all__ = ["add_arguments", "run"]
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument(
-        "--clear", action="store_true", help="delete every generated module and compiled file"
+        "--clear",
+        action="store_true",
+        help="delete this version's generated modules and compiled files",
+    )
+    parser.add_argument(
+        "--all", action="store_true", help="with --clear: every version's, not only this one's"
     )
 
 
@@ -35,24 +42,34 @@ def _modules(n: int) -> str:
 
 
 def run(args: argparse.Namespace) -> int:
+    from ..errors import InputError
     from ..integrators import _codegen
 
+    if args.all and not args.clear:
+        raise InputError("--all: only with --clear (ga-rotors cache --clear --all)")
     directory = _codegen.cache_location()
     if directory is None:
         print("no writable cache directory: loops are compiled in memory at every start")
         return 0
-    if args.clear:
-        removed = _codegen.clear_cache()
-        print(f"{directory}: removed {removed} files")
-        return 0
     entries = _codegen.cached_modules(directory)
     mine = _codegen.version_tag()
     current = [c for c in entries if c.version == mine]
+    others = [c for c in entries if c.version != mine]
+    if args.clear:
+        going = entries if args.all else current
+        which = "every version" if args.all else f"this version ({mine})"
+        print(
+            f"{directory}: removing {_modules(len(going))} of {which}, "
+            f"{_size(sum(c.bytes for c in going))}"
+        )
+        removed = _codegen.clear_cache(every_version=args.all)
+        kept = "" if args.all or not others else f"; kept {_modules(len(others))} of other versions"
+        print(f"removed {removed} files{kept}")
+        return 0
     print(f"cache: {directory}")
     print(
         f"this version ({mine}): {_modules(len(current))}, {_size(sum(c.bytes for c in current))}"
     )
-    others = [c for c in entries if c.version != mine]
     print(
         f"other versions: {_modules(len(others))}, {_size(sum(c.bytes for c in others))} "
         f"(deleted {_codegen.PRUNE_AFTER_DAYS:g} days after they were made)"

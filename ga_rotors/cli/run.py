@@ -118,8 +118,8 @@ def _user_code(args: argparse.Namespace, scene):
     """The opt-in of --allow-user-code: DIR, or the scene file's folder (ga_rotors.trust)."""
     import contextlib
 
-    from .errors import InputError
-    from .trust import allow_user_code
+    from ..errors import InputError
+    from ..trust import allow_user_code
 
     if args.allow_user_code is None:
         return contextlib.nullcontext()

@@ -48,7 +48,6 @@ import importlib.util
 import inspect
 import os
 import sys
-import tempfile
 import textwrap
 import types
 from dataclasses import dataclass
@@ -56,6 +55,7 @@ from pathlib import Path
 
 import numpy as np
 
+from .._private_dir import private_directory
 from ..errors import InputError
 from ..files import write_text
 from ..paths import get as get_path
@@ -305,34 +305,32 @@ def _generate(
 
 
 def _candidates() -> list[Path]:
-    out = []
     env = os.environ.get("GA_ROTORS_CACHE_DIR")
     if env:
-        out.append(Path(env))
-    else:
-        base = os.environ.get("XDG_CACHE_HOME") or os.path.join(os.path.expanduser("~"), ".cache")
-        out.append(Path(base) / "ga_rotors")
-    uid = os.getuid() if hasattr(os, "getuid") else os.environ.get("USERNAME", "user")
-    out.append(Path(tempfile.gettempdir()) / f"ga_rotors-{uid}")
-    return [p / "generated" for p in out]
+        return [Path(env) / "generated"]
+    base = os.environ.get("XDG_CACHE_HOME") or os.path.join(os.path.expanduser("~"), ".cache")
+    return [Path(base) / "ga_rotors" / "generated"]
 
 
-def _writable(directory: Path) -> bool:
-    try:
-        directory.mkdir(parents=True, exist_ok=True)
-        probe = tempfile.NamedTemporaryFile(dir=directory, prefix=".probe-", delete=True)
-        probe.close()
-        return True
-    except OSError:
-        return False
+#: What to do when the cache folder is not private (ga_rotors._private_dir).
+_WAY_OUT = (
+    "remove the folder (or chmod 700 it if it is yours), or set GA_ROTORS_CACHE_DIR to a "
+    "folder of your own"
+)
 
 
 @functools.lru_cache(maxsize=1)
 def cache_location() -> Path | None:
-    """The directory generated modules go to, or None when compiling in memory."""
+    """The directory generated modules go to, or None when compiling in memory.
+
+    Private (mode 0700, the user's own: :func:`ga_rotors._private_dir.private_directory`);
+    one that exists but is not private is refused with an InputError. No fallback under
+    the shared temporary directory: with no usable folder, loops compile in memory.
+    """
     for directory in _candidates():
-        if _writable(directory):
-            return directory
+        found = private_directory(directory, way_out=_WAY_OUT)
+        if found is not None:
+            return found
     return None
 
 
@@ -411,9 +409,11 @@ def _delete(entries) -> int:
     return removed
 
 
-def clear_cache() -> int:
-    """Delete every generated module and its numba cache; return how many files went."""
-    removed = _delete(cached_modules())
+def clear_cache(every_version: bool = False) -> int:
+    """Delete this version's generated modules and their numba cache (``every_version``:
+    all versions'); return how many files went."""
+    entries = cached_modules()
+    removed = _delete(e for e in entries if every_version or e.version == version_tag())
     _MEMO.clear()
     return removed
 
