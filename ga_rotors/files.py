@@ -1,26 +1,60 @@
-"""Files written atomically: through a temporary file in the target's directory and
-``os.replace``, so a failed or interrupted run leaves the previous file (or none), never a
-half-written one. Every output of the package (CSV, NPZ, PNG, reports, generated code) goes
-through :func:`atomic_write`.
+"""Files written atomically, and sets of files written all or nothing.
+
+One file goes through a temporary file in the target's directory and ``os.replace``
+(:func:`atomic_write`), so a failed or interrupted run leaves the previous file (or none),
+never a half-written one. A command's set of outputs goes through :func:`output_set` (or
+:func:`write_together`): every file is written into a staging folder first and moved in
+only when all of them exist, so ``--out`` holds the complete new set or the previous one.
+
+Faults, and what each leaves:
+
+* an error, Ctrl-C or SIGTERM while writing: the staging folder is removed, ``--out`` is
+  untouched (the command line turns SIGTERM into an exception so clean-up runs);
+* SIGKILL or a power cut: the staging folder stays; the next command writing the same
+  ``--out`` removes it (or, if every file had been written and the moves had begun,
+  finishes moving them in), so no debris lasts and no half set stays;
+* two commands writing one ``--out``: serialised by a lock on the folder holding it
+  (``fcntl.flock``, no lock file left behind); the second waits up to
+  :data:`LOCK_TIMEOUT` seconds, then fails with one line;
+* a full disk, a file where the folder goes, a folder where a file goes, a dangling
+  symbolic link as ``--out``, a name that would leave ``--out`` or is too long: one line
+  (:class:`~ga_rotors.errors.InputError` naming the argument), before anything moves.
 """
 
 from __future__ import annotations
 
+import contextlib
+import hashlib
 import os
 import shutil
+import signal
 import tempfile
-from collections.abc import Callable, Sequence
+import threading
+import time
+from collections.abc import Callable, Iterator, Sequence
 from pathlib import Path
 
 from .errors import InputError
 
-__all__ = ["atomic_write", "write_text", "write_together"]
+__all__ = ["LOCK_TIMEOUT", "atomic_write", "output_set", "write_text", "write_together"]
+
+#: Seconds a command waits for another one writing the same ``--out`` before giving up.
+LOCK_TIMEOUT = 120.0
+
+#: Longest file name most file systems take, in bytes (NAME_MAX).
+NAME_MAX = 255
+
+_COMPLETE = ".complete"  # inside a staging folder: every file is written, moves may begin
 
 
 def _umask() -> int:
     mask = os.umask(0o022)
     os.umask(mask)
     return mask
+
+
+def _os_error(argument: str, where, exc: OSError) -> InputError:
+    return InputError(f"{argument}: cannot write {where}: {exc.strerror or exc}")
 
 
 def atomic_write(path, write) -> Path:
@@ -41,7 +75,7 @@ def atomic_write(path, write) -> Path:
     parent = path.parent if str(path.parent) else Path(".")
     if not parent.is_dir():
         raise InputError(f"path: directory {parent} does not exist")
-    fd, tmp = tempfile.mkstemp(dir=parent, prefix=f".{path.name}.", suffix=".tmp")
+    fd, tmp = tempfile.mkstemp(dir=parent, prefix=f".{path.name[:200]}.", suffix=".tmp")
     try:
         os.chmod(tmp, 0o666 & ~_umask())  # mkstemp makes 0600; give what open() would
         with os.fdopen(fd, "wb") as fh:
@@ -66,15 +100,193 @@ def write_text(path, text: str) -> Path:
     return atomic_write(path, lambda fh: fh.write(text.encode("utf-8")))
 
 
+def _check_name(name: str, argument: str) -> None:
+    """A file name from a scene or a plan: one plain path component, short enough."""
+    if (
+        not isinstance(name, str)
+        or name in ("", ".", "..")
+        or "/" in name
+        or "\\" in name
+        or "\0" in name
+        or name.startswith(".")
+    ):
+        raise InputError(
+            f"{argument}: {name!r} is not a plain file name; it must stay in {argument}"
+        )
+    if len(name.encode("utf-8", "surrogateescape")) > NAME_MAX:
+        raise InputError(
+            f"{argument}: file name {name[:40]!r}... is {len(name.encode())} bytes long; "
+            f"at most {NAME_MAX} (shorten the scene's name)"
+        )
+
+
+def _staging_prefix(out: Path) -> str:
+    # A fixed-length prefix: long --out names never overflow NAME_MAX here.
+    tag = hashlib.sha256(os.fsencode(out.name)).hexdigest()[:12]
+    return f".ga_rotors-staging-{tag}-"
+
+
+@contextlib.contextmanager
+def _locked(folder: Path, argument: str) -> Iterator[None]:
+    """Hold an exclusive lock on ``folder`` itself (no lock file to leave behind)."""
+    try:
+        import fcntl
+    except ImportError:  # not POSIX: no serialisation, the rest still holds
+        yield
+        return
+    try:
+        fd = os.open(folder, os.O_RDONLY)
+    except OSError as exc:
+        raise _os_error(argument, folder, exc) from None
+    try:
+        deadline = time.monotonic() + LOCK_TIMEOUT
+        while True:
+            try:
+                fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+                break
+            except BlockingIOError:
+                if time.monotonic() > deadline:
+                    raise InputError(
+                        f"{argument}: another ga-rotors process has been writing into {folder} "
+                        f"for {LOCK_TIMEOUT:g} s; wait for it to finish, or choose another "
+                        f"{argument}"
+                    ) from None
+                time.sleep(0.05)
+        yield
+    finally:
+        os.close(fd)  # releases the lock
+
+
+def _finish_moves(staging: Path, out: Path) -> None:
+    for f in sorted(staging.iterdir()):
+        if f.name != _COMPLETE:
+            os.replace(f, out / f.name)
+    (staging / _COMPLETE).unlink(missing_ok=True)
+    staging.rmdir()
+
+
+def _recover(out: Path) -> None:
+    """Deal with the staging folders of killed runs into ``out`` (called under the lock,
+    so none belongs to a live process): roll forward a complete set whose moves had begun,
+    remove anything else."""
+    prefix = _staging_prefix(out)
+    places = [out.parent] + ([out] if out.is_dir() else [])
+    for place in places:
+        for staging in place.glob(prefix + "*"):
+            if place == out and (staging / _COMPLETE).exists():
+                try:
+                    _finish_moves(staging, out)
+                    continue
+                except OSError:
+                    pass
+            shutil.rmtree(staging, ignore_errors=True)
+
+
+@contextlib.contextmanager
+def _signals_held() -> Iterator[None]:
+    """SIGINT/SIGTERM arriving while the files move in are delivered after the last move."""
+    if threading.current_thread() is not threading.main_thread() or not hasattr(
+        signal, "pthread_sigmask"
+    ):
+        yield
+        return
+    held = {signal.SIGINT, signal.SIGTERM}
+    old = signal.pthread_sigmask(signal.SIG_BLOCK, held)
+    try:
+        yield
+    finally:
+        signal.pthread_sigmask(signal.SIG_SETMASK, old)
+
+
+@contextlib.contextmanager
+def output_set(out_dir, argument: str = "out_dir") -> Iterator[Path]:
+    """A staging folder whose files become ``out_dir``'s together, or not at all.
+
+    Write every file of the set into the yielded folder (any writer, forked processes
+    too, by plain file names); when the block ends without an exception they are moved
+    into ``out_dir`` (created if missing: a new folder is renamed into place whole), and
+    files of ``out_dir`` not in the set are left alone. An exception removes the staging
+    folder and leaves ``out_dir`` as it was. See the module's notes for faults.
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> out = pathlib.Path(tempfile.mkdtemp()) / "run"
+    >>> with output_set(out) as stage:
+    ...     _ = (stage / "a.txt").write_text("a")
+    ...     (out / "a.txt").exists()
+    False
+    >>> (out / "a.txt").read_text()
+    'a'
+    >>> with output_set(out) as stage:
+    ...     _ = (stage / "a.txt").write_text("new")
+    ...     raise RuntimeError("the run failed")
+    Traceback (most recent call last):
+    ...
+    RuntimeError: the run failed
+    >>> (out / "a.txt").read_text(), sorted(p.name for p in out.parent.iterdir())
+    ('a', ['run'])
+    """
+    out = Path(out_dir)
+    try:
+        if os.path.islink(out) and not out.exists():
+            raise InputError(
+                f"{argument}: {out} is a symbolic link to {os.readlink(out)}, which does not exist"
+            )
+        if out.exists() and not out.is_dir():
+            raise InputError(f"{argument}: {out} exists and is not a directory")
+    except OSError as exc:  # a name too long, a loop of links, a folder we may not read
+        raise _os_error(argument, out, exc) from None
+    parent = out.parent
+    try:
+        parent.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise _os_error(argument, parent, exc) from None
+    with _locked(parent, argument):
+        _recover(out)
+        exists = out.is_dir()
+        try:
+            staging = Path(
+                tempfile.mkdtemp(dir=out if exists else parent, prefix=_staging_prefix(out))
+            )
+        except OSError as exc:
+            raise _os_error(argument, out if exists else parent, exc) from None
+        try:
+            try:
+                yield staging
+                names = sorted(f.name for f in staging.iterdir())
+                for name in names:
+                    _check_name(name, argument)
+                    if exists and (out / name).is_dir() and not (out / name).is_symlink():
+                        raise InputError(
+                            f"{argument}: {out / name} is a folder; the output file {name} "
+                            "goes there (nothing was replaced)"
+                        )
+                with _signals_held():
+                    if not exists:
+                        os.chmod(staging, 0o777 & ~_umask())  # mkdtemp makes 0700
+                        os.rename(staging, out)
+                    else:
+                        fd = os.open(staging / _COMPLETE, os.O_CREAT | os.O_WRONLY, 0o600)
+                        os.fsync(fd)
+                        os.close(fd)
+                        _finish_moves(staging, out)
+            except OSError as exc:
+                raise _os_error(argument, out, exc) from None
+        except BaseException:
+            if not (staging / _COMPLETE).exists():
+                shutil.rmtree(staging, ignore_errors=True)
+            raise
+
+
 def write_together(
     out_dir, plan: Sequence[tuple[str, Callable[[Path], object]]], argument: str = "out_dir"
 ) -> list[Path]:
     """Write several files into ``out_dir`` as one step: all of them, or none.
 
-    Each ``write(path)`` of ``plan`` writes one file into a staging directory next to
-    ``out_dir``; only when every one has succeeded are they moved in (a new directory is
-    renamed into place whole). A failure removes the staging directory and leaves
-    ``out_dir`` as it was.
+    Each ``write(path)`` of ``plan`` writes one file into the staging folder of
+    :func:`output_set`; names must be plain file names (a name from a scene can never
+    leave ``out_dir``, nor exceed :data:`NAME_MAX` bytes).
 
     Examples
     --------
@@ -82,28 +294,14 @@ def write_together(
     >>> out = pathlib.Path(tempfile.mkdtemp()) / "run"
     >>> [p.name for p in write_together(out, [("a.txt", lambda p: p.write_text("a"))])]
     ['a.txt']
+    >>> write_together(out, [("../escape.txt", lambda p: p.write_text("x"))], "--out")
+    Traceback (most recent call last):
+    ...
+    ga_rotors.errors.InputError: --out: '../escape.txt' is not a plain file name; ...
     """
-    out = Path(out_dir)
-    if out.exists() and not out.is_dir():
-        raise InputError(f"{argument}: {out} exists and is not a directory")
-    exists = out.is_dir()
-    parent = out if exists else out.parent
-    try:
-        parent.mkdir(parents=True, exist_ok=True)
-        staging = Path(tempfile.mkdtemp(dir=parent, prefix=f".{out.name}.staging-"))
-    except OSError as exc:
-        raise InputError(f"{argument}: cannot write into {parent}: {exc.strerror}") from None
-    try:
+    for name, _ in plan:
+        _check_name(name, argument)
+    with output_set(out_dir, argument) as stage:
         for name, write in plan:
-            write(staging / name)
-        if exists:
-            for name, _ in plan:
-                os.replace(staging / name, out / name)
-            staging.rmdir()
-        else:
-            os.chmod(staging, 0o777 & ~_umask())  # mkdtemp makes 0700; give what mkdir would
-            os.rename(staging, out)
-    except BaseException:
-        shutil.rmtree(staging, ignore_errors=True)
-        raise
-    return [out / name for name, _ in plan]
+            write(stage / name)
+    return [Path(out_dir) / name for name, _ in plan]

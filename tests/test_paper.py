@@ -96,6 +96,10 @@ def test_figure_worker_failure_is_reported(tmp_path, monkeypatch):
         raise RuntimeError("no canvas")
 
     monkeypatch.setattr(paper_figures, "draw_all", broken)  # inherited by the fork
+    (tmp_path / "summary.txt").write_text("the previous run's")
     with pytest.raises(GaRotorsError, match="drawing the figures failed: RuntimeError: no canvas"):
-        reproduce.reproduce(tmp_path, data=False, parallel=True)
-    assert not list(tmp_path.glob("*.png")) and not list(tmp_path.glob(".*.tmp"))
+        reproduce.reproduce(tmp_path, data=True, parallel=True)
+    # All or nothing: the data were written before the figures failed, and are not moved
+    # in; the previous set stays, and no staging folder or temporary file is left.
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["summary.txt"]
+    assert (tmp_path / "summary.txt").read_text() == "the previous run's"

@@ -110,8 +110,9 @@ def main(argv: list[str] | None = None) -> int:
     -------
     int
         The exit status: the command's, 2 for an error the user caused (printed as one
-        line on stderr, no traceback), 130 when interrupted; 0 for a bare ``ga-rotors``,
-        which prints the usage and the command list.
+        line on stderr, no traceback), 130 when interrupted, 143 on SIGTERM (after
+        clean-up: a command that writes leaves its previous output); 0 for a bare
+        ``ga-rotors``, which prints the usage and the command list.
 
     Examples
     --------
@@ -130,6 +131,7 @@ def main(argv: list[str] | None = None) -> int:
     if args.command is None:
         parser.print_help()
         return 0
+    previous = _on_sigterm(_terminated)
     try:
         return int(args._run(args) or 0)
     except GaRotorsError as exc:
@@ -138,6 +140,30 @@ def main(argv: list[str] | None = None) -> int:
     except KeyboardInterrupt:
         print("ga-rotors: interrupted", file=sys.stderr)
         return 130
+    except _Terminated:
+        print("ga-rotors: terminated (SIGTERM); no output was changed", file=sys.stderr)
+        return 143
+    finally:
+        _on_sigterm(previous)
+
+
+class _Terminated(BaseException):
+    """SIGTERM as an exception, so that clean-up (staging folders, temporary files) runs:
+    Python's default for SIGTERM ends the process at once, leaving them behind."""
+
+
+def _terminated(signum, frame):
+    raise _Terminated
+
+
+def _on_sigterm(handler):
+    """Install ``handler`` for SIGTERM (main thread only); return the previous one."""
+    import signal
+    import threading
+
+    if handler is None or threading.current_thread() is not threading.main_thread():
+        return None
+    return signal.signal(signal.SIGTERM, handler)
 
 
 if __name__ == "__main__":  # pragma: no cover

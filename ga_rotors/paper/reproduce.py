@@ -27,17 +27,6 @@ _SHARES = (
 )  # fmt: skip
 
 
-def _out_dir(path) -> Path:
-    from ..errors import InputError
-
-    out = Path(path)
-    if out.exists() and not out.is_dir():
-        raise InputError(f"--out: {out} exists and is not a directory")
-    try:
-        out.mkdir(parents=True, exist_ok=True)
-    except OSError as exc:
-        raise InputError(f"--out: cannot create directory {out}: {exc.strerror}") from None
-    return out
 
 
 class _Drawer:
@@ -148,7 +137,8 @@ def reproduce(
     Parameters
     ----------
     out_dir : path
-        Created if missing.
+        Created if missing. The files are written all together or not at all
+        (:func:`ga_rotors.files.output_set`): a failed or killed run leaves the previous set.
     figures : bool
         Write the PNG figures (``fig03_…png`` to ``fig10_…png``, ``errors.png``).
     data : bool
@@ -160,7 +150,7 @@ def reproduce(
     -------
     runs : list of ga_rotors.paper.runs.PaperRun
     written : list of pathlib.Path
-        Files written, each atomically (a failed run leaves no half-written file).
+        Files written, as one set (a failed run leaves the previous set, no partial one).
 
     Examples
     --------
@@ -171,7 +161,15 @@ def reproduce(
     >>> max(s.rotor_vs_quaternion for s in runs) < 1e-12
     True
     """
-    out = _out_dir(out_dir)
+    from ..files import output_set
+
+    out = Path(out_dir)
+    with output_set(out, "--out") as stage:  # the whole set or the previous one
+        written = _write_all(stage, figures, data, parallel)
+    return written[0], [out / p.name for p in written[1]]
+
+
+def _write_all(stage: Path, figures: bool, data: bool, parallel: bool):
     drawers = []
     if figures and parallel and hasattr(os, "fork"):
         drawers = _start_drawers(_SHARES)
@@ -185,15 +183,15 @@ def reproduce(
         runs = run_all()
         job = None
         if figures:
-            job = (paper_figures.figure_data(runs), out, data_digest(runs))
+            job = (paper_figures.figure_data(runs), stage, data_digest(runs))
         for drawer in drawers:
             drawer.send(job)
             sent += 1
         written = []
         if data:
             text = summary(runs) + "\n"
-            written.append(write_text(out / "summary.txt", text))
-            written += [s.trajectory.to_csv(out / f"{s.key}.csv") for s in runs]
+            written.append(write_text(stage / "summary.txt", text))
+            written += [s.trajectory.to_csv(stage / f"{s.key}.csv") for s in runs]
         if figures and not drawers:
             written += paper_figures.draw_all(*job)
     finally:
