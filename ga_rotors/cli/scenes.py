@@ -33,17 +33,21 @@ def run(args: argparse.Namespace) -> int:
     from pathlib import Path
 
     from ..errors import InputError
-    from ..files import atomic_write
+    from ..files import output_set
     from ..scene import figure_png, load_scene, run_scene
 
     out = Path(args.figures)
     if not out.is_dir():
         raise InputError(f"--figures: {out} is not a directory")
-    for name in names:
-        scene = load_scene(name)
-        if not scene.data["output"]["plots"]:
-            continue
-        png = figure_png(scene, run_scene(scene))
-        path = atomic_write(out / f"{name}.png", lambda fh, b=png: fh.write(b))
-        print(f"wrote {path} ({len(png) // 1024} KiB)")
+    written = []
+    with output_set(out, "--figures") as stage:  # every figure, or the previous ones
+        for name in names:
+            scene = load_scene(name)
+            if not scene.data["output"]["plots"]:
+                continue
+            png = figure_png(scene, run_scene(scene))
+            (stage / f"{name}.png").write_bytes(png)
+            written.append((out / f"{name}.png", len(png)))
+    for path, size in written:
+        print(f"wrote {path} ({size // 1024} KiB)")
     return 0
