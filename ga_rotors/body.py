@@ -14,7 +14,9 @@ Euler's equations in the body (principal) frame, torque τ in that frame::
     I ω̇ = (I ω) × ω + τ
 
 written per component as ω̇₁ = (I₂ − I₃)/I₁ ω₂ ω₃ + τ₁/I₁ (and cyclic); the torque-free
-part is :func:`free_euler_rates`, which torque-free integrators call alone. The difference
+part is :func:`ga_rotors._kernels.free_euler_rates`, which torque-free loops call alone
+(the compiled kernels take tuples and check nothing: the public, checked form is
+:meth:`RigidBody.angular_acceleration`). The difference
 (I₂ − I₃) is exactly zero for a symmetric body, so ω₁ stays bit-for-bit constant in the
 torque-free symmetric top, as the exact solution says.
 """
@@ -25,7 +27,6 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ._jit import jit
 from ._validate import as_float_array, require_unit
 from .errors import InputError
 
@@ -35,8 +36,6 @@ __all__ = [
     "MIN_MOMENT_RATIO",
     "TRIANGLE_TOLERANCE",
     "RigidBody",
-    "euler_rates",
-    "free_euler_rates",
 ]
 
 #: Relative slack allowed in the triangle inequality I₁ + I₂ ≥ I₃: a flat lamina sits
@@ -57,53 +56,6 @@ TRIANGLE_TOLERANCE = 1e-12
 #: coefficient of the thin axis carries an absolute error of 2u·I_max/I_min (4.4e-4 at
 #: the limit, one digit per decade further).
 MIN_MOMENT_RATIO = TRIANGLE_TOLERANCE
-
-
-@jit
-def free_euler_rates(inertia, w):
-    """ω̇ of the torque-free body: I ω̇ = (I ω) × ω, principal frame, tuples in and out.
-
-    Written ((I₂ − I₃)/I₁)·ω₂·ω₃ so the inertia ratios depend on loop invariants only: a
-    compiled loop computes them once instead of dividing in every stage.
-
-    Examples
-    --------
-    >>> free_euler_rates((1.0, 2.0, 3.0), (1.0, 1.0, 1.0))  # ((2-3)/1, (3-1)/2, (1-2)/3)
-    (-1.0, 1.0, -0.3333333333333333)
-
-    About a principal axis the body spins steadily: ω̇ = 0.
-
-    >>> free_euler_rates((1.0, 2.0, 3.0), (0.0, 5.0, 0.0))
-    (0.0, 0.0, 0.0)
-    """
-    i1, i2, i3 = inertia
-    w1, w2, w3 = w
-    return (
-        (i2 - i3) / i1 * w2 * w3,
-        (i3 - i1) / i2 * w3 * w1,
-        (i1 - i2) / i3 * w1 * w2,
-    )
-
-
-@jit
-def euler_rates(inertia, w, tau):
-    """ω̇ from Euler's equations: I ω̇ = (I ω) × ω + τ, principal frame, tuples in and out.
-
-    τ/I is taken as τ·(1/I) (hoisted out of loops, ≤ 1 ulp more rounding).
-
-    Examples
-    --------
-    The free rates of :func:`free_euler_rates` plus τ/I:
-
-    >>> euler_rates((1.0, 2.0, 3.0), (1.0, 1.0, 1.0), (1.0, 2.0, 3.0))
-    (0.0, 2.0, 0.6666666666666667)
-    """
-    g = free_euler_rates(inertia, w)
-    return (
-        g[0] + tau[0] * (1.0 / inertia[0]),
-        g[1] + tau[1] * (1.0 / inertia[1]),
-        g[2] + tau[2] * (1.0 / inertia[2]),
-    )
 
 
 def _check_moments(moments: np.ndarray, name: str) -> None:
@@ -164,6 +116,15 @@ def _equal_within_rounding(values: np.ndarray) -> tuple[float, float, float]:
             out[start:k] = [sum(group) / len(group)] * len(group)
             start = k
     return tuple(out)
+
+
+def _representable(values: np.ndarray, name: str, what: str) -> None:
+    """InputError when ``values`` overflowed (the inputs were finite: as_float_array)."""
+    if not np.all(np.isfinite(values)):
+        raise InputError(
+            f"{what} overflows float64 (beyond {np.finfo(float).max:.3g}); rescale the units",
+            key=name,
+        )
 
 
 @dataclass(frozen=True)
@@ -343,6 +304,7 @@ class RigidBody:
 
         ω is in the user's body frame (as ``simulate`` returns it): for a body given by a
         turned tensor it is carried to the principal frame first, ½ Σ Iₖ ωₖ² there.
+        Raises InputError when the energy is beyond float64 (never inf).
 
         Examples
         --------
@@ -350,9 +312,15 @@ class RigidBody:
         >>> body = RigidBody((1.0, 2.0, 3.0), Q.from_axis_angle([0.0, 0.0, 1.0], 0.5))
         >>> round(body.energy([1.0, 0.0, 0.0]), 12)  # ½ (cos² 0.5 · 1 + sin² 0.5 · 2)
         0.614924423533
+        >>> RigidBody((1e300, 1e300, 1e300)).energy([1e10, 0.0, 0.0])
+        Traceback (most recent call last):
+        ...
+        ga_rotors.errors.InputError: w: the kinetic energy overflows float64 ...
         """
         _, w = self.to_principal(None, w)
-        e = 0.5 * np.einsum("...i,i,...i->...", w, np.asarray(self.moments), w)
+        with np.errstate(over="ignore", under="ignore"):
+            e = 0.5 * np.einsum("...i,i,...i->...", w, np.asarray(self.moments), w)
+        _representable(e, "w", "the kinetic energy")
         return float(e) if e.ndim == 0 else e
 
     def momentum(self, w) -> np.ndarray:
@@ -364,7 +332,48 @@ class RigidBody:
         [1.0, 2.0, 3.0]
         """
         _, w_p = self.to_principal(None, w)
-        return self.from_principal(None, w_p * np.asarray(self.moments))[1]
+        with np.errstate(over="ignore"):
+            L = w_p * np.asarray(self.moments)
+        _representable(L, "w", "the angular momentum")
+        return self.from_principal(None, L)[1]
+
+    def angular_acceleration(self, w, torque=None) -> np.ndarray:
+        """ω̇ from Euler's equations, I ω̇ = (I ω) × ω + τ, in the frame of ``w``.
+
+        Parameters
+        ----------
+        w : array_like, shape (..., 3)
+            Body angular velocity (rad/s) in the user's body frame.
+        torque : array_like, shape (..., 3), optional
+            Body-frame torque τ (N·m), same frame; none by default.
+
+        Returns
+        -------
+        ndarray, shape (..., 3)
+            ω̇ (rad/s²); InputError when it is beyond float64.
+
+        Examples
+        --------
+        >>> body = RigidBody((1.0, 2.0, 3.0))
+        >>> body.angular_acceleration([1.0, 1.0, 1.0])  # ((2-3)/1, (3-1)/2, (1-2)/3)
+        array([-1.        ,  1.        , -0.33333333])
+        >>> body.angular_acceleration([1.0, 1.0, 1.0], [1.0, 2.0, 3.0])
+        array([0.        , 2.        , 0.66666667])
+        """
+        _, w = self.to_principal(None, w)
+        inertia = np.asarray(self.moments)
+        with np.errstate(over="ignore", invalid="ignore"):
+            a = np.cross(w * inertia, w) / inertia
+            if torque is not None:
+                _, tau = self.to_principal(None, as_float_array(torque, "torque", last=3))
+                try:
+                    a = a + tau / inertia
+                except ValueError:
+                    raise InputError(
+                        f"shapes {w.shape} and {tau.shape} do not broadcast", key="w and torque"
+                    ) from None
+        _representable(a, "w", "the angular acceleration")
+        return self.from_principal(None, a)[1]
 
     def space_momentum(self, q, w) -> np.ndarray:
         """Space-frame angular momentum q (I ω) q*: constant in torque-free motion.

@@ -6,7 +6,7 @@ time; the bodies are split into chunks small enough to stay in the L1 cache (256
 7 doubles = 14 KB) and each chunk takes all its steps before the next, so memory traffic
 is one load and one store per chunk, not per step. Chunks are distributed over the cores
 with ``prange``. The arithmetic is the package's kernels — q̇ from
-:func:`ga_rotors.paths.quaternion.rate`, ω̇ from :func:`ga_rotors.body.free_euler_rates`
+:func:`ga_rotors.paths.quaternion.rate`, ω̇ from :func:`ga_rotors._kernels.free_euler_rates`
 (inertia ratios hoisted out of the loops), and the RK4 combinations of
 :mod:`ga_rotors.integrators._arith` — so a body of the ensemble follows exactly the
 trajectory of ``get("rk4")`` on the quaternion path, bit for bit.
@@ -21,7 +21,7 @@ import numpy as np
 from numba import prange
 
 from ._jit import jit
-from .body import free_euler_rates
+from ._kernels import free_euler_rates
 from .integrators._arith import axpy3, axpy4, rk4_sum3, rk4_sum4
 from .paths.quaternion import rate
 

@@ -26,13 +26,11 @@ Quaternion and rotor rates (docs/conventions.md): q̇ = ½ q ⊗ (0, ω), Ṙ = 
 
 from __future__ import annotations
 
-from math import cos, sin
-
 import numpy as np
 
-from ._jit import jit
 from ._validate import as_float_array, require_unit
 from .errors import InputError
+from .euler import GIMBAL_TOLERANCE
 from .isomorphism import from_even
 
 __all__ = [
@@ -42,64 +40,8 @@ __all__ = [
     "body_omega_from_zyz_rates",
     "quaternion_rate",
     "rotor_rate",
-    "zyz_omega",
-    "zyz_rates",
     "zyz_rates_from_body_omega",
 ]
-
-
-@jit
-def zyz_rates(angles, w):
-    """(ψ̇, θ̇, φ̇) from ZYZ angles (ψ, θ, φ) and body ω; divides by sin θ (caller's care).
-
-    Examples
-    --------
-    A spin about the body axis only turns φ:
-
-    >>> zyz_rates((0.1, 0.5, 0.3), (0.0, 0.0, 10.0))
-    (0.0, 0.0, 10.0)
-
-    The inverse of :func:`zyz_omega` wherever sin θ ≠ 0:
-
-    >>> angles = (0.1, 0.5, 0.3)
-    >>> zyz_omega(angles, zyz_rates(angles, (0.2, 0.1, 10.0)))
-    (0.2, 0.1, 10.0)
-    """
-    st = sin(angles[1])
-    ct = cos(angles[1])
-    sp = sin(angles[2])
-    cp = cos(angles[2])
-    psi_dot = (w[1] * sp - w[0] * cp) / st
-    return (psi_dot, w[0] * sp + w[1] * cp, w[2] - psi_dot * ct)
-
-
-@jit
-def zyz_omega(angles, rates):
-    """Body ω from ZYZ angles (ψ, θ, φ) and their rates (ψ̇, θ̇, φ̇); regular everywhere.
-
-    Examples
-    --------
-    Precession ψ̇ at nutation θ = 90°, φ = 0, seen in the body: about −x.
-
-    >>> import math
-    >>> [round(c, 12) for c in zyz_omega((0.0, math.pi / 2, 0.0), (2.0, 0.0, 0.0))]
-    [-2.0, 0.0, 0.0]
-
-    At θ = 0 it is still defined (ψ̇ and φ̇ add up):
-
-    >>> zyz_omega((0.0, 0.0, 0.0), (2.0, 0.0, 3.0))
-    (-0.0, 0.0, 5.0)
-    """
-    st = sin(angles[1])
-    ct = cos(angles[1])
-    sp = sin(angles[2])
-    cp = cos(angles[2])
-    dpsi, dtheta, dphi = rates
-    return (
-        -dpsi * st * cp + dtheta * sp,
-        dpsi * st * sp + dtheta * cp,
-        dpsi * ct + dphi,
-    )
 
 
 def _pairs(a, b, name_a, name_b, last_a=3, last_b=3):
@@ -196,7 +138,7 @@ def zyz_rates_from_body_omega(angles, w) -> np.ndarray:
     Parameters
     ----------
     angles : array_like, shape (..., 3)
-        Intrinsic ZYZ angles (ψ, θ, φ) in radians, with sin θ ≠ 0.
+        Intrinsic ZYZ angles (ψ, θ, φ) in radians, away from gimbal lock.
     w : array_like, shape (..., 3)
         Body-frame angular velocity (rad/s).
 
@@ -207,7 +149,10 @@ def zyz_rates_from_body_omega(angles, w) -> np.ndarray:
     Raises
     ------
     InputError
-        Where sin θ = 0 exactly: ψ̇ and φ̇ are not defined there (only ψ̇ ± φ̇ is).
+        Where |sin θ| <= :data:`ga_rotors.euler.GIMBAL_TOLERANCE` (1e-14), the tolerance
+        at which :func:`ga_rotors.euler.from_quaternion` reports gimbal lock: ψ̇ and φ̇
+        are not defined at sin θ = 0 (only ψ̇ ± φ̇ is), and within it sin θ is rounding
+        (θ = π gives sin θ = 1.2e-16, which made ψ̇ 8e15 times too large, silently).
 
     Examples
     --------
@@ -219,16 +164,21 @@ def zyz_rates_from_body_omega(angles, w) -> np.ndarray:
     a, w = _pairs(angles, w, "angles", "w")
     _, theta, phi = np.moveaxis(a, -1, 0)
     st = np.sin(theta)
-    if np.any(st == 0.0):
-        where = tuple(int(i) for i in np.argwhere(np.atleast_1d(st) == 0.0)[0])
+    locked = np.abs(st) <= GIMBAL_TOLERANCE
+    if np.any(locked):
+        where = tuple(int(i) for i in np.argwhere(np.atleast_1d(locked))[0])
         raise InputError(
-            f"angles: sin θ = 0 at index {where}; the ZYZ rates ψ̇ and φ̇ are undefined "
-            "there (only ψ̇ + φ̇ at θ = 0, ψ̇ − φ̇ at θ = π)"
+            f"angles: |sin θ| <= {GIMBAL_TOLERANCE:g} (gimbal lock) at index {where}; the ZYZ "
+            "rates ψ̇ and φ̇ are undefined there (only ψ̇ + φ̇ at θ = 0, ψ̇ − φ̇ at θ = π)"
         )
     sp, cp = np.sin(phi), np.cos(phi)
     w1, w2, w3 = np.moveaxis(w, -1, 0)
-    dpsi = (w2 * sp - w1 * cp) / st
-    return np.stack([dpsi, w1 * sp + w2 * cp, w3 - dpsi * np.cos(theta)], axis=-1)
+    with np.errstate(over="ignore", invalid="ignore"):
+        dpsi = (w2 * sp - w1 * cp) / st
+        out = np.stack([dpsi, w1 * sp + w2 * cp, w3 - dpsi * np.cos(theta)], axis=-1)
+    if not np.all(np.isfinite(out)):
+        raise InputError("w: the ZYZ rates overflow float64 (|ω| / |sin θ| too large)")
+    return out
 
 
 def quaternion_rate(q, w) -> np.ndarray:

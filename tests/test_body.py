@@ -8,7 +8,8 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 from ga_rotors import shapes
-from ga_rotors.body import RigidBody, euler_rates, free_euler_rates
+from ga_rotors._kernels import euler_rates, free_euler_rates
+from ga_rotors.body import RigidBody
 from ga_rotors.errors import InputError
 
 moment = st.floats(0.1, 10.0)

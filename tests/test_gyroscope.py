@@ -130,7 +130,7 @@ def test_closed_form_symmetric_top_satisfies_the_equations_of_motion():
     # ω = 2 vec(q* q̇) (error (Δt)² |ω|³/24 ~ 1e-10 for Δt = 1e-5), which must equal the
     # closed form's own ω(t); and that ω must satisfy Euler's equations (central
     # difference of ω against I⁻¹((Iω)×ω)).
-    from ga_rotors.body import euler_rates
+    from ga_rotors._kernels import euler_rates
     from ga_rotors.kinematics import body_omega_from_quaternion_rate
 
     moments = (0.3, 0.7, 0.7)  # symmetry axis x, like the paper's model

@@ -281,7 +281,7 @@ def test_generated_file_is_named_by_content_and_written_once(tmp_path, monkeypat
 
 
 def test_vector_field_is_the_loops_right_hand_side():
-    from ga_rotors.body import euler_rates
+    from ga_rotors._kernels import euler_rates
     from ga_rotors.kinematics import quaternion_rate
 
     tau = (0.01, -0.02, 0.005)

@@ -9,7 +9,7 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
-from ga_rotors import euler, kinematics
+from ga_rotors import _kernels, euler, kinematics
 from ga_rotors.errors import InputError
 
 angle = st.floats(-math.pi, math.pi)
@@ -54,18 +54,36 @@ def test_zyz_rates_invert_body_omega(psi, theta, phi, dpsi, dth, dphi):
 @given(angle, nutation, angle, rate, rate, rate)
 def test_compiled_kernels_equal_the_vectorised_forms(psi, theta, phi, w1, w2, w3):
     angles, w = (psi, theta, phi), (w1, w2, w3)
-    rates = kinematics.zyz_rates(angles, w)
+    rates = _kernels.zyz_rates(angles, w)
     assert np.allclose(rates, kinematics.zyz_rates_from_body_omega(angles, w), rtol=1e-14,
                        atol=1e-12)  # fmt: skip
-    assert np.allclose(kinematics.zyz_omega(angles, rates), w, rtol=0, atol=1e-10)
+    assert np.allclose(_kernels.zyz_omega(angles, rates), w, rtol=0, atol=1e-10)
 
 
 def test_rates_are_undefined_exactly_at_the_pole():
-    with pytest.raises(InputError, match=r"sin θ = 0 at index \(1,\)"):
+    with pytest.raises(InputError, match=r"\|sin θ\| <= 1e-14 \(gimbal lock\) at index \(1,\)"):
         kinematics.zyz_rates_from_body_omega([[0.1, 0.5, 0.2], [0.1, 0.0, 0.2]], [0.0, 1.0, 2.0])
     # the forward map is regular there: only ψ̇ + φ̇ reaches ω₃
     w = kinematics.body_omega_from_zyz_rates([0.3, 0.0, 0.0], [1.0, 0.0, 2.0])
     assert w.tolist() == [0.0, 0.0, 3.0]
+
+
+@pytest.mark.parametrize("theta", [math.pi, 1e-320, -1e-15, 2 * math.pi, math.pi - 1e-15], ids=str)
+def test_rates_near_the_pole_are_refused_like_at_it(theta):
+    # In float64 sin(π) = 1.2e-16, not 0: the rates came out ±8e15 (θ = π) or inf
+    # (θ = 1e-320) with no error. Within GIMBAL_TOLERANCE they are refused like θ = 0.
+    with pytest.raises(InputError, match=r"gimbal lock"):
+        kinematics.zyz_rates_from_body_omega([0.0, theta, 0.0], [1.0, 0.0, 0.0])
+    # just outside the tolerance the answer is finite and inverts the forward map
+    theta = math.asin(2 * euler.GIMBAL_TOLERANCE)
+    rates = kinematics.zyz_rates_from_body_omega([0.0, theta, 0.0], [1e-20, 0.0, 0.0])
+    back = kinematics.body_omega_from_zyz_rates([0.0, theta, 0.0], rates)
+    assert np.all(np.isfinite(rates)) and np.allclose(back, [1e-20, 0.0, 0.0], rtol=1e-6, atol=0)
+
+
+def test_rates_that_overflow_are_refused():
+    with pytest.raises(InputError, match="overflow"):
+        kinematics.zyz_rates_from_body_omega([0.0, 1e-13, 0.0], [1e300, 0.0, 0.0])
 
 
 @given(st.tuples(*(st.floats(-1, 1),) * 4).filter(lambda q: sum(c * c for c in q) > 0.1),

@@ -4,7 +4,7 @@ For one (integrator, problem kind, path, declared torque or ω(t) kernels) this 
 writes a Python module such as::
 
     from ga_rotors._jit import jit as _jit
-    from ga_rotors.body import euler_rates
+    from ga_rotors._kernels import euler_rates
     from ga_rotors.paths.quaternion import rate as o_rate
     ...
     from ga_rotors.effects import gravity as _term_0
@@ -208,12 +208,12 @@ def _omega_source(problem: Problem, imports: _Imports) -> str:
 
 
 def _accel_source(kind: str, imports: _Imports) -> str:
-    from .. import body
+    from .. import _kernels
 
     if kind == FREE:
-        imports.kernel("free_euler_rates", body.free_euler_rates)
+        imports.kernel("free_euler_rates", _kernels.free_euler_rates)
         return "def accel(t, x, w, inertia, params):\n    return free_euler_rates(inertia, w)\n"
-    imports.kernel("euler_rates", body.euler_rates)
+    imports.kernel("euler_rates", _kernels.euler_rates)
     return (
         "def accel(t, x, w, inertia, params):\n"
         "    return euler_rates(inertia, w, torque(t, o_quat(x), w, params))\n"

@@ -1,7 +1,7 @@
 """The Euler-angle path: the paper's z–y′–z″ angles (ψ, θ, φ) integrated from body ω.
 
 State: (ψ, θ, φ) in radians, advanced with the rates of
-:func:`ga_rotors.kinematics.zyz_rates`, which divide by sin θ. Near sin θ = 0 the rates
+:func:`ga_rotors._kernels.zyz_rates`, which divide by sin θ. Near sin θ = 0 the rates
 grow like 1/sin θ and a fixed step stops resolving them; at sin θ = 0 exactly they are
 undefined. The path keeps going (that is the paper's method, and showing what it does is
 the point) but watches every step and reports:
@@ -26,12 +26,11 @@ from math import cos, inf, sin
 import numpy as np
 
 from .._jit import jit
-from .._kernels import quat_from_euler
+from .._kernels import quat_from_euler, zyz_rates
 from ..integrators._arith import axpy3 as axpy
 from ..integrators._arith import load3 as load
 from ..integrators._arith import rk4_sum3 as rk4_sum
 from ..integrators._arith import store3 as store
-from ..kinematics import zyz_rates
 
 __all__ = [
     "DIM",
@@ -71,7 +70,7 @@ _INITIAL_STATS = (0.0, np.inf, np.inf, 0.0, 0.0, 0.0)
 
 @jit
 def rate(x, w):
-    """(ψ̇, θ̇, φ̇) from the angles and body ω (:func:`ga_rotors.kinematics.zyz_rates`).
+    """(ψ̇, θ̇, φ̇) from the angles and body ω (:func:`ga_rotors._kernels.zyz_rates`).
 
     Examples
     --------

@@ -285,7 +285,7 @@ def _heavy_top(scene: Scene, exact, tr: Trajectory, q: np.ndarray, rep: Report) 
 
 
 def _flips(scene: Scene, exact, tr: Trajectory, rep: Report) -> None:
-    from ..body import free_euler_rates
+    from .._kernels import free_euler_rates
 
     model = exact.model
     w = tr.w
