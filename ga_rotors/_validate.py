@@ -43,7 +43,16 @@ def as_float_array(x, name: str, *, last: int | None = None, finite: bool = True
     ...
     ga_rotors.errors.InputError: q: expected an array of shape (..., 4), got shape (3,)
     """
-    raw = np.asarray(x) if not isinstance(x, np.ndarray) else x
+    if isinstance(x, np.ndarray):
+        raw = x
+    else:
+        try:
+            raw = np.asarray(x)
+        except (ValueError, TypeError, OverflowError):  # ragged nesting, odd sequences
+            raise InputError(
+                f"{name}: expected an array of real numbers, got {type(x).__name__} "
+                "(ragged nesting or non-numeric items)"
+            ) from None
     if raw.dtype.kind not in "fiub":
         if raw.dtype.kind == "c":
             raise InputError("expected real numbers, got complex values", key=name)

@@ -182,6 +182,16 @@ def _recover(out: Path) -> None:
             shutil.rmtree(staging, ignore_errors=True)
 
 
+def _remove(staging: Path) -> None:
+    """Remove a staging folder a forked writer may still be adding to (the paper's figure
+    workers after the parent was interrupted): once it is gone they cannot recreate it."""
+    for _ in range(50):
+        shutil.rmtree(staging, ignore_errors=True)
+        if not os.path.lexists(staging):
+            return
+        time.sleep(0.02)
+
+
 @contextlib.contextmanager
 def _signals_held() -> Iterator[None]:
     """SIGINT/SIGTERM arriving while the files move in are delivered after the last move."""
@@ -275,7 +285,7 @@ def output_set(out_dir, argument: str = "out_dir") -> Iterator[Path]:
                 raise _os_error(argument, out, exc) from None
         except BaseException:
             if not (staging / _COMPLETE).exists():
-                shutil.rmtree(staging, ignore_errors=True)
+                _remove(staging)
             raise
 
 

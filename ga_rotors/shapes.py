@@ -25,8 +25,27 @@ def _positive(**values: float) -> None:
     for name, value in values.items():
         if not isinstance(value, (int, float)) or isinstance(value, bool):
             raise InputError(f"expected a number, got {type(value).__name__}", key=name)
-        if not (math.isfinite(value) and value > 0):
-            raise InputError(f"expected a finite positive number, got {value!r}", key=name)
+        try:
+            ok = math.isfinite(value) and value > 0
+        except OverflowError:  # an int beyond float64
+            ok = False
+        if not ok:
+            raise InputError(f"expected a finite positive number, got {value!r:.40}", key=name)
+
+
+def _moments(compute) -> tuple[float, float, float]:
+    """``compute()``'s moments, refused when they leave float64 (1e200 m squared
+    overflows, 1e-200 m squared is 0): a shape must give a rigid body's moments."""
+    try:
+        moments = tuple(float(m) for m in compute())
+    except OverflowError:
+        moments = (math.inf,)
+    if not all(math.isfinite(m) and m > 0 for m in moments):
+        raise InputError(
+            "the moments of inertia of these dimensions are beyond float64 (overflow or "
+            "underflow); rescale the units"
+        )
+    return moments
 
 
 def disk(mass: float, radius: float) -> tuple[float, float, float]:
@@ -38,8 +57,7 @@ def disk(mass: float, radius: float) -> tuple[float, float, float]:
     (1.0, 1.0, 2.0)
     """
     _positive(mass=mass, radius=radius)
-    a = 0.25 * mass * radius**2
-    return (a, a, 2.0 * a)
+    return _moments(lambda: (0.25 * mass * radius**2,) * 2 + (0.5 * mass * radius**2,))
 
 
 def ring(mass: float, radius: float) -> tuple[float, float, float]:
@@ -51,8 +69,7 @@ def ring(mass: float, radius: float) -> tuple[float, float, float]:
     (0.5, 0.5, 1.0)
     """
     _positive(mass=mass, radius=radius)
-    a = 0.5 * mass * radius**2
-    return (a, a, 2.0 * a)
+    return _moments(lambda: (0.5 * mass * radius**2,) * 2 + (mass * radius**2,))
 
 
 def cylinder(mass: float, radius: float, height: float) -> tuple[float, float, float]:
@@ -64,8 +81,12 @@ def cylinder(mass: float, radius: float, height: float) -> tuple[float, float, f
     (7.0, 7.0, 6.0)
     """
     _positive(mass=mass, radius=radius, height=height)
-    a = mass * (3.0 * radius**2 + height**2) / 12.0
-    return (a, a, 0.5 * mass * radius**2)
+
+    def compute():
+        a = mass * (3.0 * radius**2 + height**2) / 12.0
+        return (a, a, 0.5 * mass * radius**2)
+
+    return _moments(compute)
 
 
 def rod(mass: float, length: float, radius: float) -> tuple[float, float, float]:
@@ -93,7 +114,7 @@ def box(mass: float, a: float, b: float, c: float) -> tuple[float, float, float]
     """
     _positive(mass=mass, a=a, b=b, c=c)
     k = mass / 12.0
-    return (k * (b**2 + c**2), k * (a**2 + c**2), k * (a**2 + b**2))
+    return _moments(lambda: (k * (b**2 + c**2), k * (a**2 + c**2), k * (a**2 + b**2)))
 
 
 def sphere(mass: float, radius: float) -> tuple[float, float, float]:
@@ -105,7 +126,7 @@ def sphere(mass: float, radius: float) -> tuple[float, float, float]:
     (2.0, 2.0, 2.0)
     """
     _positive(mass=mass, radius=radius)
-    a = 0.4 * mass * radius**2
+    a = _moments(lambda: (0.4 * mass * radius**2,))[0]
     return (a, a, a)
 
 
