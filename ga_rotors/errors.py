@@ -164,10 +164,27 @@ class SceneError(InputError):
 
     def __init__(self, file: str, key: str, message: str):
         self.file = str(file)
-        where = f"{self.file}: {key}: " if key else f"{self.file}: "
-        ValueError.__init__(self, where + message)
+        where = f"{self.file}: {_capped(key)}: " if key else f"{self.file}: "
+        ValueError.__init__(self, where + _capped(message))
         self.key = key
         self.detail = message
+
+
+#: Longest run of non-blank characters a scene error echoes (a value, a key) before it is
+#: cut: a 10,000-character name in a scene gives a readable line, not a screenful.
+ECHO_LIMIT = 80
+
+
+def _capped(text: str) -> str:
+    """``text`` on one line with every long word cut to :data:`ECHO_LIMIT` characters."""
+    import re
+
+    text = str(text).replace("\r", "\\r").replace("\n", "\\n")
+    return re.sub(
+        rf"\S{{{ECHO_LIMIT + 1},}}",
+        lambda m: f"{m.group()[: ECHO_LIMIT // 2]}...({len(m.group())} characters)",
+        text,
+    )
 
 
 class StepLimitWarning(UserWarning):

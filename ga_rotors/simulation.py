@@ -75,6 +75,9 @@ def whole_steps(duration, step) -> int:
         if not (math.isfinite(value) and value > 0):
             raise InputError(f"{name}: expected a finite positive number of seconds, got {value!r}")
     ratio = duration / step
+    if not math.isfinite(ratio):
+        raise InputError(f"step: {step!r} s divides duration {duration!r} s into more "
+                         "steps than float64 can count")  # fmt: skip
     n = round(ratio)
     if n < 1 or abs(ratio - n) > _DIVIDE_TOLERANCE * max(1.0, ratio):
         raise InputError(

@@ -5,6 +5,10 @@ summary (invariant drift, the rotor/quaternion cross-check, the error against th
 solution where one exists, and physics readouts such as nutation bounds or flip times),
 and writes the scene's declared data files and figure into --out, atomically: a failed
 run leaves no half-written files. Bundled scenes: ga-rotors scenes. Schema: docs/scenes.md.
+
+A scene needing more than --max-steps integration steps (default 1e8, summed over paths)
+or --max-memory GiB of samples (default 2) is refused before it runs. A run that stops
+early (a path's state stopped being finite) says INCOMPLETE on its first line and exits 3.
 """
 
 from __future__ import annotations
@@ -37,6 +41,21 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         default=None,
         help="let the scene's user torques run: import them from DIR only (default: the "
         "scene file's folder); without it a scene runs no code (docs/scenes.md)",
+    )
+    parser.add_argument(
+        "--max-steps",
+        metavar="N",
+        type=float,
+        default=None,
+        help="refuse a scene needing more integration steps, summed over paths "
+        "(default 1e8)",
+    )
+    parser.add_argument(
+        "--max-memory",
+        metavar="GIB",
+        type=float,
+        default=None,
+        help="refuse a scene whose samples need more memory (default 2 GiB)",
     )
     bar = parser.add_mutually_exclusive_group()
     bar.add_argument(
@@ -129,6 +148,19 @@ def _user_code(args: argparse.Namespace, scene):
     return allow_user_code(folder)
 
 
+def _budget(args: argparse.Namespace):
+    """The scene budget from --max-steps / --max-memory (defaults where not given)."""
+    from .scene.budget import DEFAULT, Budget
+
+    steps = DEFAULT.max_steps if args.max_steps is None else args.max_steps
+    memory = DEFAULT.max_memory_gib if args.max_memory is None else args.max_memory
+    if steps != steps or memory != memory:  # NaN
+        from .errors import InputError
+
+        raise InputError("--max-steps, --max-memory: expected numbers")
+    return Budget(max_steps=steps, max_memory_gib=memory)
+
+
 def run(args: argparse.Namespace) -> int:
     from pathlib import Path
 
@@ -141,7 +173,7 @@ def run(args: argparse.Namespace) -> int:
     with warnings.catch_warnings(record=True) as caught, _user_code(args, scene):
         warnings.simplefilter("always", StepLimitWarning)
         try:
-            trajectory = run_scene(scene, progress=bar)
+            trajectory = run_scene(scene, progress=bar, budget=_budget(args))
         finally:
             bar.close()
     for w in caught:
@@ -149,9 +181,13 @@ def run(args: argparse.Namespace) -> int:
             print(f"ga-rotors: warning: {w.message}", file=sys.stderr)
         else:
             warnings.warn_explicit(w.message, w.category, w.filename, w.lineno)
-    summary = str(report(scene, trajectory)) if scene.data["output"]["summary"] else None
+    rep = report(scene, trajectory)
+    incomplete = "incomplete" in rep.values
+    summary = str(rep) if scene.data["output"]["summary"] else None
     if summary is not None:
         print(summary)
+    elif incomplete:
+        print(rep.lines[0])
     out = Path(args.out) if args.out is not None else Path(DEFAULT_OUT) / scene.name
     written = write_outputs(scene, trajectory, out, summary)
     took = time.perf_counter() - start
@@ -159,4 +195,7 @@ def run(args: argparse.Namespace) -> int:
         print(f"\nwrote {', '.join(p.name for p in written)} to {out}/ ({took:.1f} s)")
     else:
         print(f"\nno files declared (output.data, output.plots); done in {took:.1f} s")
+    if incomplete:
+        print("ga-rotors: error: the run is incomplete (see the first line)", file=sys.stderr)
+        return 3
     return 0

@@ -71,7 +71,15 @@ from .schema import (
 )
 from .toml_io import dumps_toml
 
-__all__ = ["Scene"]
+__all__ = ["MAX_TURN_PER_STEP", "TIME_RESOLUTION", "Scene"]
+
+#: Largest spacing of float64 times, as a fraction of the step, a scene may have: beyond
+#: it time values round by more than a millionth of a step (torques of t, the exact
+#: solution's times and the time column would carry that error).
+TIME_RESOLUTION = 1e-6
+#: Largest rotation per step (rad) a scene may ask for; the step limits of the methods
+#: (docs/stability.md) are a few radians, this only refuses the absurd.
+MAX_TURN_PER_STEP = 1e3
 
 
 def _whole(reader: Reader, span: float, step: float, key: str, message: str) -> int:
@@ -231,12 +239,47 @@ class Scene:
             f"expected a whole multiple of integrator.step ({integ['step']!r} s), got "
             f"{time['output_step']!r} s",
         )  # fmt: skip
+        self._check_time_grid(reader)
+        self._check_magnitudes(reader)
         self.kind = "torqued" if d["effects"] else "free"
         self.gravity = self._gravity()
         self.method = self._method()
         self._check_integrator(reader)
         self.exact, self.exact_reason = self._exact()
         self._check_outputs(reader)
+
+    def _check_magnitudes(self, reader: Reader) -> None:
+        """Refuse an initial state whose energy float64 cannot hold, or that turns more
+        than :data:`MAX_TURN_PER_STEP` radians in one step (no fixed-step method resolves
+        it; the step-limit estimate itself overflowed on ω = 1e150 rad/s)."""
+        key = "initial.angular_velocity"
+        try:
+            self.body.energy(self.angular_velocity)
+        except InputError as exc:
+            raise reader.error(key, str(exc).partition(": ")[2]) from None
+        turn = float(np.linalg.norm(self.angular_velocity)) * self.data["integrator"]["step"]
+        if not turn <= MAX_TURN_PER_STEP:
+            raise reader.error(
+                key,
+                f"|ω|·integrator.step = {turn:.3g} rad per step, beyond {MAX_TURN_PER_STEP:g}: "
+                "no method resolves that; take a smaller step",
+            )
+
+    def _check_time_grid(self, reader: Reader) -> None:
+        """Refuse times float64 cannot place to :data:`TIME_RESOLUTION` of a step: with
+        time.start a Unix timestamp (1.7e9 s) times are 2.4e-7 s apart, and a 1 ms step
+        rounded every time value (the reported error was 3 rad instead of 5e-10)."""
+        time, h = self.data["time"], self.data["integrator"]["step"]
+        largest = max(abs(time["start"]), abs(time["start"] + time["duration"]))
+        spacing = float(np.spacing(largest))
+        if not (np.isfinite(largest) and spacing <= TIME_RESOLUTION * h):
+            key = "time.start" if abs(time["start"]) >= time["duration"] else "time.duration"
+            raise reader.error(
+                key,
+                f"float64 times near {largest:.3g} s are {spacing:.2g} s apart, more than "
+                f"{TIME_RESOLUTION:g} of integrator.step ({h:g} s): the time grid would "
+                "lose precision; start the clock nearer 0 (time.start) or take longer steps",
+            )
 
     @staticmethod
     def _inertia(reader: Reader, body: dict) -> tuple[np.ndarray, str]:

@@ -39,7 +39,7 @@ def _user_compile_error(scene: Scene, exc: Exception):
     )
 
 
-def run_scene(scene, *, progress=None) -> Trajectory:
+def run_scene(scene, *, progress=None, budget=None) -> Trajectory:
     """Integrate a scene (a :class:`Scene`, a file path or a bundled scene's name).
 
     Parameters
@@ -47,6 +47,10 @@ def run_scene(scene, *, progress=None) -> Trajectory:
     scene : Scene or str or path
     progress : callable, optional
         ``progress(done, total)`` in steps (all paths), called as the loops advance.
+    budget : ga_rotors.scene.budget.Budget, optional
+        The most steps and memory the run may take (default
+        :data:`ga_rotors.scene.budget.DEFAULT`); a scene beyond it is refused before it
+        runs, with one line naming the key.
 
     Returns
     -------
@@ -63,8 +67,10 @@ def run_scene(scene, *, progress=None) -> Trajectory:
     (['gravity'], 'torqued')
     """
     from .. import simulation as _sim
+    from . import budget as _budget
 
     scene = load_scene(scene)
+    _budget.check(scene, _budget.DEFAULT if budget is None else budget)
     torques = scene.torques()
     wanted = scene.data["output"]["quantities"]
     try:

@@ -80,6 +80,9 @@ PLOTS = {
 
 #: What ``scene.name`` may be: a file name (the outputs are named after it).
 NAME = re.compile(r"^[A-Za-z0-9][A-Za-z0-9_.-]*$")
+#: Longest ``scene.name``: with the longest suffix (``.summary.txt``) a file name stays
+#: far below the 255 bytes file systems take.
+NAME_LENGTH = 100
 
 
 # ---------------------------------------------------------------------------- resolving
@@ -101,6 +104,10 @@ def _resolve_scene(reader: Reader, value, default_name: str) -> dict:
     if not NAME.match(name):
         raise reader.error(
             "scene.name", f"expected letters, digits, '_', '.', '-' (a file name), got {name!r}"
+        )
+    if len(name) > NAME_LENGTH:
+        raise reader.error(
+            "scene.name", f"expected at most {NAME_LENGTH} characters, got {len(name)}"
         )
     return {"name": name, "description": reader.string(t.get("description", ""),
                                                        "scene.description")}  # fmt: skip

@@ -390,4 +390,14 @@ def report(scene: Scene, trajectory: Trajectory) -> Report:
             rep.values[f"{c.paths[0]}_vs_{c.paths[1]}"] = c.max_angle
             rep.lines.append(f"  {c}")
     _exact(scene, tr, q, rep)
+    stopped = {p: i for p, i in tr.meta["paths"].items() if not i["complete"]}
+    if stopped:  # said first: every figure above covers only the steps taken
+        t_end = float(tr.t[0]) + tr.meta["steps"] * tr.meta["step"] if tr.t.size else 0.0
+        where = ", ".join(f"{p} at t = {i['ended_at']:g} s" for p, i in stopped.items())
+        rep.lines.insert(
+            0,
+            f"INCOMPLETE: the run stopped before t = {t_end:g} s ({where}); the figures "
+            "below cover only the steps taken",
+        )
+        rep.values["incomplete"] = 1.0
     return rep

@@ -1,0 +1,255 @@
+"""Fuzzing scene files (issue 11): every bad scene is one line, never a traceback or a hang.
+
+Hypothesis takes a bundled scene, applies one to three mutations (a value replaced by a
+hostile one, a key deleted or added, a table replaced, nesting made deep, effects
+repeated) and runs it the way a user would, ``ga-rotors run FILE --out DIR`` (in this
+process, through :func:`ga_rotors.cli.main`, with a small step and memory budget so a
+scene that asks for too much is refused rather than run). Hostile values: wrong types,
+0, negatives, 1e300, 1e-320, ±inf, NaN, integers beyond 64 bits, a Unix timestamp as a
+time, 10⁹ samples, empty and 10,000-character strings, names with slashes, NUL and
+non-ASCII, deep arrays and tables, TOML dates. Each run must end in one of three ways:
+
+* exit 0, with a summary free of NaN and inf;
+* exit 2, with exactly one line on stderr (``ga-rotors: error: FILE: KEY: ...``) of at
+  most :data:`MAX_LINE` characters, and no output folder;
+* exit 3, with ``INCOMPLETE`` as the summary's first line (a path stopped early);
+
+within :data:`HANG_SECONDS`, with no exception escaping ``main`` (a traceback) and no
+NumPy RuntimeWarning (a silent inf or NaN). Fast by default; ``GA_ROTORS_FUZZ=long``
+runs :data:`LONG_EXAMPLES` scenes (the count in docs/stability.md).
+"""
+
+from __future__ import annotations
+
+import contextlib
+import io
+import json
+import math
+import os
+import re
+import signal
+import tomllib
+import warnings
+from pathlib import Path
+
+import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+
+from ga_rotors import cli
+from ga_rotors.scene import bundled, bundled_path
+
+LONG = os.environ.get("GA_ROTORS_FUZZ", "") == "long"
+EXAMPLES = 60
+LONG_EXAMPLES = 1200
+HANG_SECONDS = 120
+MAX_LINE = 600
+BUDGET = ["--max-steps", "3e5", "--max-memory", "0.05", "--no-progress"]
+
+#: How the runs ended, over the session (printed at the end with ``-s``).
+OUTCOMES: dict[str, int] = {}
+
+_HOSTILE = [
+    0, -1, 1, 3, 0.0, -0.0, -1.5, 1e300, -1e300, 1e-320, 5e-324, 1e-12, math.inf, -math.inf,
+    math.nan, 2**63 - 1, 10**30, -(10**30), 1.7e9, 1e9, True, False, "", "x" * 10_000,
+    "../../escape", "a/b", "ü", "\u0000", "rk4", "gravity", "quaternion", "deg", "rad/s",
+    [], [1], [1, 2, 3], [0.0, 0.0, 0.0], [1e300, 1e300, 1e300], [math.nan, 0, 0],
+    ["a", "b", "c"], [[1, 2], [3]], {}, {"x": 1}, "1979-05-27T07:32:00Z",
+]  # fmt: skip
+
+
+class Hang(Exception):
+    """A run exceeded HANG_SECONDS."""
+
+
+def _deep(depth: int, kind: str):
+    value: object = 1.0
+    for _ in range(depth):
+        value = [value] if kind == "array" else {"a": value}
+    return value
+
+
+def _toml_value(v) -> str:
+    if isinstance(v, bool):
+        return "true" if v else "false"
+    if isinstance(v, int):
+        return str(v)
+    if isinstance(v, float):
+        if math.isnan(v):
+            return "nan"
+        if math.isinf(v):
+            return "inf" if v > 0 else "-inf"
+        return repr(v)
+    if isinstance(v, str):
+        if re.fullmatch(r"\d{4}-\d\d-\d\dT\d\d:\d\d:\d\dZ", v):
+            return v  # a TOML date-time
+        return json.dumps(v)
+    if isinstance(v, list):
+        return "[" + ", ".join(_toml_value(x) for x in v) + "]"
+    if isinstance(v, dict):
+        return "{" + ", ".join(f"{json.dumps(k)} = {_toml_value(x)}" for k, x in v.items()) + "}"
+    raise TypeError(type(v))
+
+
+def to_toml(data: dict) -> str:
+    """A scene dict as TOML: one ``key = value`` line per section, inline tables inside."""
+    lines = []
+    for key, value in data.items():
+        if key == "effects" and isinstance(value, list) and all(isinstance(e, dict) for e in value):
+            for e in value:
+                lines.append("[[effects]]")
+                lines += [f"{json.dumps(k)} = {_toml_value(x)}" for k, x in e.items()]
+        else:
+            lines.append(f"{json.dumps(key)} = {_toml_value(value)}")
+    return "\n".join(lines) + "\n"
+
+
+def _leaves(value, prefix=()):
+    """Every (path, value) in nested dicts and lists, tables included."""
+    yield prefix, value
+    if isinstance(value, dict):
+        for k, v in value.items():
+            yield from _leaves(v, (*prefix, k))
+    elif isinstance(value, list):
+        for i, v in enumerate(value):
+            yield from _leaves(v, (*prefix, i))
+
+
+def _set(data, path, value) -> None:
+    target = data
+    for p in path[:-1]:
+        target = target[p]
+    target[path[-1]] = value
+
+
+def _base(name: str) -> dict:
+    data = tomllib.loads(bundled_path(name).read_text(encoding="utf-8"))
+    data.setdefault("output", {})["plots"] = []  # figures cost seconds; mutations may add them
+    return data
+
+
+BASES = {name: _base(name) for name in bundled()}
+
+
+@st.composite
+def mutated(draw) -> dict:
+    name = draw(st.sampled_from(sorted(BASES)))
+    data = json.loads(json.dumps(BASES[name]))  # a deep copy
+    for _ in range(draw(st.integers(1, 3))):
+        paths = [p for p, _ in _leaves(data) if p]
+        op = draw(st.sampled_from(["replace", "replace", "replace", "delete", "add", "deep",
+                                   "effects"]))  # fmt: skip
+        if op == "effects":
+            data["effects"] = [
+                {"type": "gravity", "pivot_to_com": [0, 0, draw(st.sampled_from(_HOSTILE))]}
+            ] * draw(st.integers(0, 3))
+            continue
+        if not paths:
+            break
+        path = draw(st.sampled_from(paths))
+        if op == "replace":
+            _set(data, path, draw(st.sampled_from(_HOSTILE)))
+        elif op == "delete":
+            parent = data
+            for p in path[:-1]:
+                parent = parent[p]
+            parent.pop(path[-1])
+        elif op == "add":
+            parent = data
+            for p in path[:-1]:
+                parent = parent[p]
+            if isinstance(parent, dict):
+                parent[draw(st.sampled_from(["extra", "x" * 300, "durations", ""]))] = 1
+        else:
+            _set(data, path, _deep(draw(st.sampled_from([5, 50, 500])),
+                                   draw(st.sampled_from(["array", "table"]))))  # fmt: skip
+    return data
+
+
+def _alarm(signum, frame):
+    raise Hang
+
+
+def run_file(path: Path, out: Path) -> tuple[int, str, str, list]:
+    """``ga-rotors run path --out out`` in this process: (status, stdout, stderr, warnings)."""
+    stdout, stderr = io.StringIO(), io.StringIO()
+    previous = signal.signal(signal.SIGALRM, _alarm)
+    signal.alarm(HANG_SECONDS)
+    try:
+        with (
+            contextlib.redirect_stdout(stdout),
+            contextlib.redirect_stderr(stderr),
+            warnings.catch_warnings(record=True) as caught,
+        ):
+            warnings.simplefilter("always")
+            status = cli.main(["run", str(path), "--out", str(out), *BUDGET])
+    finally:
+        signal.alarm(0)
+        signal.signal(signal.SIGALRM, previous)
+    return status, stdout.getvalue(), stderr.getvalue(), caught
+
+
+def check_scene(text: str, folder: Path) -> str:
+    """Run one scene file; return the outcome, or fail with the file's text."""
+    path = folder / "fuzz.toml"
+    path.write_text(text, encoding="utf-8")
+    out = folder / "out"
+    shown = text if len(text) < 3000 else text[:3000] + "..."
+    try:
+        status, stdout, stderr, caught = run_file(path, out)
+    except Hang:
+        raise AssertionError(f"hang (> {HANG_SECONDS} s) on:\n{shown}") from None
+    except BaseException as exc:
+        raise AssertionError(f"traceback {type(exc).__name__}: {exc!s:.300} on:\n{shown}") from None
+    noisy = [w for w in caught if issubclass(w.category, RuntimeWarning)]
+    assert not noisy, f"RuntimeWarning {noisy[0].message} on:\n{shown}"
+    if status == 2:
+        lines = stderr.strip().splitlines()
+        assert len(lines) == 1 and lines[0].startswith("ga-rotors: error: "), (stderr, shown)
+        assert len(lines[0]) <= MAX_LINE, f"{len(lines[0])}-character error: {lines[0][:200]}"
+        assert not out.exists(), f"exit 2 but {out} was written:\n{shown}"
+        return "refused"
+    assert status in (0, 3), f"exit {status}: {stderr[-500:]}\n{shown}"
+    if status == 3:
+        assert stdout.startswith("INCOMPLETE"), (stdout[:300], shown)
+        return "incomplete"
+    assert not re.search(r"\b(nan|inf)\b", stdout, re.I), f"NaN/inf in:\n{stdout}\n{shown}"
+    return "ran"
+
+
+@settings(
+    max_examples=LONG_EXAMPLES if LONG else EXAMPLES,
+    derandomize=not LONG,
+    deadline=None,
+    suppress_health_check=list(HealthCheck),
+    database=None,
+)
+@given(mutated())
+def test_mutated_scenes_run_or_are_refused_in_one_line(tmp_path_factory, data):
+    folder = tmp_path_factory.mktemp("fuzz")
+    outcome = check_scene(to_toml(data), folder)
+    OUTCOMES[outcome] = OUTCOMES.get(outcome, 0) + 1
+
+
+@pytest.mark.parametrize(
+    ("edit", "key"),
+    [
+        ({"time": {"duration": 1.0, "start": 1.7e9}}, "time.start"),  # a Unix timestamp
+        ({"time": {"duration": 1e9}}, "time.duration"),  # beyond the budget
+        ({"time": {"duration": 1e300}, "integrator": {"step": 1e-300}}, "integrator.step"),
+        ({"scene": {"name": "n" * 10_000}}, "scene.name"),
+    ],
+    ids=["unix-start", "budget", "uncountable-steps", "long-name"],
+)
+def test_found_scenes_are_refused_by_key(tmp_path, edit, key):
+    data = json.loads(json.dumps(BASES["spinning_disk"]))
+    for section, values in edit.items():
+        data.setdefault(section, {}).update(values)
+    (tmp_path / "s.toml").write_text(to_toml(data))
+    status, _, stderr, _ = run_file(tmp_path / "s.toml", tmp_path / "out")
+    assert status == 2 and f": {key}: " in stderr and len(stderr) <= MAX_LINE, stderr
+
+
+def teardown_module():
+    if OUTCOMES:
+        print(f"\nfuzzed scenes: {sum(OUTCOMES.values())} ({OUTCOMES})")
