@@ -160,9 +160,10 @@ def mutated(draw) -> dict:
                 parent = parent[p]
             if isinstance(parent, dict):
                 parent[draw(st.sampled_from(["extra", "x" * 300, "durations", ""]))] = 1
-        else:
+        else:  # last: walking a 500-deep value again would exhaust this test's stack
             _set(data, path, _deep(draw(st.sampled_from([5, 50, 500])),
                                    draw(st.sampled_from(["array", "table"]))))  # fmt: skip
+            break
     return data
 
 
@@ -253,3 +254,20 @@ def test_found_scenes_are_refused_by_key(tmp_path, edit, key):
 def teardown_module():
     if OUTCOMES:
         print(f"\nfuzzed scenes: {sum(OUTCOMES.values())} ({OUTCOMES})")
+
+
+@pytest.mark.parametrize("depth", [500, 5000])
+def test_deep_nesting_is_one_line(tmp_path, depth):
+    # tomllib recurses per level: a RecursionError traceback before (found by fuzzing)
+    (tmp_path / "s.toml").write_text("[body]\nmoments = " + "[" * depth + "1" + "]" * depth)
+    status, _, stderr, _ = run_file(tmp_path / "s.toml", tmp_path / "out")
+    assert status == 2 and stderr.strip().endswith("arrays or tables nested too deeply")
+
+
+def test_a_huge_file_is_not_read(tmp_path, monkeypatch):
+    from ga_rotors.scene import loading
+
+    monkeypatch.setattr(loading, "MAX_FILE_BYTES", 1000)
+    (tmp_path / "s.toml").write_text("# padding\n" * 200)
+    status, _, stderr, _ = run_file(tmp_path / "s.toml", tmp_path / "out")
+    assert status == 2 and "a scene file is at most 1,000" in stderr

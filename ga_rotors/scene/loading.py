@@ -49,6 +49,10 @@ def bundled_path(name: str) -> Path:
     return Path(str(_folder() / f"{name}.toml"))
 
 
+#: Largest scene file read: scenes are a few kB; a file of gigabytes is not read whole.
+MAX_FILE_BYTES = 10**7
+
+
 def load_scene(path_or_name) -> Scene:
     """Load a scene file, or a bundled scene by name (``ga-rotors scenes`` lists them).
 
@@ -77,6 +81,11 @@ def load_scene(path_or_name) -> Scene:
                 f"bundled: {', '.join(names)}",
             )
     try:
+        size = path.stat().st_size
+        if size > MAX_FILE_BYTES:
+            raise SceneError(
+                str(path), "", f"{size:,} bytes; a scene file is at most {MAX_FILE_BYTES:,}"
+            )
         text = path.read_text(encoding="utf-8")
     except (OSError, UnicodeDecodeError) as exc:
         raise SceneError(str(path), "", f"cannot read the file: {exc}") from None

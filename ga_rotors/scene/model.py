@@ -175,6 +175,8 @@ class Scene:
             data = tomllib.loads(text)
         except tomllib.TOMLDecodeError as exc:
             raise SceneError(file, "", f"not valid TOML: {exc}") from None
+        except RecursionError:  # tomllib recurses once per level of nesting
+            raise SceneError(file, "", "arrays or tables nested too deeply") from None
         return cls(data, file=file, base_dir=base_dir)
 
     def replace(self, changes: Mapping[str, object]) -> Scene:
