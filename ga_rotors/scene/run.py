@@ -115,7 +115,7 @@ def _quantities(scene: Scene, tr: Trajectory, names: list[str]) -> dict:
 
     out: dict[str, tuple[np.ndarray, tuple[str, ...] | None]] = {}
     w, t = tr.w, tr.t[: tr.w.shape[0]]
-    q = tr.quaternions()[: w.shape[0]]
+    q = Q.normalize(tr.quaternions()[: w.shape[0]])  # the rotation; |q| drift is reported
     if "potential_energy" in names or "total_energy" in names:
         grav = scene.gravity
         if grav is None:
