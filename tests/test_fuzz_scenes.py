@@ -291,3 +291,20 @@ def test_a_long_run_whose_norm_drifts_keeps_its_quantities(tmp_path):
 
     with np.load(tmp_path / "out" / "s.npz") as npz:
         assert all(np.all(np.isfinite(npz[k])) for k in ("angles", "omega_space", "L_space"))
+
+
+@pytest.mark.parametrize(("theta", "status"), [(30.0, 0), (0.0, 3)])
+def test_dop853_on_the_euler_path_runs_or_says_incomplete(tmp_path, theta, status):
+    # Always a crash before (the path's watch report read dop853's statistics; at θ = 0,
+    # its singularity, scipy's failed solution had no array): now it runs, or it starts
+    # on the singularity and stops at once, said first, exit 3.
+    (tmp_path / "s.toml").write_text(
+        "[body]\nmoments = [1.0, 2.0, 3.0]\n[initial.orientation]\n"
+        f'euler = [0.0, {theta}, 0.0]\nsequence = "ZYZ"\nunits = "deg"\n'
+        '[initial.angular_velocity]\nbody = [0.1, 0.2, 3.0]\nunits = "rad/s"\n'
+        '[time]\nduration = 1.0\n[integrator]\nstep = 0.001\npaths = ["euler"]\n'
+        'method = "dop853"\n'
+    )
+    got, stdout, stderr, _ = run_file(tmp_path / "s.toml", tmp_path / "out")
+    assert got == status, stderr
+    assert stdout.startswith("INCOMPLETE") == (status == 3)

@@ -72,10 +72,15 @@ class Dop853(Integrator):
         if marks[-1] != nsteps:
             marks.append(nsteps)
         times = t0 + h * np.array(marks, dtype=np.float64)
-        sol = solve_ivp(
-            rhs, (times[0], times[-1]), y0, method="DOP853", t_eval=times, rtol=self.rtol,
-            atol=self.atol,
-        )  # fmt: skip
+        with np.errstate(invalid="ignore", over="ignore"):  # a blow-up ends the run, below
+            sol = solve_ivp(
+                rhs, (times[0], times[-1]), y0, method="DOP853", t_eval=times, rtol=self.rtol,
+                atol=self.atol,
+            )  # fmt: skip
+        if not isinstance(sol.y, np.ndarray) or sol.y.ndim != 2 or sol.y.shape[1] == 0:
+            # failed before the first output time (the Euler-angle path started at its
+            # singularity θ = 0: scipy returns a list here, which crashed the run)
+            sol.t, sol.y = times[:1], y0[:, None]
         y = sol.y.T
         if progress is not None:
             progress(nsteps)

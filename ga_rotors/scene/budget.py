@@ -60,7 +60,13 @@ DEFAULT = Budget()
 
 @dataclass(frozen=True)
 class Estimate:
-    """Steps (all paths) and bytes of samples a scene needs."""
+    """Steps (all paths) and bytes of samples a scene needs (see :func:`estimate`).
+
+    Examples
+    --------
+    >>> Estimate(steps=2000, samples=1002, bytes=240480).bytes / 2**20 < 1
+    True
+    """
 
     steps: int
     samples: int
