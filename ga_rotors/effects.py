@@ -176,9 +176,15 @@ def inertia_about_pivot(inertia_cm, mass: float, r) -> np.ndarray:
     array([0.0228125, 0.0228125, 0.005625 ])
     """
     r = np.asarray(r, dtype=np.float64)
-    return np.asarray(inertia_cm, dtype=np.float64) + mass * (
-        np.dot(r, r) * np.eye(3) - np.outer(r, r)
-    )
+    with np.errstate(over="ignore", invalid="ignore"):
+        out = np.asarray(inertia_cm, dtype=np.float64) + mass * (
+            np.dot(r, r) * np.eye(3) - np.outer(r, r)
+        )
+    if not np.all(np.isfinite(out)):
+        raise InputError(
+            "pivot_to_com: the inertia about the pivot, m |r|², overflows float64; rescale units"
+        )
+    return out
 
 
 @dataclass(frozen=True)

@@ -93,15 +93,15 @@ def _toml_value(v) -> str:
 
 def to_toml(data: dict) -> str:
     """A scene dict as TOML: one ``key = value`` line per section, inline tables inside."""
-    lines = []
+    lines, tables = [], []
     for key, value in data.items():
         if key == "effects" and isinstance(value, list) and all(isinstance(e, dict) for e in value):
-            for e in value:
-                lines.append("[[effects]]")
-                lines += [f"{json.dumps(k)} = {_toml_value(x)}" for k, x in e.items()]
+            for e in value:  # [[effects]] headers last: a key after one belongs to it
+                tables.append("[[effects]]")
+                tables += [f"{json.dumps(k)} = {_toml_value(x)}" for k, x in e.items()]
         else:
             lines.append(f"{json.dumps(key)} = {_toml_value(value)}")
-    return "\n".join(lines) + "\n"
+    return "\n".join(lines + tables) + "\n"
 
 
 def _leaves(value, prefix=()):
@@ -308,3 +308,11 @@ def test_dop853_on_the_euler_path_runs_or_says_incomplete(tmp_path, theta, statu
     got, stdout, stderr, _ = run_file(tmp_path / "s.toml", tmp_path / "out")
     assert got == status, stderr
     assert stdout.startswith("INCOMPLETE") == (status == 3)
+
+
+def test_a_pivot_whose_inertia_overflows_is_refused_by_key(tmp_path):
+    data = json.loads(json.dumps(BASES["heavy_top"]))
+    data["effects"][0]["pivot_to_com"] = [0, 0, 1e300]  # m |r|² = inf: NaN moments before
+    (tmp_path / "s.toml").write_text(to_toml(data))
+    status, _, stderr, _ = run_file(tmp_path / "s.toml", tmp_path / "out")
+    assert status == 2 and ": effects[0].pivot_to_com: " in stderr and "overflows" in stderr

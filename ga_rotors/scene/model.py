@@ -310,7 +310,10 @@ class Scene:
         g = self.data["effects"][self.gravity_index]
         if mass is None:
             raise reader.error("body.mass", f"missing; the gravity effect ({key}) needs the mass")
-        shift = _effects.inertia_about_pivot(np.zeros((3, 3)), mass, g["pivot_to_com"])
+        try:
+            shift = _effects.inertia_about_pivot(np.zeros((3, 3)), mass, g["pivot_to_com"])
+        except InputError as exc:
+            raise reader.error(join(key, "pivot_to_com"), str(exc).partition(": ")[2]) from None
         if g["inertia_about"] == "com":
             return tensor + shift
         # Given about the pivot: what is left about the centre of mass must be a body.
