@@ -22,6 +22,7 @@ runs :data:`LONG_EXAMPLES` scenes (the count in docs/stability.md).
 from __future__ import annotations
 
 import contextlib
+import copy
 import io
 import json
 import math
@@ -141,14 +142,18 @@ def mutated(draw) -> dict:
                                    "effects"]))  # fmt: skip
         if op == "effects":
             data["effects"] = [
-                {"type": "gravity", "pivot_to_com": [0, 0, draw(st.sampled_from(_HOSTILE))]}
-            ] * draw(st.integers(0, 3))
+                {
+                    "type": "gravity",
+                    "pivot_to_com": [0, 0, copy.deepcopy(draw(st.sampled_from(_HOSTILE)))],
+                }
+                for _ in range(draw(st.integers(0, 3)))
+            ]
             continue
         if not paths:
             break
         path = draw(st.sampled_from(paths))
         if op == "replace":
-            _set(data, path, draw(st.sampled_from(_HOSTILE)))
+            _set(data, path, copy.deepcopy(draw(st.sampled_from(_HOSTILE))))  # not shared
         elif op == "delete":
             parent = data
             for p in path[:-1]:
