@@ -321,3 +321,11 @@ def test_a_pivot_whose_inertia_overflows_is_refused_by_key(tmp_path):
     (tmp_path / "s.toml").write_text(to_toml(data))
     status, _, stderr, _ = run_file(tmp_path / "s.toml", tmp_path / "out")
     assert status == 2 and ": effects[0].pivot_to_com: " in stderr and "overflows" in stderr
+
+
+def test_a_damped_body_at_rest_has_a_summary_without_nan(tmp_path):
+    # ω = 0 (the angular velocity deleted): |L| = 0 made the damped summary divide 0/0
+    data = json.loads(json.dumps(BASES["damped_top"]))
+    data["initial"].pop("angular_velocity", None)
+    (tmp_path / "s.toml").write_text(to_toml(data))
+    assert check_scene(to_toml(data), tmp_path) == "ran"
