@@ -196,7 +196,10 @@ def _write_all(stage: Path, figures: bool, data: bool, parallel: bool):
             written += paper_figures.draw_all(*job)
     finally:
         for drawer in drawers[sent:]:  # failed before the figures were handed over
-            drawer.send(None)
+            try:
+                drawer.send(None)
+            except OSError:  # interrupted (SIGTERM) while sending: its pipe is closed
+                pass
         results = []
         for drawer in drawers:  # collect every worker, then report the first failure
             try:
