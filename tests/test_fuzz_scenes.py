@@ -244,8 +244,9 @@ def test_mutated_scenes_run_or_are_refused_in_one_line(tmp_path_factory, data):
         ({"time": {"duration": 1e9}}, "time.duration"),  # beyond the budget
         ({"time": {"duration": 1e300}, "integrator": {"step": 1e-300}}, "integrator.step"),
         ({"scene": {"name": "n" * 10_000}}, "scene.name"),
+        ({"time": {"duration": 1.0, "output_step": 1e300}}, "time.output_step"),
     ],
-    ids=["unix-start", "budget", "uncountable-steps", "long-name"],
+    ids=["unix-start", "budget", "uncountable-steps", "long-name", "sample-beyond-int64"],
 )
 def test_found_scenes_are_refused_by_key(tmp_path, edit, key):
     data = json.loads(json.dumps(BASES["spinning_disk"]))

@@ -241,6 +241,12 @@ class Scene:
             f"expected a whole multiple of integrator.step ({integ['step']!r} s), got "
             f"{time['output_step']!r} s",
         )  # fmt: skip
+        if self.sample_every > self.steps:
+            raise reader.error(
+                "time.output_step",
+                f"expected at most time.duration ({time['duration']!r} s), got "
+                f"{time['output_step']!r} s",
+            )
         self._check_time_grid(reader)
         self._check_magnitudes(reader)
         self.kind = "torqued" if d["effects"] else "free"
