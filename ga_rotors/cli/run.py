@@ -150,12 +150,12 @@ def _user_code(args: argparse.Namespace, scene):
 
 def _budget(args: argparse.Namespace):
     """The scene budget from --max-steps / --max-memory (defaults where not given)."""
-    from .scene.budget import DEFAULT, Budget
+    from ..scene.budget import DEFAULT, Budget
 
     steps = DEFAULT.max_steps if args.max_steps is None else args.max_steps
     memory = DEFAULT.max_memory_gib if args.max_memory is None else args.max_memory
     if steps != steps or memory != memory:  # NaN
-        from .errors import InputError
+        from ..errors import InputError
 
         raise InputError("--max-steps, --max-memory: expected numbers")
     return Budget(max_steps=steps, max_memory_gib=memory)
