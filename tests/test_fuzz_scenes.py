@@ -291,7 +291,7 @@ def test_a_long_run_whose_norm_drifts_keeps_its_quantities(tmp_path):
     )
     status, stdout, stderr, _ = run_file(tmp_path / "s.toml", tmp_path / "out")
     assert status == 0, stderr
-    drift = float(re.search(r"max \| \|q\| − 1 \| = (\S+)", stdout).group(1))
+    drift = float(re.search(r"max \| \|quaternion\| − 1 \| = (\S+)", stdout).group(1))
     assert 1e-6 < drift < 1e-3
     import numpy as np
 
