@@ -50,8 +50,9 @@ def as_float_array(x, name: str, *, last: int | None = None, finite: bool = True
             raw = np.asarray(x)
         except (ValueError, TypeError, OverflowError):  # ragged nesting, odd sequences
             raise InputError(
-                f"{name}: expected an array of real numbers, got {type(x).__name__} "
-                "(ragged nesting or non-numeric items)"
+                f"expected an array of real numbers, got {type(x).__name__} "
+                "(ragged nesting or non-numeric items)",
+                key=name,
             ) from None
     if raw.dtype.kind not in "fiub":
         if raw.dtype.kind == "c":

@@ -182,7 +182,8 @@ def inertia_about_pivot(inertia_cm, mass: float, r) -> np.ndarray:
         )
     if not np.all(np.isfinite(out)):
         raise InputError(
-            "pivot_to_com: the inertia about the pivot, m |r|², overflows float64; rescale units"
+            "the inertia about the pivot, m |r|², overflows float64; rescale units",
+            key="pivot_to_com",
         )
     return out
 

@@ -54,7 +54,7 @@ def _umask() -> int:
 
 
 def _os_error(argument: str, where, exc: OSError) -> InputError:
-    return InputError(f"{argument}: cannot write {where}: {exc.strerror or exc}")
+    return InputError(f"cannot write {where}: {exc.strerror or exc}", key=argument)
 
 
 def atomic_write(path, write) -> Path:
@@ -71,10 +71,10 @@ def atomic_write(path, write) -> Path:
     """
     path = Path(path)
     if path.is_dir():
-        raise InputError(f"path: {path} is a directory; expected a file name")
+        raise InputError(f"{path} is a directory; expected a file name", key="path")
     parent = path.parent if str(path.parent) else Path(".")
     if not parent.is_dir():
-        raise InputError(f"path: directory {parent} does not exist")
+        raise InputError(f"directory {parent} does not exist", key="path")
     fd, tmp = tempfile.mkstemp(dir=parent, prefix=f".{path.name[:200]}.", suffix=".tmp")
     try:
         os.chmod(tmp, 0o666 & ~_umask())  # mkstemp makes 0600; give what open() would
@@ -111,12 +111,14 @@ def _check_name(name: str, argument: str) -> None:
         or name.startswith(".")
     ):
         raise InputError(
-            f"{argument}: {name!r} is not a plain file name; it must stay in {argument}"
+            f"{name!r} is not a plain file name; it must stay in {argument}",
+            key=argument,
         )
     if len(name.encode("utf-8", "surrogateescape")) > NAME_MAX:
         raise InputError(
-            f"{argument}: file name {name[:40]!r}... is {len(name.encode())} bytes long; "
-            f"at most {NAME_MAX} (shorten the scene's name)"
+            f"file name {name[:40]!r}... is {len(name.encode())} bytes long; "
+            f"at most {NAME_MAX} (shorten the scene's name)",
+            key=argument,
         )
 
 
@@ -147,9 +149,10 @@ def _locked(folder: Path, argument: str) -> Iterator[None]:
             except BlockingIOError:
                 if time.monotonic() > deadline:
                     raise InputError(
-                        f"{argument}: another ga-rotors process has been writing into {folder} "
+                        f"another ga-rotors process has been writing into {folder} "
                         f"for {LOCK_TIMEOUT:g} s; wait for it to finish, or choose another "
-                        f"{argument}"
+                        f"{argument}",
+                        key=argument,
                     ) from None
                 time.sleep(0.05)
         yield
@@ -241,10 +244,11 @@ def output_set(out_dir, argument: str = "out_dir") -> Iterator[Path]:
     try:
         if os.path.islink(out) and not out.exists():
             raise InputError(
-                f"{argument}: {out} is a symbolic link to {os.readlink(out)}, which does not exist"
+                f"{out} is a symbolic link to {os.readlink(out)}, which does not exist",
+                key=argument,
             )
         if out.exists() and not out.is_dir():
-            raise InputError(f"{argument}: {out} exists and is not a directory")
+            raise InputError(f"{out} exists and is not a directory", key=argument)
     except OSError as exc:  # a name too long, a loop of links, a folder we may not read
         raise _os_error(argument, out, exc) from None
     parent = out.parent
@@ -269,8 +273,9 @@ def output_set(out_dir, argument: str = "out_dir") -> Iterator[Path]:
                     _check_name(name, argument)
                     if exists and (out / name).is_dir() and not (out / name).is_symlink():
                         raise InputError(
-                            f"{argument}: {out / name} is a folder; the output file {name} "
-                            "goes there (nothing was replaced)"
+                            f"{out / name} is a folder; the output file {name} "
+                            "goes there (nothing was replaced)",
+                            key=argument,
                         )
                 with _signals_held():
                     if not exists:

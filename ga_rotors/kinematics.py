@@ -168,8 +168,9 @@ def zyz_rates_from_body_omega(angles, w) -> np.ndarray:
     if np.any(locked):
         where = tuple(int(i) for i in np.argwhere(np.atleast_1d(locked))[0])
         raise InputError(
-            f"angles: |sin θ| <= {GIMBAL_TOLERANCE:g} (gimbal lock) at index {where}; the ZYZ "
-            "rates ψ̇ and φ̇ are undefined there (only ψ̇ + φ̇ at θ = 0, ψ̇ − φ̇ at θ = π)"
+            f"|sin θ| <= {GIMBAL_TOLERANCE:g} (gimbal lock) at index {where}; the ZYZ "
+            "rates ψ̇ and φ̇ are undefined there (only ψ̇ + φ̇ at θ = 0, ψ̇ − φ̇ at θ = π)",
+            key="angles",
         )
     sp, cp = np.sin(phi), np.cos(phi)
     w1, w2, w3 = np.moveaxis(w, -1, 0)
@@ -177,7 +178,7 @@ def zyz_rates_from_body_omega(angles, w) -> np.ndarray:
         dpsi = (w2 * sp - w1 * cp) / st
         out = np.stack([dpsi, w1 * sp + w2 * cp, w3 - dpsi * np.cos(theta)], axis=-1)
     if not np.all(np.isfinite(out)):
-        raise InputError("w: the ZYZ rates overflow float64 (|ω| / |sin θ| too large)")
+        raise InputError("the ZYZ rates overflow float64 (|ω| / |sin θ| too large)", key="w")
     return out
 
 
@@ -267,7 +268,7 @@ def rotor_rate(R, w):
     blades = _cl3()[1]
     w = as_float_array(w, "w", last=3)
     if w.shape != (3,):
-        raise InputError(f"w: expected one angular velocity of shape (3,), got {w.shape}")
+        raise InputError(f"expected one angular velocity of shape (3,), got {w.shape}", key="w")
     R = _unit_rotor(R)
     vec = w[0] * blades["e1"] + w[1] * blades["e2"] + w[2] * blades["e3"]
     omega = -(blades["e123"] * vec)
@@ -290,7 +291,7 @@ def body_omega_from_rotor_rate(R, Rdot) -> np.ndarray:
     layout, blades = _cl3()
     R = _unit_rotor(R)
     if getattr(Rdot, "layout", None) != layout:
-        raise InputError("Rdot: expected a clifford MultiVector of the Cl(3) layout")
+        raise InputError("expected a clifford MultiVector of the Cl(3) layout", key="Rdot")
     from_even(Rdot.value, name="Rdot")  # finite and even, as the rate of a rotor is
     v = (2.0 * blades["e123"] * ~R * Rdot)(1)
     return np.array([v[blades["e1"]], v[blades["e2"]], v[blades["e3"]]], dtype=np.float64)

@@ -46,7 +46,7 @@ _ALLOWED: contextvars.ContextVar[tuple[Path, ...]] = contextvars.ContextVar(
 def _folder(value, source: str) -> Path:
     path = Path(value).expanduser()
     if not path.is_dir():
-        raise InputError(f"{source}: {value}: not a folder; name the folder holding your code")
+        raise InputError(f"{value}: not a folder; name the folder holding your code", key=source)
     return path.resolve()
 
 
@@ -65,7 +65,7 @@ def allow_user_code(*folders) -> Iterator[tuple[Path, ...]]:
     ()
     """
     if not folders:
-        raise InputError("allow_user_code: name at least one folder holding your code")
+        raise InputError("name at least one folder holding your code", key="allow_user_code")
     added = tuple(_folder(f, "allow_user_code") for f in folders)
     token = _ALLOWED.set(_ALLOWED.get() + added)
     try:

@@ -51,7 +51,7 @@ class Budget:
         for name in ("max_steps", "max_memory_gib"):
             value = getattr(self, name)
             if isinstance(value, bool) or not isinstance(value, int | float) or not value > 0:
-                raise InputError(f"{name}: expected a positive number, got {value!r}")
+                raise InputError(f"expected a positive number, got {value!r}", key=name)
 
 
 #: The budget ``ga-rotors run`` and :func:`ga_rotors.scene.run_scene` use by default.

@@ -264,7 +264,7 @@ class Scene:
         try:
             self.body.energy(self.angular_velocity)
         except InputError as exc:
-            raise reader.error(key, str(exc).partition(": ")[2]) from None
+            raise reader.error(key, exc.detail) from None
         turn = float(np.linalg.norm(self.angular_velocity)) * self.data["integrator"]["step"]
         if not turn <= MAX_TURN_PER_STEP:
             raise reader.error(
@@ -319,7 +319,7 @@ class Scene:
         try:
             shift = _effects.inertia_about_pivot(np.zeros((3, 3)), mass, g["pivot_to_com"])
         except InputError as exc:
-            raise reader.error(join(key, "pivot_to_com"), str(exc).partition(": ")[2]) from None
+            raise reader.error(join(key, "pivot_to_com"), exc.detail) from None
         if g["inertia_about"] == "com":
             return tensor + shift
         # Given about the pivot: what is left about the centre of mass must be a body.
