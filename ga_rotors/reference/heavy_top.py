@@ -77,7 +77,13 @@ def _root(g, lo, hi):
         return lo
     if g_hi == 0.0 or (g_lo > 0.0) == (g_hi > 0.0):
         return hi
-    return brentq(g, lo, hi, xtol=1e-300, rtol=4 * _EPS, maxiter=500)
+    try:
+        return brentq(g, lo, hi, xtol=1e-300, rtol=4 * _EPS, maxiter=500)
+    except RuntimeError:  # no convergence: gravity below the rounding (mgl = 1e-320 ...)
+        raise PrecisionError(
+            f"the heavy-top reference cannot locate a root of its cubic in [{lo:.17g}, "
+            f"{hi:.17g}] (gravity too weak against the spin for float64?)"
+        ) from None
 
 
 def gravity_torque(mgl: float) -> TorqueTerm:
