@@ -317,7 +317,7 @@ class RigidBody:
         ...
         ga_rotors.errors.InputError: w: the kinetic energy overflows float64 ...
         """
-        _, w = self.to_principal(None, w)
+        _, w = self.to_principal(None, as_float_array(w, "w", last=3))
         with np.errstate(over="ignore", under="ignore"):
             e = 0.5 * np.einsum("...i,i,...i->...", w, np.asarray(self.moments), w)
         _representable(e, "w", "the kinetic energy")
@@ -331,7 +331,7 @@ class RigidBody:
         >>> RigidBody((1.0, 2.0, 3.0)).momentum([1.0, 1.0, 1.0]).tolist()
         [1.0, 2.0, 3.0]
         """
-        _, w_p = self.to_principal(None, w)
+        _, w_p = self.to_principal(None, as_float_array(w, "w", last=3))
         with np.errstate(over="ignore"):
             L = w_p * np.asarray(self.moments)
         _representable(L, "w", "the angular momentum")
@@ -360,7 +360,7 @@ class RigidBody:
         >>> body.angular_acceleration([1.0, 1.0, 1.0], [1.0, 2.0, 3.0])
         array([0.        , 2.        , 0.66666667])
         """
-        _, w = self.to_principal(None, w)
+        _, w = self.to_principal(None, as_float_array(w, "w", last=3))
         inertia = np.asarray(self.moments)
         with np.errstate(over="ignore", invalid="ignore"):
             a = np.cross(w * inertia, w) / inertia

@@ -181,7 +181,10 @@ def _vector3(x):
 def _number(x):
     """x as a finite float when it is one plain real number, else None."""
     if type(x) in (float, int) or (isinstance(x, np.generic) and x.dtype.kind in "fiu"):
-        x = float(x)
+        try:
+            x = float(x)
+        except OverflowError:  # an int beyond float64: the checked slow path refuses it
+            return None
         return x if math.isfinite(x) else None
     return None
 
