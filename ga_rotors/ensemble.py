@@ -1,4 +1,10 @@
-"""Batched ensembles: classical RK4 for many torque-free bodies at once, on every core.
+"""Batched ensembles: many bodies at once, on every core.
+
+:func:`scene_samples` and :func:`run_samples` integrate n variations of a scene (per-sample
+inertia, initial state and parameters of the declared effects) with the scene's own
+integrator and step, and return the states at chosen times; each sample equals the single
+run of the same scene bit for bit. :func:`rk4_free` is the torque-free RK4 with one shared
+inertia that ``ga-rotors bench ensemble`` measures.
 
 Struct-of-arrays layout (``q`` of shape (4, n), ``w`` of shape (3, n)): the innermost loop
 runs over bodies, so LLVM turns each RK4 stage into SIMD arithmetic across 4 bodies at a
@@ -14,7 +20,9 @@ trajectory of ``get("rk4")`` on the quaternion path, bit for bit.
 
 from __future__ import annotations
 
+import re
 import types
+from dataclasses import dataclass
 
 import numba
 import numpy as np
@@ -22,10 +30,20 @@ from numba import prange
 
 from ._jit import jit
 from ._kernels import free_euler_rates
+from .errors import InputError
 from .integrators._arith import axpy3, axpy4, rk4_sum3, rk4_sum4
 from .paths.quaternion import rate
 
-__all__ = ["CHUNK", "benchmark", "rk4_free"]
+__all__ = [
+    "CHUNK",
+    "FAST_KEYS",
+    "EnsembleRun",
+    "SceneSamples",
+    "benchmark",
+    "rk4_free",
+    "run_samples",
+    "scene_samples",
+]
 
 #: Bodies per chunk: a chunk's state (7 doubles a body) stays in L1 through all its steps.
 CHUNK = 256
@@ -129,8 +147,6 @@ def rk4_free(inertia, q, w, h: float, nsteps: int, chunk: int = CHUNK) -> None:
     >>> bool(np.allclose(q[:, 0], (np.cos(1.0), 0, 0, np.sin(1.0)), atol=1e-9))
     True
     """
-    from .errors import InputError
-
     for name, a, rows in (("q", q, 4), ("w", w, 3)):
         if not (isinstance(a, np.ndarray) and a.dtype == np.float64 and a.ndim == 2
                 and a.shape[0] == rows and a.flags.c_contiguous):  # fmt: skip
@@ -172,3 +188,311 @@ def benchmark(bodies: int = 10_000, steps: int = 1000, repeats: int = 5) -> str:
         f"(min of {repeats}) = {rate_ / 1e6:.0f} million body-steps/s "
         f"on {numba.get_num_threads()} threads"
     )
+
+
+# ---------------------------------------------------------------------------- real scenes
+#
+# The loop below is a template: for one (integrator, problem kind, path, torques) it is
+# compiled with ``step`` bound to an inline copy of the generated module's step — the very
+# function a single run's loop calls (ga_rotors.integrators._codegen.specialise), so a
+# sample follows the single run of the same scene bit for bit. Per-sample inertia, state
+# and torque parameters are read per body; the inner loop runs over the bodies of one
+# L1-sized chunk, as in rk4_free above.
+
+
+def _scene_chunk(q, w, inertia, params, lo, hi, t0, h, marks, out_q, out_w):
+    q0, q1, q2, q3 = q[0, lo:hi], q[1, lo:hi], q[2, lo:hi], q[3, lo:hi]
+    w0, w1, w2 = w[0, lo:hi], w[1, lo:hi], w[2, lo:hi]
+    i0, i1, i2 = inertia[0, lo:hi], inertia[1, lo:hi], inertia[2, lo:hi]
+    done = 0
+    for m in range(marks.shape[0]):
+        for k in range(done, marks[m]):
+            t = t0 + k * h
+            for i in range(hi - lo):
+                x, v = step(  # noqa: F821 (bound when the template is compiled)
+                    t, (q0[i], q1[i], q2[i], q3[i]), (w0[i], w1[i], w2[i]), h,
+                    (i0[i], i1[i], i2[i]), params[lo + i],
+                )  # fmt: skip
+                q0[i] = x[0]
+                q1[i] = x[1]
+                q2[i] = x[2]
+                q3[i] = x[3]
+                w0[i] = v[0]
+                w1[i] = v[1]
+                w2[i] = v[2]
+        done = marks[m]
+        for i in range(hi - lo):
+            out_q[m, 0, lo + i] = q0[i]
+            out_q[m, 1, lo + i] = q1[i]
+            out_q[m, 2, lo + i] = q2[i]
+            out_q[m, 3, lo + i] = q3[i]
+            out_w[m, 0, lo + i] = w0[i]
+            out_w[m, 1, lo + i] = w1[i]
+            out_w[m, 2, lo + i] = w2[i]
+
+
+def _scene_soa(q, w, inertia, params, t0, h, marks, out_q, out_w, chunk):
+    n = q.shape[1]
+    nchunks = (n + chunk - 1) // chunk
+    for c in prange(nchunks):
+        lo = c * chunk
+        chunk_loop(q, w, inertia, params, lo, min(n, lo + chunk), t0, h, marks, out_q, out_w)  # noqa: F821
+
+
+_SCENE_LOOPS: dict = {}
+
+
+def _compiled_scene_loop(integrator, problem, path: str):
+    """The batched loop for one specialisation, compiled once per process."""
+    from .integrators._codegen import specialise
+
+    spec = specialise(integrator, problem, path)
+    key = spec.module.__name__
+    found = _SCENE_LOOPS.get(key)
+    if found is None:
+        scope = dict(globals(), step=inline_copy(spec.module.step))
+        chunk = types.FunctionType(_scene_chunk.__code__, scope, "_scene_chunk")
+        scope["chunk_loop"] = numba.njit(error_model="numpy")(chunk)
+        outer = types.FunctionType(_scene_soa.__code__, scope, "_scene_soa")
+        found = numba.njit(parallel=True, error_model="numpy")(outer)
+        _SCENE_LOOPS[key] = found
+    return found
+
+
+@dataclass
+class SceneSamples:
+    """Per-sample inputs of a scene ensemble, in the scene's integration (principal) frame.
+
+    ``inertia`` (n, 3) principal moments, ``orientation`` (n, 4) and ``angular_velocity``
+    (n, 3) the initial state, ``params`` (n, P) the packed parameters of the declared
+    torques, ``principal`` (n, 4) the rotation P from principal to the scene's body axes
+    (identity unless the scene gives a full inertia tensor).
+    """
+
+    scene: object
+    inertia: np.ndarray
+    orientation: np.ndarray
+    angular_velocity: np.ndarray
+    params: np.ndarray
+    principal: np.ndarray
+
+    def __len__(self) -> int:
+        return self.inertia.shape[0]
+
+
+#: Keys whose per-sample values map to the kernel's inputs without building a scene per
+#: sample (checked against a full Scene on the first and last samples before use).
+FAST_KEYS = ("body.moments", "initial.angular_velocity.body")
+
+_ELEMENT = re.compile(r"^(?P<key>.*)\[(?P<index>[0-2])\]$")
+
+
+def _fast(scene, changes: dict, n: int):
+    """Vectorised inputs, or None when a key needs a Scene per sample."""
+    d = scene.data
+    if scene.principal_rotation != (1.0, 0.0, 0.0, 0.0) or scene.gravity_index is not None:
+        return None
+    moments = np.tile(np.array(scene.body.moments), (n, 1))
+    omega = np.tile(np.asarray(scene.angular_velocity, dtype=np.float64), (n, 1))
+    av = d["initial"]["angular_velocity"]
+    for key, values in changes.items():
+        m = _ELEMENT.match(key)
+        base, index = (m["key"], int(m["index"])) if m else (key, None)
+        if base == "body.moments" and "moments" in d["body"]:
+            target, scale = moments, 1.0
+        elif base == "initial.angular_velocity.body" and "body" in av:
+            from .scene.schema import RATE_UNITS
+
+            target, scale = omega, RATE_UNITS[av["units"]]
+        else:
+            return None
+        if index is None:
+            target[:] = values.reshape(n, 3) * scale
+        else:
+            target[:, index] = values.reshape(n) * scale
+    if not np.all(np.isfinite(moments)) or not np.all(np.isfinite(omega)):
+        return None  # let the per-sample path name the bad value
+    s = moments.sum(axis=1, keepdims=True)
+    bad = np.flatnonzero(np.any((moments <= 0) | (moments > s - moments), axis=1))
+    if bad.size:
+        return None
+    return moments, omega
+
+
+def scene_samples(scene, changes=None, n: int | None = None) -> SceneSamples:
+    """Per-sample kernel inputs for ``scene`` with some keys changed per sample.
+
+    Parameters
+    ----------
+    scene : Scene or str or path
+    changes : mapping of dotted key -> array of n values, optional
+        Key paths as :meth:`Scene.replace` takes them (``body.moments``,
+        ``initial.angular_velocity.body[2]``, ``effects[0].coefficient``...), each with one
+        value per sample along its first axis. Keys in :data:`FAST_KEYS` on a scene with a
+        diagonal inertia and no gravity are mapped in one vectorised pass; any other key
+        builds (and so validates) the scene once per sample.
+    n : int, optional
+        Number of samples when ``changes`` is empty (all samples are the scene itself).
+
+    Examples
+    --------
+    >>> s = scene_samples("intermediate_axis_flip", {"initial.angular_velocity.body[1]":
+    ...                                             [10.0, 10.5, 11.0]})
+    >>> len(s), s.inertia.shape, s.params.shape, s.angular_velocity[:, 1].tolist()
+    (3, (3, 3), (3, 0), [10.0, 10.5, 11.0])
+    >>> g = scene_samples("heavy_top", {"body.mass": [1.0, 2.0]})  # a scene per sample
+    >>> g.params[:, 2].tolist()  # the weight m g along z, in the torque's parameters
+    [-9.80665, -19.6133]
+    """
+    from .scene import load_scene
+
+    scene = load_scene(scene)
+    changes = {k: np.asarray(v, dtype=np.float64) for k, v in (changes or {}).items()}
+    sizes = {k: v.shape[0] if v.ndim else None for k, v in changes.items()}
+    if any(s is None for s in sizes.values()):
+        raise InputError(f"changes: expected one value per sample for every key, got {sizes}")
+    counts = set(sizes.values()) | ({int(n)} if n is not None else set())
+    if len(counts) != 1:
+        raise InputError(f"changes: keys and n give different numbers of samples: {sizes}, {n}")
+    count = counts.pop()
+    base_params = _params(scene)
+    fast = _fast(scene, changes, count) if changes else None
+    if fast is not None:
+        moments, omega = fast
+        for i in {0, count - 1}:  # the vectorised mapping must equal the scene's own
+            one = _sample_scene(scene, changes, i)
+            if (tuple(moments[i]) != one.body.moments
+                    or not np.array_equal(omega[i], one.angular_velocity)):  # fmt: skip
+                fast = None
+                break
+    if fast is not None or not changes:
+        moments, omega = fast or (np.tile(np.array(scene.body.moments), (count, 1)),
+                                  np.tile(scene.angular_velocity, (count, 1)))  # fmt: skip
+        return SceneSamples(
+            scene,
+            np.ascontiguousarray(moments),
+            np.tile(scene.orientation, (count, 1)),
+            np.ascontiguousarray(omega),
+            np.tile(base_params, (count, 1)),
+            np.tile(np.array(scene.principal_rotation), (count, 1)),
+        )
+    inertia, q0, w0 = np.empty((count, 3)), np.empty((count, 4)), np.empty((count, 3))
+    params, principal = np.empty((count, base_params.size)), np.empty((count, 4))
+    names = [t.name for t in scene.torques()]
+    for i in range(count):
+        one = _sample_scene(scene, changes, i)
+        if [t.name for t in one.torques()] != names:
+            raise InputError(f"sample {i}: changes the scene's declared effects {names}")
+        inertia[i], q0[i], w0[i] = one.body.moments, one.orientation, one.angular_velocity
+        params[i], principal[i] = _params(one), one.principal_rotation
+    return SceneSamples(scene, inertia, q0, w0, params, principal)
+
+
+def _sample_scene(scene, changes: dict, i: int):
+    """The scene with sample i's values; a bad value is named by its sample and key."""
+    from .errors import SceneError
+
+    try:
+        return scene.replace({k: v[i].tolist() for k, v in changes.items()})
+    except SceneError as exc:
+        message = str(exc).removeprefix(f"{exc.file}: {exc.key}: " if exc.key else "")
+        raise SceneError(exc.file, exc.key, f"sample {i}: {message}") from None
+
+
+def _params(scene) -> np.ndarray:
+    from .integrators.base import Problem
+
+    return Problem(scene.body.moments, scene.torques()).params()
+
+
+@dataclass
+class EnsembleRun:
+    """States of every sample at chosen times, in the integration frame.
+
+    That is the frame a single run of the scene reports (the principal axes; the same
+    as the scene's body axes unless it gives a full inertia tensor, see
+    ``SceneSamples.principal``).
+
+    ``t`` (k,) the times, ``q`` (k, n, 4) orientations (w, x, y, z), ``w`` (k, n, 3) body
+    angular velocities; a sample whose state stopped being finite holds NaN from then on.
+    """
+
+    t: np.ndarray
+    q: np.ndarray
+    w: np.ndarray
+
+
+def run_samples(samples: SceneSamples, times=None, *, chunk: int = CHUNK) -> EnsembleRun:
+    """Integrate every sample with the scene's integrator, step and declared effects.
+
+    The step function is the one a single run of the scene compiles
+    (:func:`ga_rotors.integrators._codegen.specialise`), so sample i equals
+    ``simulate(scene with sample i's values)`` at the same times, bit for bit.
+
+    Parameters
+    ----------
+    samples : SceneSamples
+        From :func:`scene_samples`.
+    times : sequence of float, optional
+        Output times (absolute, as the scene's ``time.start``), each on the step grid;
+        default: the end of the run.
+
+    Examples
+    --------
+    >>> s = scene_samples("intermediate_axis_flip", n=2)
+    >>> run = run_samples(s, times=[0.5, 1.0])
+    >>> run.q.shape, run.t.tolist(), bool(np.array_equal(run.q[:, 0], run.q[:, 1]))
+    ((2, 2, 4), [0.5, 1.0], True)
+    """
+    from .integrators import base
+    from .paths import get as get_path
+
+    scene = samples.scene
+    spec_method = scene.data["integrator"]
+    method = base.get(spec_method["method"])
+    if not isinstance(method, base.TemplateIntegrator):
+        raise InputError(
+            f"{scene.file}: integrator.method: ensembles run fixed-step methods; "
+            f"{spec_method['method']!r} is adaptive"
+        )
+    path = scene.paths[0]
+    pspec = get_path(path)
+    if pspec.dim != 4:
+        raise InputError(
+            f"{scene.file}: integrator.paths: ensembles integrate the quaternion or rotor "
+            f"path; the scene's first path is {path!r}"
+        )
+    problem = base.Problem(
+        scene.body.moments,
+        scene.torques(),
+        accept_lower_order=spec_method.get("accept_lower_order", False),
+    )
+    t0, h, nsteps = scene.data["time"]["start"], scene.step, scene.steps
+    marks = _marks(times, t0, h, nsteps, scene.file)
+    module = pspec.load()
+    n = len(samples)
+    x = np.ascontiguousarray(module.initial_state(samples.orientation).T)
+    w = np.ascontiguousarray(samples.angular_velocity.T)
+    inertia = np.ascontiguousarray(samples.inertia.T)
+    params = np.ascontiguousarray(samples.params)
+    out_x, out_w = np.empty((marks.size, 4, n)), np.empty((marks.size, 3, n))
+    loop = _compiled_scene_loop(method, problem, path)
+    loop(x, w, inertia, params, float(t0), float(h), marks, out_x, out_w, int(chunk))
+    q = module.quaternions(out_x.transpose(0, 2, 1))
+    w = out_w.transpose(0, 2, 1)
+    return EnsembleRun(t0 + marks * h, np.ascontiguousarray(q), np.ascontiguousarray(w))
+
+
+def _marks(times, t0: float, h: float, nsteps: int, file: str) -> np.ndarray:
+    """Step indices of the output times (each a whole number of steps from t0)."""
+    if times is None:
+        return np.array([nsteps], dtype=np.int64)
+    t = np.atleast_1d(np.asarray(times, dtype=np.float64))
+    k = np.rint((t - t0) / h)
+    bad = (np.abs(k * h + t0 - t) > 1e-9 * max(1.0, abs(t0) + nsteps * h)) | (k < 0) | (k > nsteps)
+    if t.ndim != 1 or np.any(bad) or np.any(np.diff(k) <= 0):
+        raise InputError(
+            f"{file}: times: expected increasing times on the step grid t0 + k·{h!r} s "
+            f"within the run, got {t.tolist()}"
+        )
+    return k.astype(np.int64)

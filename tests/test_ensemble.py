@@ -34,3 +34,102 @@ def test_rejects_wrong_layout():
 
 def test_benchmark_reports_a_rate():
     assert "million body-steps/s" in benchmark(bodies=512, steps=10, repeats=1)
+
+
+# ---------------------------------------------------------------------------- real scenes
+
+from ga_rotors import paths as _paths  # noqa: E402
+from ga_rotors.ensemble import run_samples, scene_samples  # noqa: E402
+from ga_rotors.errors import SceneError  # noqa: E402
+from ga_rotors.scene import load_scene  # noqa: E402
+from ga_rotors.scene import run_scene as run_one  # noqa: E402
+
+
+def single_run(scene, times):
+    """The single run's orientation and ω of the scene's first path at ``times``."""
+    tr = run_one(scene)
+    spec = _paths.get(scene.paths[0])
+    q = spec.load().quaternions(tr[spec.array])
+    rows = [int(np.argmin(np.abs(tr.t - t))) for t in times]
+    assert np.allclose(tr.t[rows], times, rtol=0, atol=1e-12)
+    return q[rows], tr.w[rows]
+
+
+def check_samples_follow_single_runs(scene, changes, times):
+    samples = scene_samples(scene, changes)
+    run = run_samples(samples, times)
+    assert run.t.tolist() == list(times)
+    n = len(samples)
+    for i in sorted({0, n // 2, n - 1}):
+        one = scene.replace({k: np.asarray(v)[i].tolist() for k, v in changes.items()})
+        q, w = single_run(one, times)
+        assert np.array_equal(run.q[:, i], q), i  # bit for bit, not close
+        assert np.array_equal(run.w[:, i], w), i
+    return run
+
+
+def test_a_sample_of_a_gravity_scene_is_the_single_run_of_that_scene_bit_for_bit():
+    scene = load_scene("heavy_top").replace({"time.duration": 0.05})  # rotor path first
+    # a disk's mass cancels from its motion; the pivot distance does not
+    pivots = [[0.0, 0.0, 0.03], [0.0, 0.0, 0.04], [0.0, 0.0, 0.05]]
+    changes = {"body.mass": [0.8, 1.0, 1.3], "effects[0].pivot_to_com": pivots}
+    run = check_samples_follow_single_runs(scene, changes, [0.01, 0.05])
+    assert not np.array_equal(run.q[-1, 0], run.q[-1, 2])  # the samples do differ
+
+
+def test_vectorised_samples_of_a_free_scene_follow_single_runs_bit_for_bit():
+    scene = load_scene("intermediate_axis_flip").replace(
+        {
+            "time.duration": 0.1,
+            "integrator.paths": ["quaternion"],
+            "body": {"moments": [1.0e-4, 2.0e-4, 2.6e-4]},
+        }
+    )
+    rng = np.random.default_rng(3)
+    changes = {
+        "body.moments": np.column_stack(
+            [np.full(300, 1.0e-4), 2.0e-4 + 1e-5 * rng.random(300), np.full(300, 2.6e-4)]
+        ),
+        "initial.angular_velocity.body[1]": 10.0 + rng.normal(size=300),
+    }
+    check_samples_follow_single_runs(scene, changes, [0.05, 0.1])
+
+
+def test_the_vectorised_mapping_equals_a_scene_per_sample():
+    scene = load_scene("intermediate_axis_flip")
+    omega = np.array([[0.0, 10.0, 0.01], [0.1, 9.0, 0.0], [0.0, 11.0, -0.2]])
+    fast = scene_samples(scene, {"initial.angular_velocity.body": omega})
+    for i in range(3):
+        one = scene.replace({"initial.angular_velocity.body": omega[i].tolist()})
+        assert np.array_equal(fast.angular_velocity[i], one.angular_velocity)
+        assert tuple(fast.inertia[i]) == one.body.moments
+
+
+def test_a_scene_with_off_diagonal_inertia_reports_in_the_frame_a_single_run_does():
+    tensor = [[2.0e-4, 1.0e-5, 0.0], [1.0e-5, 3.0e-4, 0.0], [0.0, 0.0, 4.0e-4]]
+    scene = load_scene("intermediate_axis_flip").replace(
+        {"body": {"tensor": tensor}, "time.duration": 0.02}
+    )
+    assert scene.principal_rotation != (1.0, 0.0, 0.0, 0.0)
+    changes = {"initial.angular_velocity.body[1]": [10.0, 12.0]}
+    check_samples_follow_single_runs(scene, changes, [0.02])
+
+
+def test_a_bad_sample_is_named_by_the_scene_key():
+    scene = load_scene("intermediate_axis_flip").replace({"body": {"moments": [1, 2, 2.5]}})
+    with pytest.raises(SceneError, match=r"body\.moments: sample 1: .*positive"):
+        scene_samples(scene, {"body.moments": [[1.0, 2.0, 3.0], [1.0, -2.0, 3.0]]})
+
+
+def test_ensembles_refuse_what_they_cannot_run_exactly():
+    scene = load_scene("intermediate_axis_flip").replace({"time.duration": 0.01})
+    samples = scene_samples(scene, n=2)
+    with pytest.raises(InputError, match="times: expected increasing times on the step grid"):
+        run_samples(samples, [0.0105])
+    with pytest.raises(InputError, match="times"):
+        run_samples(samples, [0.02])
+    euler = scene_samples(scene.replace({"integrator.paths": ["euler"]}), n=2)
+    with pytest.raises(InputError, match="quaternion or rotor path"):
+        run_samples(euler)
+    with pytest.raises(InputError, match="one value per sample"):
+        scene_samples(scene, {"body.moments": 1.0})
