@@ -242,19 +242,24 @@ def _scene_soa(q, w, inertia, params, t0, h, marks, out_q, out_w, chunk):
 _SCENE_LOOPS: dict = {}
 
 
-def _compiled_scene_loop(integrator, problem, path: str):
-    """The batched loop for one specialisation, compiled once per process."""
+def _compiled_scene_loop(integrator, problem, path: str, parallel: bool = True):
+    """The batched loop for one specialisation, compiled once per process.
+
+    ``parallel=False`` runs the chunks one after the other in the calling thread: for
+    callers that run several loops at once in one process (threads of a Dask worker),
+    which numba's default threading layer does not allow for parallel loops.
+    """
     from .integrators._codegen import specialise
 
     spec = specialise(integrator, problem, path)
-    key = spec.module.__name__
+    key = (spec.module.__name__, parallel)
     found = _SCENE_LOOPS.get(key)
     if found is None:
         scope = dict(globals(), step=inline_copy(spec.module.step))
         chunk = types.FunctionType(_scene_chunk.__code__, scope, "_scene_chunk")
         scope["chunk_loop"] = numba.njit(error_model="numpy")(chunk)
         outer = types.FunctionType(_scene_soa.__code__, scope, "_scene_soa")
-        found = numba.njit(parallel=True, error_model="numpy")(outer)
+        found = numba.njit(parallel=parallel, error_model="numpy")(outer)
         _SCENE_LOOPS[key] = found
     return found
 
@@ -267,6 +272,12 @@ class SceneSamples:
     (n, 3) the initial state, ``params`` (n, P) the packed parameters of the declared
     torques, ``principal`` (n, 4) the rotation P from principal to the scene's body axes
     (identity unless the scene gives a full inertia tensor).
+
+    Examples
+    --------
+    >>> s = scene_samples("heavy_top", n=2)
+    >>> s.inertia[0].tolist(), s.params.shape  # the gravity term's 6 parameters
+    ([0.002225, 0.002225, 0.00125], (2, 6))
     """
 
     scene: object
@@ -383,6 +394,12 @@ def scene_samples(scene, changes=None, n: int | None = None) -> SceneSamples:
         one = _sample_scene(scene, changes, i)
         if [t.name for t in one.torques()] != names:
             raise InputError(f"sample {i}: changes the scene's declared effects {names}")
+        for shared in ("time", "integrator"):
+            if one.data[shared] != scene.data[shared]:
+                raise InputError(
+                    f"sample {i}: changes {shared}.*; every sample of an ensemble shares the "
+                    "scene's time grid and integrator"
+                )
         inertia[i], q0[i], w0[i] = one.body.moments, one.orientation, one.angular_velocity
         params[i], principal[i] = _params(one), one.principal_rotation
     return SceneSamples(scene, inertia, q0, w0, params, principal)
@@ -413,6 +430,12 @@ class EnsembleRun:
     as the scene's body axes unless it gives a full inertia tensor, see
     ``SceneSamples.principal``).
 
+    Examples
+    --------
+    >>> run = run_samples(scene_samples("heavy_top", n=4), times=[0.001, 0.002])
+    >>> run.t.tolist(), run.q.shape, run.w.shape
+    ([0.001, 0.002], (2, 4, 4), (2, 4, 3))
+
     ``t`` (k,) the times, ``q`` (k, n, 4) orientations (w, x, y, z), ``w`` (k, n, 3) body
     angular velocities; a sample whose state stopped being finite holds NaN from then on.
     """
@@ -422,7 +445,9 @@ class EnsembleRun:
     w: np.ndarray
 
 
-def run_samples(samples: SceneSamples, times=None, *, chunk: int = CHUNK) -> EnsembleRun:
+def run_samples(
+    samples: SceneSamples, times=None, *, chunk: int = CHUNK, parallel: bool = True
+) -> EnsembleRun:
     """Integrate every sample with the scene's integrator, step and declared effects.
 
     The step function is the one a single run of the scene compiles
@@ -436,6 +461,9 @@ def run_samples(samples: SceneSamples, times=None, *, chunk: int = CHUNK) -> Ens
     times : sequence of float, optional
         Output times (absolute, as the scene's ``time.start``), each on the step grid;
         default: the end of the run.
+    parallel : bool
+        Spread the chunks over numba's threads (default), or run them in the calling
+        thread (for several concurrent calls in one process).
 
     Examples
     --------
@@ -476,7 +504,7 @@ def run_samples(samples: SceneSamples, times=None, *, chunk: int = CHUNK) -> Ens
     inertia = np.ascontiguousarray(samples.inertia.T)
     params = np.ascontiguousarray(samples.params)
     out_x, out_w = np.empty((marks.size, 4, n)), np.empty((marks.size, 3, n))
-    loop = _compiled_scene_loop(method, problem, path)
+    loop = _compiled_scene_loop(method, problem, path, parallel)
     loop(x, w, inertia, params, float(t0), float(h), marks, out_x, out_w, int(chunk))
     q = module.quaternions(out_x.transpose(0, 2, 1))
     w = out_w.transpose(0, 2, 1)
