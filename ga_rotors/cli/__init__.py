@@ -35,6 +35,7 @@ COMMANDS: dict[str, str] = {
     "scenes": "ga_rotors.cli.scenes",
     "show": "ga_rotors.cli.show",
     "cache": "ga_rotors.cli.cache",
+    "sweep": "ga_rotors.cli.sweep",
 }
 
 

@@ -1,0 +1,16 @@
+"""Sweeps and Monte-Carlo dispersion studies of a scene, on Dask, into a zarr store.
+
+* :func:`load_sweep` — a sweep file: the scene, grid keys, random draws and seed;
+* :func:`run_sweep` — run (or resume) it chunk by chunk on Dask into a ``.zarr`` store;
+* :func:`open_sweep` — the finished store as an xarray Dataset; :func:`summary` its spread.
+
+Needs ``pip install "ga-rotors[dask]"`` (Dask, xarray, zarr). ``ga-rotors sweep`` is the
+command; docs/ensembles.md a worked study.
+"""
+
+from __future__ import annotations
+
+from .run import open_sweep, run_chunk, run_sweep, summary
+from .spec import BLOCK, Sweep, load_sweep
+
+__all__ = ["BLOCK", "Sweep", "load_sweep", "open_sweep", "run_chunk", "run_sweep", "summary"]

@@ -1,0 +1,325 @@
+"""Running a sweep on Dask into a chunked zarr store, resumably.
+
+The store is created whole first (in a staging directory, then renamed into place): every
+variable at its full size, chunked along ``sample`` as the sweep's ``chunk``, plus a
+``chunk_done`` flag per chunk. Each Dask task integrates one chunk of samples
+(:func:`ga_rotors.ensemble.run_samples`), writes that chunk's region, and only then sets
+its flag. Running the same sweep into the same store again skips the flagged chunks: an
+interrupted sweep resumes from its finished chunks, and a chunk cut off halfway is done
+again. A store holds one sweep (its digest is an attribute); another sweep is refused.
+
+Tasks run the serial kernel: the parallelism is Dask's (one worker process per core by
+default), and several tasks may share one process.
+"""
+
+from __future__ import annotations
+
+import os
+import shutil
+import tempfile
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from ..errors import InputError
+from ..optional import require
+from .spec import Sweep, load_sweep
+
+__all__ = ["open_sweep", "run_chunk", "run_sweep", "summary"]
+
+
+@dataclass(frozen=True)
+class _Task:
+    """What a worker needs: the sweep's text and base directory, the store, the nominal."""
+
+    text: str
+    file: str
+    store: str
+    nominal: np.ndarray
+
+
+_SWEEPS: dict[tuple[str, str], Sweep] = {}
+
+
+def _sweep(task: _Task) -> Sweep:
+    key = (task.text, task.file)
+    if key not in _SWEEPS:
+        _SWEEPS[key] = load_sweep(Path(task.file) if task.file != "<string>" else task.text)
+    return _SWEEPS[key]
+
+
+def _run(sweep: Sweep, lo: int, hi: int, parallel: bool):
+    from ..ensemble import run_samples, scene_samples
+
+    values = sweep.values(lo, hi)
+    samples = scene_samples(sweep.scene, values, n=hi - lo)
+    return values, run_samples(samples, sweep.times, parallel=parallel)
+
+
+def _nominal(sweep: Sweep) -> np.ndarray:
+    """The base scene's own orientations at the output times (k, 4)."""
+    from ..ensemble import run_samples, scene_samples
+
+    return run_samples(scene_samples(sweep.scene, n=1), sweep.times).q[:, 0]
+
+
+def run_chunk(task: _Task, c: int) -> int:
+    """Integrate chunk ``c`` of the sweep and write it into the store; return ``c``.
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> out = pathlib.Path(tempfile.mkdtemp()) / "s.zarr"
+    >>> text = '[sweep]\\nscene = "intermediate_axis_flip"\\nchunk = 1\\nsamples = 2\\n'
+    >>> text += '[set]\\n"time.duration" = 0.01\\n[grid]\\n"body.mass" = [0.3, 0.4]\\n'
+    >>> open_sweep(run_sweep(text, out, client="sync")).sizes["sample"]
+    4
+    """
+    from ..quaternion import distance
+
+    xr = require("xarray", "results")
+    sweep = _sweep(task)
+    lo, hi = c * sweep.chunk, min(sweep.size, (c + 1) * sweep.chunk)
+    values, run = _run(sweep, lo, hi, parallel=False)
+    q = run.q.transpose(1, 0, 2)  # (sample, time, 4)
+    data = {
+        "q": (("sample", "time", "quaternion_component"), q),
+        "w": (("sample", "time", "body_axis"), run.w.transpose(1, 0, 2)),
+        "angle_from_nominal": (("sample", "time"), distance(q, task.nominal[None])),
+    }
+    for j, (key, v) in enumerate(values.items()):
+        data[f"value_{j}"] = (("sample", *(f"value_{j}_component",) * (v.ndim - 1)), v)
+        del key
+    xr.Dataset(data).to_zarr(task.store, region={"sample": slice(lo, hi)}, zarr_format=2)
+    flag = xr.Dataset({"chunk_done": (("chunk",), np.ones(1, dtype=np.int8))})
+    flag.to_zarr(task.store, region={"chunk": slice(c, c + 1)}, zarr_format=2)
+    return c
+
+
+def _template(sweep: Sweep, nominal: np.ndarray, t: np.ndarray):
+    """The whole store as a lazy Dataset: what every chunk will fill in."""
+    from ..results import provenance
+
+    xr = require("xarray", "results")
+    da = require("dask.array", "dask")
+    n, k, chunk = sweep.size, t.size, sweep.chunk
+
+    def empty(*shape, dtype=np.float64):
+        fill = 0 if dtype == np.int8 else np.nan
+        return da.full(shape, fill, dtype=dtype, chunks=(chunk, *shape[1:]))
+
+    data = {
+        "q": (("sample", "time", "quaternion_component"), empty(n, k, 4), {
+            "units": "1", "description": "orientation (w, x, y, z) of each sample"}),
+        "w": (("sample", "time", "body_axis"), empty(n, k, 3), {
+            "units": "rad/s", "description": "body angular velocity of each sample"}),
+        "angle_from_nominal": (("sample", "time"), empty(n, k), {
+            "units": "rad", "description": "geodesic angle from the base scene's orientation"}),
+        "q_nominal": (("time", "quaternion_component"), nominal, {
+            "units": "1", "description": "orientation of the base scene (no changes)"}),
+        "chunk_done": (("chunk",), da.zeros(sweep.chunks, dtype=np.int8, chunks=1), {
+            "description": "1 once the chunk's samples are written"}),
+    }  # fmt: skip
+    values = sweep.values(0, min(1, n))
+    for j, (key, v) in enumerate(values.items()):
+        dims = ("sample", *(f"value_{j}_component",) * (v.ndim - 1))
+        data[f"value_{j}"] = (dims, empty(n, *v.shape[1:]), {"scene_key": key})
+    coords = {
+        "sample": np.arange(n),
+        "t": ("time", t, {"units": "s", "description": "output time"}),
+        "quaternion_component": ["w", "x", "y", "z"],
+        "body_axis": ["1", "2", "3"],
+    }
+    scene = sweep.scene
+    meta = {
+        "integrator": scene.data["integrator"]["method"],
+        "step": scene.step,
+        "steps": scene.steps,
+        "torques": [term.name for term in scene.torques()],
+    }
+    attrs = provenance(meta, sweep.scene)
+    attrs.update(
+        title="ga_rotors sweep",
+        sweep_toml=sweep.text,
+        sweep_digest=sweep.digest,
+        seed=-1 if sweep.seed is None else sweep.seed,
+        samples_per_grid_point=sweep.samples,
+        varied_keys=", ".join(sweep.keys),
+    )
+    return xr.Dataset(data, coords=coords, attrs=attrs)
+
+
+def _create(sweep: Sweep, store: Path) -> np.ndarray:
+    """Create the store (all of it, or nothing) and return the nominal orientations."""
+    nominal = _nominal(sweep)
+    t = sweep.scene.data["time"]["start"] + sweep.scene.step * (
+        np.array([sweep.scene.steps]) if sweep.times is None
+        else np.rint((sweep.times - sweep.scene.data["time"]["start"]) / sweep.scene.step)
+    )  # fmt: skip
+    template = _template(sweep, nominal, t)
+    staging = Path(tempfile.mkdtemp(dir=store.parent, prefix=f".{store.name}.staging-"))
+    try:
+        template.to_zarr(staging / "new", compute=True, zarr_format=2, consolidated=True)
+        os.rename(staging / "new", store)
+    finally:
+        shutil.rmtree(staging, ignore_errors=True)
+    return nominal
+
+
+def _client(client, scheduler: str | None, workers: int | None):
+    """(client, owned): an explicit client, "sync" (no Dask), a scheduler or a LocalCluster."""
+    if client is not None:
+        return client, False
+    distributed = require("distributed", "dask")
+    if scheduler:
+        try:
+            return distributed.Client(scheduler, timeout=30), True
+        except (OSError, TimeoutError) as exc:
+            raise InputError(f"--scheduler: cannot reach {scheduler}: {exc}") from None
+    import logging
+
+    cluster = distributed.LocalCluster(
+        n_workers=workers or os.cpu_count() or 1,
+        threads_per_worker=1,
+        processes=True,
+        silence_logs=logging.ERROR,  # Dask's own start/stop chatter is not the user's news
+        dashboard_address=None,
+    )
+    return distributed.Client(cluster), True
+
+
+def run_sweep(source, out, *, client=None, scheduler=None, workers=None, progress=None) -> Path:
+    """Run (or resume) the sweep ``source`` into the zarr store ``out``.
+
+    Parameters
+    ----------
+    source : path or str
+        The sweep file, or its text (see :mod:`ga_rotors.sweep.spec`).
+    out : path
+        The store, a ``.zarr`` directory; created if absent, resumed if it holds this sweep.
+    client : distributed.Client or "sync", optional
+        Where the chunks run: an existing client; ``"sync"`` runs them here, one by one.
+        Default: a client of ``scheduler`` if given, else a new LocalCluster of
+        ``workers`` processes (default: one per core), closed at the end.
+    progress : callable, optional
+        ``progress(done, total)`` in chunks.
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> text = '[sweep]\\nscene = "intermediate_axis_flip"\\nsamples = 3\\nseed = 7\\n'
+    >>> text += '[set]\\n"time.duration" = 0.01\\n[[draw]]\\nkey = "body.mass"\\n'
+    >>> text += 'uniform = [0.2, 0.4]\\n'
+    >>> out = run_sweep(text, pathlib.Path(tempfile.mkdtemp()) / "s.zarr", client="sync")
+    >>> ds = open_sweep(out)
+    >>> ds["q"].shape, ds["value_0"].attrs["scene_key"]
+    ((3, 1, 4), 'body.mass')
+    """
+    require("zarr", "results")
+    require("dask.array", "dask")
+    if client is None:
+        require("distributed", "dask")  # before anything is written
+    sweep = load_sweep(source)
+    store = Path(out)
+    if store.suffix != ".zarr":
+        raise InputError(f"--out: {store}: expected a .zarr store name")
+    if not store.parent.is_dir():
+        raise InputError(f"--out: directory {store.parent} does not exist")
+    if store.exists():
+        ds = _open(store)
+        if ds.attrs.get("sweep_digest") != sweep.digest:
+            raise InputError(
+                f"--out: {store} holds another sweep (digest {ds.attrs.get('sweep_digest')}, "
+                f"this one {sweep.digest}); choose another store or delete it"
+            )
+        done = ds["chunk_done"].values.astype(bool)
+        nominal = ds["q_nominal"].values
+    else:
+        nominal = _create(sweep, store)
+        done = np.zeros(sweep.chunks, dtype=bool)
+    text = sweep.text
+    file = str(Path(sweep.file).resolve()) if sweep.file != "<string>" else "<string>"
+    task = _Task(text, file, str(store.resolve()), nominal)
+    todo = [int(c) for c in np.flatnonzero(~done)]
+    total, finished = sweep.chunks, int(done.sum())
+    if progress is not None:
+        progress(finished, total)
+    if todo and client == "sync":
+        for c in todo:
+            run_chunk(task, c)
+            finished += 1
+            if progress is not None:
+                progress(finished, total)
+    elif todo:
+        distributed = require("distributed", "dask")
+        dask_client, owned = _client(client, scheduler, workers)
+        try:
+            futures = dask_client.map(run_chunk, [task] * len(todo), todo, pure=False)
+            for future in distributed.as_completed(futures):
+                future.result()
+                finished += 1
+                if progress is not None:
+                    progress(finished, total)
+        finally:
+            if owned:
+                cluster = dask_client.cluster
+                dask_client.close()
+                if cluster is not None:
+                    cluster.close()
+    return store
+
+
+def _open(store: Path):
+    xr = require("xarray", "results")
+    try:
+        return xr.open_zarr(store, consolidated=True)
+    except (OSError, ValueError, KeyError) as exc:
+        first = str(exc).strip().splitlines()[0] if str(exc).strip() else type(exc).__name__
+        raise InputError(f"{store}: not a sweep store ({first})") from None
+
+
+def open_sweep(store):
+    """The finished sweep at ``store`` as a Dataset (lazy, chunked along ``sample``).
+
+    Refuses a store whose chunks are not all written, saying how many are missing.
+
+    Examples
+    --------
+    >>> open_sweep("no_such.zarr")
+    Traceback (most recent call last):
+    ...
+    ga_rotors.errors.InputError: no_such.zarr: no such sweep store
+    """
+    store = Path(store)
+    if not store.exists():
+        raise InputError(f"{store}: no such sweep store")
+    ds = _open(store)
+    missing = int((ds["chunk_done"].values == 0).sum())
+    if missing:
+        raise InputError(
+            f"{store}: {missing} of {ds.sizes['chunk']} chunks are not written yet; "
+            "run the sweep again to finish it"
+        )
+    return ds
+
+
+def summary(ds) -> str:
+    """Spread of the samples from the base scene at each output time, as text lines.
+
+    Examples
+    --------
+    >>> import xarray as xr
+    >>> ds = xr.Dataset({"angle_from_nominal": (("sample", "time"), [[0.0], [0.01]])},
+    ...                 coords={"t": ("time", [1.0])})
+    >>> print(summary(ds))
+    t [s]  median [deg]  95% [deg]  max [deg]  (2 samples)
+    1  0.2865  0.5443  0.573
+    """
+    a = np.degrees(ds["angle_from_nominal"].values)
+    lines = [f"t [s]  median [deg]  95% [deg]  max [deg]  ({a.shape[0]} samples)"]
+    for j, t in enumerate(ds["t"].values):
+        col = a[:, j]
+        m, p95, top = np.nanmedian(col), np.nanpercentile(col, 95), np.nanmax(col)
+        lines.append(f"{t:.6g}  {m:.4g}  {p95:.4g}  {top:.4g}")
+    return "\n".join(lines)

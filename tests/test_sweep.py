@@ -1,0 +1,191 @@
+"""Sweeps: reproducible draws whatever the chunking, Dask runs, resumption, the store."""
+
+from __future__ import annotations
+
+import contextlib
+import io
+import itertools
+
+import numpy as np
+import pytest
+
+from ga_rotors import optional
+from ga_rotors.errors import InputError, SceneError
+
+xr = pytest.importorskip("xarray")
+pytest.importorskip("zarr")
+distributed = pytest.importorskip("distributed")
+
+from ga_rotors.cli import main  # noqa: E402
+from ga_rotors.ensemble import run_samples, scene_samples  # noqa: E402
+from ga_rotors.optional import MissingExtraError  # noqa: E402
+from ga_rotors.sweep import BLOCK, load_sweep, open_sweep, run_sweep  # noqa: E402
+
+SWEEP = """
+[sweep]
+scene = "intermediate_axis_flip"
+samples = 5
+seed = 42
+chunk = 4
+times = [0.01, 0.02]
+
+[set]
+"time.duration" = 0.02
+
+[grid]
+"initial.angular_velocity.body[1]" = [9.0, 10.0]
+
+[[draw]]
+key = "initial.angular_velocity.body[0]"
+normal = [0.0, 0.1]
+
+[[draw]]
+key = "body.mass"
+uniform = [0.25, 0.35]
+"""
+
+
+def test_the_same_seed_gives_the_same_numbers_whatever_the_chunking():
+    text = SWEEP.replace("samples = 5", f"samples = {BLOCK + 1000}")
+    sweep = load_sweep(text)
+    whole = sweep.values(0, sweep.size)
+    cuts = [0, 3, BLOCK - 1, BLOCK + 7, 2 * BLOCK + 5, sweep.size]
+    for key, values in whole.items():
+        pieces = [sweep.values(a, b)[key] for a, b in itertools.pairwise(cuts)]
+        assert np.array_equal(np.concatenate(pieces), values), key
+    draws = whole["body.mass"]
+    assert draws.min() >= 0.25 and draws.max() <= 0.35 and np.unique(draws).size == draws.size
+    normal = whole["initial.angular_velocity.body[0]"]
+    assert abs(normal.mean()) < 0.01 and abs(normal.std() - 0.1) < 0.01
+    other = load_sweep(text.replace("seed = 42", "seed = 43")).values(0, 10)
+    assert not np.array_equal(other["body.mass"], whole["body.mass"][:10])
+
+
+def test_a_grid_varies_its_last_key_fastest_and_repeats_each_point_for_the_draws():
+    sweep = load_sweep(SWEEP)
+    v = sweep.values(0, sweep.size)["initial.angular_velocity.body[1]"]
+    assert v.tolist() == [9.0] * 5 + [10.0] * 5
+
+
+@pytest.fixture(scope="module")
+def reference(tmp_path_factory):
+    """The sweep run in this process, chunk after chunk."""
+    out = tmp_path_factory.mktemp("ref") / "ref.zarr"
+    return open_sweep(run_sweep(SWEEP, out, client="sync")).load()
+
+
+def test_a_local_cluster_of_two_workers_writes_what_a_plain_run_writes(tmp_path, reference):
+    with (
+        distributed.LocalCluster(
+            n_workers=2, threads_per_worker=1, processes=False, dashboard_address=None
+        ) as cluster,
+        distributed.Client(cluster) as client,
+    ):
+        seen = []
+        out = run_sweep(
+            SWEEP, tmp_path / "s.zarr", client=client, progress=lambda d, n: seen.append((d, n))
+        )
+    ds = open_sweep(out).load()
+    xr.testing.assert_identical(ds, reference)
+    assert seen[0] == (0, 3) and seen[-1] == (3, 3)  # 10 samples in chunks of 4
+
+
+def test_the_store_holds_what_the_ensemble_computes_for_those_values(reference):
+    sweep = load_sweep(SWEEP)
+    values = sweep.values(0, sweep.size)
+    run = run_samples(scene_samples(sweep.scene, values), sweep.times)
+    assert np.array_equal(reference["q"].values, run.q.transpose(1, 0, 2))
+    assert np.array_equal(reference["w"].values, run.w.transpose(1, 0, 2))
+    for j, key in enumerate(values):
+        assert reference[f"value_{j}"].attrs["scene_key"] == key
+        assert np.array_equal(reference[f"value_{j}"].values, values[key])
+    assert reference["t"].values.tolist() == [0.01, 0.02]
+    assert reference.attrs["seed"] == 42 and reference.attrs["sweep_toml"] == SWEEP
+    assert np.all(reference["angle_from_nominal"].values[:, 1] > 0)
+
+
+def test_an_interrupted_sweep_resumes_from_its_finished_chunks(tmp_path, reference):
+    out = tmp_path / "s.zarr"
+
+    def interrupt(done, total):
+        if done == 2:
+            raise KeyboardInterrupt
+
+    with pytest.raises(KeyboardInterrupt):
+        run_sweep(SWEEP, out, client="sync", progress=interrupt)
+    with pytest.raises(InputError, match="1 of 3 chunks are not written yet"):
+        open_sweep(out)
+    calls = []
+    run_sweep(SWEEP, out, client="sync", progress=lambda d, n: calls.append(d))
+    assert calls == [2, 3]  # only the missing chunk ran
+    xr.testing.assert_identical(open_sweep(out).load(), reference)
+
+
+def test_a_store_of_another_sweep_is_refused(tmp_path):
+    out = run_sweep(SWEEP, tmp_path / "s.zarr", client="sync")
+    with pytest.raises(InputError, match="holds another sweep"):
+        run_sweep(SWEEP.replace("seed = 42", "seed = 1"), out, client="sync")
+
+
+@pytest.mark.parametrize(
+    ("change", "message"),
+    [
+        (("samples = 5", "sampels = 5"), r"sweep\.sampels: unknown key \(did you mean 'samples'"),
+        (
+            ('"initial.angular_velocity.body[1]" =', '"integrator.step" ='),
+            r"grid\.integrator\.step: .*cannot vary",
+        ),
+        (("seed = 42", ""), r"sweep\.seed: missing; random draws need a seed"),
+        (
+            ("normal = [0.0, 0.1]", "normal = [0.0, -0.1]"),
+            r"draw\[0\]\.normal: expected mean ≤ std",
+        ),
+        (("normal = [0.0, 0.1]", "poisson = [1.0]"), r"draw\[0\]\.poisson: unknown key"),
+        (('"intermediate_axis_flip"', '"no_such_scene"'), r"sweep\.scene: .*no bundled scene"),
+        (("chunk = 4", "chunk = 0"), r"sweep\.chunk: expected an integer ≥ 1"),
+    ],
+)
+def test_a_bad_sweep_file_is_one_line_naming_the_key(change, message):
+    with pytest.raises(SceneError, match=message):
+        load_sweep(SWEEP.replace(*change))
+
+
+def test_the_command_runs_resumes_and_prints_the_spread(tmp_path):
+    spec = tmp_path / "dispersion.toml"
+    spec.write_text(SWEEP)
+    out = io.StringIO()
+    with contextlib.redirect_stdout(out):
+        assert main(["sweep", str(spec), "--out", str(tmp_path / "d.zarr"), "--here"]) == 0
+    text = out.getvalue()
+    assert "median [deg]" in text and "(10 samples)" in text and "d.zarr" in text
+    with contextlib.redirect_stdout(io.StringIO()):  # again: everything already done
+        assert main(["sweep", str(spec), "--out", str(tmp_path / "d.zarr"), "--here"]) == 0
+
+
+def test_the_command_on_a_local_cluster(tmp_path):
+    spec = tmp_path / "dispersion.toml"
+    spec.write_text(SWEEP)
+    with contextlib.redirect_stdout(io.StringIO()) as out:
+        status = main(["sweep", str(spec), "--out", str(tmp_path / "d.zarr"), "--workers", "2"])
+    assert status == 0 and "(10 samples)" in out.getvalue()
+
+
+def test_the_command_names_the_extra_when_dask_is_missing(tmp_path, monkeypatch):
+    real = optional.importlib.import_module
+
+    def fake(name, *args):
+        if name == "distributed":
+            raise ModuleNotFoundError("No module named 'distributed'", name="distributed")
+        return real(name, *args)
+
+    monkeypatch.setattr(optional.importlib, "import_module", fake)
+    spec = tmp_path / "dispersion.toml"
+    spec.write_text(SWEEP)
+    err = io.StringIO()
+    with contextlib.redirect_stderr(err), contextlib.redirect_stdout(io.StringIO()):
+        status = main(["sweep", str(spec), "--out", str(tmp_path / "d.zarr")])
+    assert status == 2
+    assert err.getvalue().strip().endswith('pip install "ga-rotors[dask]"')
+    assert not (tmp_path / "d.zarr").exists()  # refused before anything was written
+    with pytest.raises(MissingExtraError, match="distributed"):
+        run_sweep(SWEEP, tmp_path / "d.zarr")
