@@ -35,7 +35,7 @@ import numpy as np
 
 from . import paths as _paths
 from .errors import InputError
-from .files import atomic_write, write_text
+from .files import atomic_write
 
 __all__ = ["Trajectory"]
 
@@ -61,7 +61,7 @@ class Trajectory:
     >>> tr.w.shape
     (2, 3)
     >>> print(tr.to_csv().splitlines()[0])
-    t,w_1,w_2,w_3
+    t [s],w_1 [rad/s],w_2 [rad/s],w_3 [rad/s]
     """
 
     def __init__(self, arrays: dict, components: dict | None = None, meta: dict | None = None):
@@ -259,31 +259,16 @@ class Trajectory:
         return out
 
     def to_csv(self, path=None) -> str | Path:
-        """Write every array as CSV columns (``rotor_blades_e12``, ``q_w``, ...), atomically.
+        """Write every array as CSV columns, the unit in each header, atomically.
 
-        ``%.17g`` (17 significant digits: every float64 round-trips exactly); cells past
-        the end of a shorter array are empty. Without ``path``, return the text.
+        Headers read ``q_w [1]``, ``w_1 [rad/s]``...; values are ``%.17g`` (every
+        float64 round-trips exactly), formatted a block of rows at a time; cells past the
+        end of a shorter array are empty. Without ``path``, return the text. This is
+        :func:`ga_rotors.results.write_csv` (it needs nothing beyond numpy).
         """
-        cols = self.columns()
-        n = len(self)
-        table = np.empty((n, len(cols)))
-        lengths = np.empty(len(cols), dtype=np.int64)
-        for j, (_, name, comp) in enumerate(cols):
-            a = self._arrays[name]
-            lengths[j] = a.shape[0]
-            table[: a.shape[0], j] = a if comp is None else a[:, comp]
-        full = int(lengths.min()) if len(cols) else n
-        fmt = ",".join(["%.17g"] * len(cols))
-        lines = [",".join(c[0] for c in cols)]
-        lines.extend(fmt % row for row in map(tuple, table[:full].tolist()))
-        for r in range(full, n):
-            lines.append(
-                ",".join(f"{table[r, j]:.17g}" if r < lengths[j] else "" for j in range(len(cols)))
-            )
-        text = "\n".join(lines) + "\n"
-        if path is None:
-            return text
-        return write_text(path, text)
+        from .results.table import write_csv
+
+        return write_csv(self, path)
 
     def to_npz(self, path) -> Path:
         """Write every array (and the component labels) to a ``.npz`` file, atomically.

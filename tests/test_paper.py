@@ -39,7 +39,8 @@ def test_data_and_summary_are_written(tmp_path, capsys):
     )  # fmt: skip
     text = (tmp_path / "new" / "paper_0.001deg.csv").read_text()
     header = text.splitlines()[0].split(",")
-    assert header[:4] == ["t", "w_1", "w_2", "w_3"] and "error_euler" in header
+    assert header[:4] == ["t [s]", "w_1 [rad/s]", "w_2 [rad/s]", "w_3 [rad/s]"]
+    assert "error_euler [rad]" in header
     assert "nan" not in text.lower()
     data = np.loadtxt(tmp_path / "new" / "disk_15deg.csv", delimiter=",", skiprows=1)
     assert data.shape == (10001, len(header))

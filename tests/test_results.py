@@ -141,3 +141,19 @@ def test_csv_of_a_scene_run_matches_its_arrays(heavy):
     for j, (_, name, comp) in enumerate(cols):
         a = tr[name] if comp is None else tr[name][:, comp]
         assert np.array_equal(table[:, j], a), name
+
+
+def test_a_scene_declaring_netcdf_data_writes_a_readable_dataset(tmp_path):
+    from ga_rotors.scene import write_outputs
+
+    scene = load_scene("heavy_top").replace(
+        {"time.duration": 0.01, "output.data": ["netcdf", "csv"], "output.plots": []}
+    )
+    tr = run_scene(scene)
+    written = write_outputs(scene, tr, tmp_path / "run")
+    assert [p.name for p in written] == ["heavy_top.nc", "heavy_top.csv", "heavy_top.scene.toml"]
+    back = results.read(tmp_path / "run" / "heavy_top.nc")
+    xr.testing.assert_identical(back, results.to_dataset(tr))
+    assert back.attrs["scene_toml"] == scene.to_toml()  # the run records its scene
+    assert back.attrs["exact_solution"] == "heavy_top"
+    assert (tmp_path / "run" / "heavy_top.csv").read_text().startswith("t [s],w_1 [rad/s]")

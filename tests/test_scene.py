@@ -313,7 +313,7 @@ EULER = {"euler": [0.0, 15.0, 0.0], "sequence": "ZYZ", "units": "deg"}
         ("integrator.paths", ["rotor", "rotor"], "integrator.paths[1]", "listed twice"),
         ("integrator.paths", [], "integrator.paths", "at least one"),
         ("output.quantities", ["energy", "enrgy"], "output.quantities[1]", "did you mean 'energy'"),
-        ("output.data", ["hdf5"], "output.data[0]", "expected one of csv, npz"),
+        ("output.data", ["hdf5"], "output.data[0]", "expected one of csv, npz, netcdf"),
         # orientations that are not rotations
         (
             "initial.orientation",

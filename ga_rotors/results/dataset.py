@@ -56,6 +56,9 @@ def provenance(meta: dict, scene=None) -> dict:
         attrs["paths_json"] = json.dumps(meta["paths"], sort_keys=True, default=str)
     if meta.get("scene") is not None:
         attrs["scene"] = str(meta["scene"])
+    if meta.get("scene_toml") is not None:  # a scene run records its resolved scene
+        attrs["scene_toml"] = str(meta["scene_toml"])
+        attrs["exact_solution"] = meta.get("exact") or "none"
     if scene is not None:
         attrs["scene"] = scene.name
         attrs["scene_toml"] = scene.to_toml()

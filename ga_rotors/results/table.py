@@ -13,6 +13,7 @@ from pathlib import Path
 
 import numpy as np
 
+from ..errors import InputError
 from ..files import atomic_write
 from .variables import describe
 
@@ -32,8 +33,19 @@ def csv_header(trajectory) -> list[str]:
     >>> tr = Trajectory({"t": np.zeros(2), "w": np.zeros((2, 3))}, {"w": ("1", "2", "3")})
     >>> csv_header(tr)
     ['t [s]', 'w_1 [rad/s]', 'w_2 [rad/s]', 'w_3 [rad/s]']
+
+    An array the package does not know (one a user added) has no unit to show:
+
+    >>> csv_header(Trajectory({"t": np.zeros(2), "x": np.zeros(2)}))
+    ['t [s]', 'x']
     """
-    return [f"{header} [{describe(name)[0]}]" for header, name, _ in trajectory.columns()]
+    out = []
+    for header, name, _ in trajectory.columns():
+        try:
+            out.append(f"{header} [{describe(name)[0]}]")
+        except InputError:
+            out.append(header)
+    return out
 
 
 def _blocks(trajectory, rows: int):

@@ -43,6 +43,12 @@ def _npz(trajectory, path):
     return trajectory.to_npz(path)
 
 
+def _netcdf(trajectory, path):
+    from ..results import write  # xarray and h5netcdf: the [results] extra
+
+    return write(trajectory, path)
+
+
 #: format name -> DataFormat, in the order the docs list them.
 FORMATS: dict[str, DataFormat] = {}
 
@@ -70,3 +76,9 @@ def register(fmt: DataFormat) -> DataFormat:
 
 register(DataFormat("csv", ".csv", "every array as CSV columns, full precision", _csv))
 register(DataFormat("npz", ".npz", "every array in one NumPy .npz archive", _npz))
+register(
+    DataFormat(
+        "netcdf", ".nc", "every array with its unit and the run's settings (ga-rotors[results])",
+        _netcdf,
+    )
+)  # fmt: skip

@@ -105,7 +105,7 @@ def run_scene(scene, *, progress=None, budget=None) -> Trajectory:
             if labels:
                 components[name] = labels
     meta = {"scene": scene.name, "principal_rotation": scene.principal_rotation,
-            "exact": scene.exact}  # fmt: skip
+            "exact": scene.exact, "scene_toml": scene.to_toml()}  # fmt: skip
     return tr.extended(arrays, components, meta)
 
 
