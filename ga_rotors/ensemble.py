@@ -329,6 +329,9 @@ class SceneSamples:
 #: sample (checked against a full Scene on the first and last samples before use).
 FAST_KEYS = ("body.moments", "initial.angular_velocity.body")
 
+#: (id(scene), keys) -> scene, for the scene and keys whose fast mapping was checked.
+_CHECKED: dict = {}
+
 _ELEMENT = re.compile(r"^(?P<key>.*)\[(?P<index>[0-2])\]$")
 
 
@@ -402,7 +405,8 @@ def scene_samples(scene, changes=None, n: int | None = None) -> SceneSamples:
     count = counts.pop()
     base_params = _params(scene)
     fast = _fast(scene, changes, count) if changes else None
-    if fast is not None:
+    checked = (id(scene), tuple(changes))
+    if fast is not None and _CHECKED.get(checked) is not scene:
         moments, omega = fast
         for i in {0, count - 1}:  # the vectorised mapping must equal the scene's own
             one = _sample_scene(scene, changes, i)
@@ -410,6 +414,8 @@ def scene_samples(scene, changes=None, n: int | None = None) -> SceneSamples:
                     or not np.array_equal(omega[i], one.angular_velocity)):  # fmt: skip
                 fast = None
                 break
+        else:
+            _CHECKED[checked] = scene  # once per scene and keys: chunks of a sweep reuse it
     if fast is not None or not changes:
         moments, omega = fast or (np.tile(np.array(scene.body.moments), (count, 1)),
                                   np.tile(scene.angular_velocity, (count, 1)))  # fmt: skip

@@ -78,23 +78,31 @@ def run_chunk(task: _Task, c: int) -> int:
     """
     from ..quaternion import distance
 
-    xr = require("xarray", "results")
     sweep = _sweep(task)
     lo, hi = c * sweep.chunk, min(sweep.size, (c + 1) * sweep.chunk)
     values, run = _run(sweep, lo, hi, parallel=False)
     q = run.q.transpose(1, 0, 2)  # (sample, time, 4)
-    data = {
-        "q": (("sample", "time", "quaternion_component"), q),
-        "w": (("sample", "time", "body_axis"), run.w.transpose(1, 0, 2)),
-        "angle_from_nominal": (("sample", "time"), distance(q, task.nominal[None])),
-    }
-    for j, (key, v) in enumerate(values.items()):
-        data[f"value_{j}"] = (("sample", *(f"value_{j}_component",) * (v.ndim - 1)), v)
-        del key
-    xr.Dataset(data).to_zarr(task.store, region={"sample": slice(lo, hi)}, zarr_format=2)
-    flag = xr.Dataset({"chunk_done": (("chunk",), np.ones(1, dtype=np.int8))})
-    flag.to_zarr(task.store, region={"chunk": slice(c, c + 1)}, zarr_format=2)
+    group = _group(task.store)
+    # Plain zarr slice assignments into the arrays the template laid out: each covers
+    # whole chunks of its own (lo, hi are chunk bounds), so tasks never share a chunk.
+    group["q"][lo:hi] = q
+    group["w"][lo:hi] = run.w.transpose(1, 0, 2)
+    group["angle_from_nominal"][lo:hi] = distance(q, task.nominal[None])
+    for j, v in enumerate(values.values()):
+        group[f"value_{j}"][lo:hi] = v
+    group["chunk_done"][c] = 1  # last: the chunk counts as done only once all is written
     return c
+
+
+_GROUPS: dict = {}
+
+
+def _group(store: str):
+    """The store's zarr group, opened once per process."""
+    if store not in _GROUPS:
+        zarr = require("zarr", "results")
+        _GROUPS[store] = zarr.open_group(store, mode="r+", zarr_format=2)
+    return _GROUPS[store]
 
 
 def _template(sweep: Sweep, nominal: np.ndarray, t: np.ndarray):
@@ -160,7 +168,16 @@ def _create(sweep: Sweep, store: Path) -> np.ndarray:
     template = _template(sweep, nominal, t)
     staging = Path(tempfile.mkdtemp(dir=store.parent, prefix=f".{store.name}.staging-"))
     try:
-        template.to_zarr(staging / "new", compute=True, zarr_format=2, consolidated=True)
+        # Metadata only: unwritten chunks read as the fill value (NaN, and 0 for the flags).
+        # No compression: orientations and rates are full-precision noise to a compressor,
+        # which would only spend the workers' time.
+        encoding = {
+            name: {"compressors": None, **({"_FillValue": 0} if name == "chunk_done" else {})}
+            for name in template.data_vars
+        }
+        template.to_zarr(
+            staging / "new", compute=False, zarr_format=2, consolidated=True, encoding=encoding
+        )
         os.rename(staging / "new", store)
     finally:
         shutil.rmtree(staging, ignore_errors=True)
@@ -233,7 +250,7 @@ def run_sweep(source, out, *, client=None, scheduler=None, workers=None, progres
                 f"--out: {store} holds another sweep (digest {ds.attrs.get('sweep_digest')}, "
                 f"this one {sweep.digest}); choose another store or delete it"
             )
-        done = ds["chunk_done"].values.astype(bool)
+        done = ds["chunk_done"].values == 1  # unwritten flags read as the fill value
         nominal = ds["q_nominal"].values
     else:
         nominal = _create(sweep, store)
@@ -295,7 +312,7 @@ def open_sweep(store):
     if not store.exists():
         raise InputError(f"{store}: no such sweep store")
     ds = _open(store)
-    missing = int((ds["chunk_done"].values == 0).sum())
+    missing = int((ds["chunk_done"].values != 1).sum())
     if missing:
         raise InputError(
             f"{store}: {missing} of {ds.sizes['chunk']} chunks are not written yet; "
