@@ -19,7 +19,7 @@ distributed = pytest.importorskip("distributed")
 from ga_rotors.cli import main  # noqa: E402
 from ga_rotors.ensemble import run_samples, scene_samples  # noqa: E402
 from ga_rotors.optional import MissingExtraError  # noqa: E402
-from ga_rotors.sweep import BLOCK, load_sweep, open_sweep, run_sweep  # noqa: E402
+from ga_rotors.sweep import BLOCK, histogram, load_sweep, open_sweep, run_sweep  # noqa: E402
 
 SWEEP = """
 [sweep]
@@ -102,6 +102,13 @@ def test_the_store_holds_what_the_ensemble_computes_for_those_values(reference):
     assert reference["t"].values.tolist() == [0.01, 0.02]
     assert reference.attrs["seed"] == 42 and reference.attrs["sweep_toml"] == SWEEP
     assert np.all(reference["angle_from_nominal"].values[:, 1] > 0)
+
+
+def test_the_histogram_counts_every_sample_at_every_time(reference):
+    h = histogram(reference, bins=7)
+    assert h["count"].shape == (2, 7) and h["count"].values.sum(axis=1).tolist() == [10, 10]
+    a = reference["angle_from_nominal"].values
+    assert np.array_equal(h["count"].values[1], np.histogram(a[:, 1], bins=h["edges"].values)[0])
 
 
 def test_an_interrupted_sweep_resumes_from_its_finished_chunks(tmp_path, reference):

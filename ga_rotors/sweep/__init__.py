@@ -2,7 +2,8 @@
 
 * :func:`load_sweep` — a sweep file: the scene, grid keys, random draws and seed;
 * :func:`run_sweep` — run (or resume) it chunk by chunk on Dask into a ``.zarr`` store;
-* :func:`open_sweep` — the finished store as an xarray Dataset; :func:`summary` its spread.
+* :func:`open_sweep` — the finished store as an xarray Dataset; :func:`summary` and
+  :func:`histogram` its spread from the base scene, reduced chunk by chunk.
 
 Needs ``pip install "ga-rotors[dask]"`` (Dask, xarray, zarr). ``ga-rotors sweep`` is the
 command; docs/ensembles.md a worked study.
@@ -10,7 +11,16 @@ command; docs/ensembles.md a worked study.
 
 from __future__ import annotations
 
-from .run import open_sweep, run_chunk, run_sweep, summary
+from .run import histogram, open_sweep, run_chunk, run_sweep, summary
 from .spec import BLOCK, Sweep, load_sweep
 
-__all__ = ["BLOCK", "Sweep", "load_sweep", "open_sweep", "run_chunk", "run_sweep", "summary"]
+__all__ = [
+    "BLOCK",
+    "Sweep",
+    "histogram",
+    "load_sweep",
+    "open_sweep",
+    "run_chunk",
+    "run_sweep",
+    "summary",
+]

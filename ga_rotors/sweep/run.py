@@ -26,7 +26,7 @@ from ..errors import InputError
 from ..optional import require
 from .spec import Sweep, load_sweep
 
-__all__ = ["open_sweep", "run_chunk", "run_sweep", "summary"]
+__all__ = ["histogram", "open_sweep", "run_chunk", "run_sweep", "summary"]
 
 
 @dataclass(frozen=True)
@@ -340,3 +340,40 @@ def summary(ds) -> str:
         m, p95, top = np.nanmedian(col), np.nanpercentile(col, 95), np.nanmax(col)
         lines.append(f"{t:.6g}  {m:.4g}  {p95:.4g}  {top:.4g}")
     return "\n".join(lines)
+
+
+def histogram(ds, name: str = "angle_from_nominal", bins: int = 50):
+    """Counts of a per-sample variable in ``bins`` equal bins, at each output time.
+
+    Read chunk by chunk along ``sample`` (memory bounded by one chunk, whatever the
+    number of samples). Returns a Dataset: ``count`` (time, bin) and the bin ``edges``
+    (bin_edge), in the variable's units.
+
+    Examples
+    --------
+    >>> import xarray as xr
+    >>> ds = xr.Dataset({"angle_from_nominal": (("sample", "time"), [[0.0], [0.5], [1.0]])},
+    ...                 coords={"t": ("time", [1.0])})
+    >>> h = histogram(ds, bins=2)
+    >>> h["count"].values.tolist(), h["edges"].values.tolist()
+    ([[1, 2]], [0.0, 0.5, 1.0])
+    """
+    xr = require("xarray", "results")
+    a = ds[name]
+    step = (a.chunks[0][0] if a.chunks else a.shape[0]) or 1
+    n = a.shape[0]
+    top = 0.0
+    for lo in range(0, n, step):
+        top = max(top, float(np.nanmax(a[lo : lo + step].values, initial=0.0)))
+    edges = np.linspace(0.0, top if top > 0 else 1.0, bins + 1)
+    counts = np.zeros((a.shape[1], bins), dtype=np.int64)
+    for lo in range(0, n, step):
+        block = a[lo : lo + step].values
+        for j in range(a.shape[1]):
+            counts[j] += np.histogram(block[:, j], bins=edges)[0]
+    units = a.attrs.get("units", "")
+    return xr.Dataset(
+        {"count": (("time", "bin"), counts), "edges": (("bin_edge",), edges, {"units": units})},
+        coords={"t": ds["t"]},
+        attrs={"variable": name},
+    )
