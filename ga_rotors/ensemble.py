@@ -261,7 +261,10 @@ def _compiled_scene_loop(integrator, problem, path: str, parallel: bool = True):
 
     spec = specialise(integrator, problem, path)
     gen = spec.module.__name__
-    name = f"{gen}_batch{'_par' if parallel else ''}"
+    # gen_batch-<the single-run module's stem without gen_>: the cache's own naming
+    # (version and digest last), so `ga-rotors cache` lists, prunes and clears it too.
+    stem = gen.removeprefix("_ga_rotors_gen_")
+    name = f"_ga_rotors_gen_batch{'par' if parallel else ''}-{stem}"
     found = _SCENE_LOOPS.get(name)
     if found is not None:
         return found
