@@ -15,7 +15,9 @@ Usage (from the repository root)::
    against the raw batched kernel on the same samples (``run_samples`` on every core, the
    draws made beforehand). Cluster start-up and imports (xarray, zarr, Dask: a fixed cost
    per process) are reported apart; the store's creation and every chunk's integration,
-   reduction and write are in the sweep's time.
+   reduction and write are in the sweep's time. The same sweep run in this process
+   (``client="sync"``) against the serial kernel separates the sweep's own work from
+   Dask's scheduling.
 """
 
 from __future__ import annotations
@@ -135,7 +137,14 @@ normal = [0.5236, 0.005]
     t0 = time.perf_counter()
     run_samples(s)
     t_kernel = time.perf_counter() - t0
+    t0 = time.perf_counter()
+    run_samples(s, parallel=False)
+    t_serial = time.perf_counter() - t0
     del s
+    with tempfile.TemporaryDirectory() as tmp:
+        t0 = time.perf_counter()
+        run_sweep(text, Path(tmp) / "s.zarr", client="sync")
+        t_here = time.perf_counter() - t0
     t0 = time.perf_counter()
     cluster = distributed.LocalCluster(
         n_workers=os.cpu_count(), threads_per_worker=1, processes=True, dashboard_address=None
@@ -157,6 +166,8 @@ normal = [0.5236, 0.005]
     print(f"  sweep end to end (run_sweep, Dask):     {t_sweep:7.2f} s "
           f"(+ {t_start:.2f} s starting the local cluster)")  # fmt: skip
     print(f"  overhead over the raw kernel:           {100 * (t_sweep / t_kernel - 1):6.1f} %")
+    print(f"  one thread: raw kernel {t_serial:.2f} s, sweep in this process (client='sync') "
+          f"{t_here:.2f} s: overhead {100 * (t_here / t_serial - 1):.1f} %")  # fmt: skip
 
 
 def main() -> None:
