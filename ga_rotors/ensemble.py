@@ -515,13 +515,13 @@ def run_samples(
     >>> run.q.shape, run.t.tolist(), bool(np.array_equal(run.q[:, 0], run.q[:, 1]))
     ((2, 2, 4), [0.5, 1.0], True)
     """
-    from .integrators import base
+    from .integrators import TemplateIntegrator, base
     from .paths import get as get_path
 
     scene = samples.scene
     spec_method = scene.data["integrator"]
     method = base.get(spec_method["method"])
-    if not isinstance(method, base.TemplateIntegrator):
+    if not isinstance(method, TemplateIntegrator):
         raise InputError(
             f"{scene.file}: integrator.method: ensembles run fixed-step methods; "
             f"{spec_method['method']!r} is adaptive"
