@@ -144,6 +144,27 @@ def test_quick_study_runs_end_to_end_on_every_case_with_every_peer(tmp_path, cap
     assert out.strip() in text
 
 
+def test_a_failed_study_leaves_the_previous_figures(tmp_path, monkeypatch):
+    # Figures are written together once every case has run: a failure in the second case
+    # leaves the first case's old figure as it was and writes no new one.
+    figures = tmp_path / "figures"
+    figures.mkdir()
+    (figures / "accuracy_symmetric.png").write_bytes(b"old")
+    real = S.study
+
+    def failing(case, *args, **kwargs):
+        if case.name == "asymmetric_far":
+            raise RuntimeError("interrupted")
+        return real(case, *args, **kwargs)
+
+    monkeypatch.setattr(S, "study", failing)
+    with pytest.raises(RuntimeError, match="interrupted"):
+        R.run_study(["symmetric", "asymmetric_far"], ["split2"], quick=True, peers=False,
+                    figures=figures)  # fmt: skip
+    assert sorted(p.name for p in figures.iterdir()) == ["accuracy_symmetric.png"]
+    assert (figures / "accuracy_symmetric.png").read_bytes() == b"old"
+
+
 def test_refused_step_is_a_point_not_a_crash():
     p = A.measure(A.cases()["fast_spinner"], "lgvi", 256, repeats=1)
     assert p.note == "not run: h·|ω| = 3.91 (limit 1)" and p.error == np.inf

@@ -3,8 +3,9 @@
 :func:`run_study` sweeps the chosen cases, re-times the goal pairs interleaved, measures
 the per-call overhead of the public API, and returns the markdown; :func:`write_block`
 puts it between the generated-block markers of a markdown file (``docs/accuracy.md``),
-leaving the rest of the file as it was. The command-line module only parses options and
-calls these.
+leaving the rest of the file as it was. Nothing is written before the whole study has run:
+then the figures, all together (:func:`ga_rotors.files.write_together`), then the doc's
+block, atomically. The command-line module only parses options and calls these.
 """
 
 from __future__ import annotations
@@ -15,7 +16,7 @@ from collections.abc import Callable
 from pathlib import Path
 
 from ..errors import InputError
-from ..files import write_text
+from ..files import write_text, write_together
 
 __all__ = ["BEGIN", "END", "QUICK", "run_study", "write_block"]
 
@@ -76,8 +77,12 @@ def run_study(
         studies.append(st)
         if peers:
             goals += goal(st, rounds=3 if quick else 21, budget=0.5 if quick else 3.0)
-        if figures:
-            plot(st, Path(figures) / f"accuracy_{name}.png")
+    if figures:
+        # Written only once the whole study has run, and together: an interrupted or failed
+        # study leaves the previous figures as they were.
+        plan = [(f"accuracy_{st.case.name}.png", lambda path, st=st: plot(st, path))
+                for st in studies]  # fmt: skip
+        write_together(figures, plan, "--figures")
     from .overhead import overhead_table
 
     parts = [
