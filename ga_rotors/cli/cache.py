@@ -8,12 +8,15 @@ $XDG_CACHE_HOME/ga_rotors/generated or ~/.cache/ga_rotors/generated. Modules mad
 versions of ga_rotors are deleted 14 days after they were made (a version still in use
 recompiles then, once); --clear says what it removes and deletes this version's modules
 (the next runs compile them again), --clear --all every version's. The folder is private
-(mode 0700); one writable by others or owned by someone else is refused.
+(mode 0700); one writable by others or owned by someone else is refused. --warm compiles,
+in parallel processes, every loop the paper and the bundled scenes use, so that their first
+run loads them (ga-rotors paper and run do this for what they need themselves).
 """
 
 from __future__ import annotations
 
 import argparse
+import sys
 
 __all__ = ["add_arguments", "run"]
 
@@ -26,6 +29,11 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     )
     parser.add_argument(
         "--all", action="store_true", help="with --clear: every version's, not only this one's"
+    )
+    parser.add_argument(
+        "--warm",
+        action="store_true",
+        help="compile now, in parallel, every loop the paper and the bundled scenes use",
     )
 
 
@@ -47,6 +55,8 @@ def run(args: argparse.Namespace) -> int:
 
     if args.all and not args.clear:
         raise InputError("--all: only with --clear (ga-rotors cache --clear --all)")
+    if args.warm and args.clear:
+        raise InputError("--warm: not with --clear (one, then the other)")
     directory = _codegen.cache_location()
     if directory is None:
         print("no writable cache directory: loops are compiled in memory at every start")
@@ -62,10 +72,22 @@ def run(args: argparse.Namespace) -> int:
             f"{directory}: removing {_modules(len(going))} of {which}, "
             f"{_size(sum(c.bytes for c in going))}"
         )
+        from ..warmup import clear_markers
+
         removed = _codegen.clear_cache(every_version=args.all)
+        removed += clear_markers(every_version=args.all)
         kept = "" if args.all or not others else f"; kept {_modules(len(others))} of other versions"
         print(f"removed {removed} files{kept}")
         return 0
+    if args.warm:
+        from ..warmup import all_tasks, warm
+
+        tasks = all_tasks()
+        failed = warm(tasks, stream=sys.stdout)
+        for task, error in failed:
+            print(f"ga-rotors: {task.label}: {error}", file=sys.stderr)
+        print(f"{len(tasks) - len(failed)} of {len(tasks)} loop sets compiled and cached")
+        return 1 if failed else 0
     print(f"cache: {directory}")
     print(
         f"this version ({mine}): {_modules(len(current))}, {_size(sum(c.bytes for c in current))}"

@@ -166,9 +166,11 @@ def run(args: argparse.Namespace) -> int:
 
     from ..errors import StepLimitWarning
     from ..scene import load_scene, report, run_scene, write_outputs
+    from ..warmup import scene_tasks, warm
 
     start = time.perf_counter()
     scene = load_scene(args.scene)
+    warm(scene_tasks(scene))  # a scene's first run compiles its paths' loops in parallel
     bar = ProgressBar(sys.stderr, args.progress)
     with warnings.catch_warnings(record=True) as caught, _user_code(args, scene):
         warnings.simplefilter("always", StepLimitWarning)

@@ -1,0 +1,270 @@
+"""Compile ahead: the loops a command needs, in parallel processes, once per installed version.
+
+The first run of a loop compiles it (numba, seconds of CPU per loop) and stores the machine
+code (see docs/cache.md); every later process loads it. :func:`warm` moves that first
+compilation out of the command a user is waiting for, or at least spreads it over every
+core: each :class:`Task` is a tiny run of the real work (one scene on one orientation
+path, 2 output steps; the paper's computations on 10 steps), run in a forked process that
+leaves the compiled code in the cache. A task that succeeded is remembered by a marker
+file under the cache directory, named by the package version and the task, so a warm
+cache costs a few file checks.
+
+``ga-rotors cache --warm`` warms everything the bundled commands use (the paper and
+every bundled scene); ``ga-rotors paper`` and ``ga-rotors run`` warm what they need
+themselves, with a progress line, when their tasks have not been done yet.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import os
+import sys
+import time
+import warnings
+from dataclasses import dataclass
+from pathlib import Path
+
+__all__ = ["Task", "all_tasks", "paper_tasks", "scene_tasks", "warm"]
+
+#: Output steps a scene task integrates: enough to run every code path of the loop.
+TASK_SAMPLES = 2
+
+
+@dataclass(frozen=True)
+class Task:
+    """A tiny run that compiles some loops: a scene, or the paper's computations (None).
+
+    Examples
+    --------
+    >>> t = scene_tasks("heavy_top")[0]
+    >>> t.label, t.scene.paths, t.scene.steps
+    ('heavy_top: rotor path', ['rotor'], 10)
+    """
+
+    label: str
+    scene: object = None
+
+    def key(self) -> str:
+        """What the task compiles, as 16 hex digits: the same work gives the same key.
+
+        Examples
+        --------
+        >>> a, b = scene_tasks("heavy_top")
+        >>> len(a.key()), a.key() == scene_tasks("heavy_top")[0].key(), a.key() == b.key()
+        (16, True, False)
+        """
+        text = "paper" if self.scene is None else self.scene.to_toml()
+        return hashlib.sha256(text.encode()).hexdigest()[:16]
+
+    def run(self) -> None:
+        """Do the tiny run (its results are discarded; the compiled code stays cached).
+
+        Examples
+        --------
+        >>> scene_tasks("spinning_disk")[0].run()
+        """
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")  # a 2-sample run may trip checks the real one won't
+            if self.scene is None:
+                from .paper.runs import run_all, summary
+
+                summary(run_all(steps=10))
+            else:
+                from .scene import run_scene
+
+                run_scene(self.scene)
+
+
+def scene_tasks(scene) -> list[Task]:
+    """One task per orientation path of ``scene`` (a Scene, a file or a bundled name).
+
+    Examples
+    --------
+    >>> [t.label for t in scene_tasks("paper_15deg")]
+    ['paper_15deg: rotor path', 'paper_15deg: quaternion path', 'paper_15deg: euler path']
+    """
+    from .scene import load_scene
+
+    scene = load_scene(scene)
+    span = TASK_SAMPLES * scene.sample_every * scene.step
+    changes = {"time.duration": span, "output.data": [], "output.plots": []}
+    return [
+        Task(f"{scene.name}: {path} path", scene.replace({**changes, "integrator.paths": [path]}))
+        for path in scene.paths
+    ]
+
+
+def paper_tasks() -> list[Task]:
+    """What ``ga-rotors paper`` compiles: the paper scene's three paths, then the rest of
+    its computations (references, conversions, cross-checks).
+
+    Examples
+    --------
+    >>> [t.label for t in paper_tasks()][-1]
+    'paper: its other computations'
+    """
+    return [*scene_tasks("paper_15deg"), Task("paper: its other computations")]
+
+
+def all_tasks() -> list[Task]:
+    """The paper's tasks and every bundled scene's.
+
+    Tasks whose loop (integrator, path, kinds of effect) an earlier task compiles come
+    last, so that parallel workers do not compile the same loop at once; they still run,
+    for what else their scene computes (its exact reference, its outputs).
+
+    Examples
+    --------
+    >>> tasks = all_tasks()
+    >>> len(tasks) == len({t.key() for t in tasks})
+    True
+    """
+    from .scene import bundled
+
+    first, later, seen, keys = [], [], set(), set()
+    for task in [*paper_tasks(), *(t for name in bundled() for t in scene_tasks(name))]:
+        if task.key() in keys:  # the paper's scene is also bundled
+            continue
+        keys.add(task.key())
+        if task.scene is not None:
+            d = task.scene.data
+            what = (d["integrator"]["method"], tuple(task.scene.paths),
+                    tuple(sorted(e["type"] for e in d["effects"])))  # fmt: skip
+            if what in seen:
+                later.append(task)
+                continue
+            seen.add(what)
+        first.append(task)
+    return first + later
+
+
+def _marker_dir() -> Path | None:
+    from .integrators import _codegen
+
+    directory = _codegen.cache_location()
+    return None if directory is None else directory / "warm"
+
+
+def _marker(directory: Path, task: Task) -> Path:
+    from .integrators import _codegen
+
+    return directory / f"{_codegen.version_tag()}-{task.key()}"
+
+
+def clear_markers(every_version: bool = False) -> int:
+    """Forget which tasks this version (or every version) did (``ga-rotors cache --clear``);
+    return how many markers went.
+
+    Examples
+    --------
+    >>> clear_markers() >= 0
+    True
+    """
+    from .integrators import _codegen
+
+    directory = _marker_dir()
+    removed = 0
+    mine = _codegen.version_tag() + "-"
+    if directory is not None and directory.is_dir():
+        for f in directory.iterdir():
+            if not (every_version or f.name.startswith(mine)):
+                continue
+            try:
+                f.unlink()
+                removed += 1
+            except OSError:
+                pass
+    return removed
+
+
+_TODO: list[Task] = []  # the tasks a forked worker runs, by index (nothing is pickled)
+
+
+def _run_one(index: int) -> tuple[float, str | None]:
+    start = time.perf_counter()
+    try:
+        _TODO[index].run()
+    except BaseException as exc:  # reported by the parent, which goes on with the others
+        return time.perf_counter() - start, f"{type(exc).__name__}: {exc}"
+    return time.perf_counter() - start, None
+
+
+def warm(tasks, processes: int | None = None, stream=None) -> list[tuple[Task, str]]:
+    """Run the tasks not done yet for this version, in parallel forked processes.
+
+    Parameters
+    ----------
+    tasks : list of Task
+    processes : int, optional
+        At most this many at once (default: the number of CPUs).
+    stream : file, optional
+        Where the progress lines go (default: sys.stderr); nothing is written when every
+        task was done already.
+
+    Returns
+    -------
+    list of (Task, str)
+        The tasks that failed, with the error; the command that needs them then meets
+        the same error itself, with its own message.
+
+    Examples
+    --------
+    >>> import io
+    >>> warm(scene_tasks("spinning_disk"), stream=io.StringIO())
+    []
+    >>> log = io.StringIO()
+    >>> warm(scene_tasks("spinning_disk"), stream=log), log.getvalue()     # done already
+    ([], '')
+    """
+    stream = sys.stderr if stream is None else stream
+    directory = _marker_dir()
+    if directory is None:  # no cache: every process compiles in memory anyway
+        return []
+    todo = [t for t in tasks if not _marker(directory, t).exists()]
+    if not todo:
+        return []
+    n = max(1, min(processes or os.cpu_count() or 1, len(todo)))
+    start = time.perf_counter()
+    print(
+        f"ga-rotors: compiling {len(todo)} loop set(s) in {n} process(es), once per installed "
+        "version (`ga-rotors cache --warm` does this ahead)",
+        file=stream,
+        flush=True,
+    )
+    failed = []
+
+    def done(k: int, task: Task, took: float, error: str | None) -> None:
+        if error is None:
+            try:
+                directory.mkdir(mode=0o700, parents=True, exist_ok=True)
+                _marker(directory, task).touch()
+            except OSError:
+                pass
+        else:
+            failed.append((task, error))
+        status = "" if error is None else f" failed: {error.splitlines()[0] if error else ''}"
+        print(f"  [{k}/{len(todo)}] {task.label} ({took:.1f} s){status}", file=stream, flush=True)
+
+    if n == 1 or not hasattr(os, "fork"):
+        for k, task in enumerate(todo, 1):
+            _TODO[:] = [task]
+            done(k, task, *_run_one(0))
+    else:
+        import multiprocessing
+        from concurrent.futures import ProcessPoolExecutor, as_completed
+
+        _TODO[:] = todo
+        stream.flush()
+        sys.stdout.flush()
+        context = multiprocessing.get_context("fork")
+        with ProcessPoolExecutor(n, mp_context=context) as pool:
+            futures = {pool.submit(_run_one, i): todo[i] for i in range(len(todo))}
+            for k, future in enumerate(as_completed(futures), 1):
+                try:
+                    took, error = future.result()
+                except Exception as exc:  # the worker died (killed, out of memory)
+                    took, error = 0.0, f"{type(exc).__name__}: {exc}"
+                done(k, futures[future], took, error)
+    _TODO.clear()
+    print(f"ga-rotors: compiled in {time.perf_counter() - start:.1f} s", file=stream, flush=True)
+    return failed

@@ -1,0 +1,109 @@
+"""Compiling ahead: tasks, parallel workers, markers, and the commands that warm themselves."""
+
+from __future__ import annotations
+
+import io
+
+import pytest
+
+from ga_rotors import warmup
+from ga_rotors.cli import main
+from ga_rotors.integrators import _codegen
+from ga_rotors.scene import bundled, load_scene
+
+
+@pytest.fixture
+def cache(tmp_path, monkeypatch):
+    """An empty cache directory: generated modules and markers start from nothing."""
+    directory = tmp_path / "generated"
+    monkeypatch.setattr(_codegen, "_candidates", lambda: [directory])
+    monkeypatch.setattr(_codegen, "_MEMO", {})
+    monkeypatch.setattr(_codegen, "_PRUNED", False)
+    _codegen.cache_location.cache_clear()
+    yield directory
+    _codegen.cache_location.cache_clear()
+
+
+def test_scene_tasks_are_the_scene_on_each_path_for_two_samples():
+    scene = load_scene("heavy_top")
+    tasks = warmup.scene_tasks(scene)
+    assert [t.scene.paths for t in tasks] == [[p] for p in scene.paths]
+    for t in tasks:
+        assert t.scene.steps == warmup.TASK_SAMPLES * scene.sample_every
+        assert t.scene.method is scene.method and t.scene.data["effects"] == scene.data["effects"]
+        assert t.scene.data["output"]["data"] == [] and t.scene.data["output"]["plots"] == []
+
+
+def test_all_tasks_cover_the_paper_and_every_bundled_scene_and_path():
+    labels = [t.label for t in warmup.all_tasks()]
+    want = {f"{n}: {p} path" for n in bundled() for p in load_scene(n).paths}
+    assert set(labels) == want | {"paper: its other computations"}
+    assert len(labels) == len(set(labels))
+
+
+def test_warm_runs_each_task_once_in_parallel_workers_and_remembers_it(cache):
+    tasks = warmup.scene_tasks("heavy_top")
+    log = io.StringIO()
+    assert warmup.warm(tasks, processes=2, stream=log) == []
+    lines = log.getvalue().splitlines()
+    assert lines[0].startswith("ga-rotors: compiling 2 loop set(s) in 2 process(es)")
+    assert sorted(line.split("] ")[1].split(" (")[0] for line in lines[1:3]) == sorted(
+        t.label for t in tasks
+    )
+    assert list(cache.glob("gen_rk4_torqued_*.py"))  # the workers generated the loops
+    assert len(list((cache / "warm").iterdir())) == 2
+    again = io.StringIO()
+    assert warmup.warm(tasks, stream=again) == [] and again.getvalue() == ""
+    assert main(["cache", "--clear"]) == 0
+    assert not list((cache / "warm").iterdir())
+
+
+class _Unreadable:
+    """Stands for a scene that fails in the worker."""
+
+    def to_toml(self):
+        return "not a scene"
+
+
+def test_a_failing_task_is_reported_not_raised_and_not_remembered(cache):
+    bad = warmup.Task("broken", _Unreadable())
+    log = io.StringIO()
+    failed = warmup.warm([bad, *warmup.scene_tasks("spinning_disk")], processes=2, stream=log)
+    assert [(t.label, e.split(":")[0]) for t, e in failed] == [("broken", "TypeError")]
+    assert "broken (" in log.getvalue() and "failed: TypeError" in log.getvalue()
+    assert len(list((cache / "warm").iterdir())) == len(warmup.scene_tasks("spinning_disk"))
+
+
+def test_one_process_runs_the_tasks_here(cache):
+    log = io.StringIO()
+    assert warmup.warm(warmup.scene_tasks("spinning_disk"), processes=1, stream=log) == []
+    assert "in 1 process(es)" in log.getvalue()
+
+
+def test_cache_warm_command(cache, monkeypatch, capsys):
+    # The whole list compiles every bundled loop (a minute of CPU): the command runs end
+    # to end here on one scene's tasks; the list itself is checked above.
+    monkeypatch.setattr(warmup, "all_tasks", lambda: warmup.scene_tasks("spinning_disk"))
+    assert main(["cache", "--warm"]) == 0
+    out = capsys.readouterr().out
+    n = len(warmup.scene_tasks("spinning_disk"))
+    assert f"compiling {n} loop set(s)" in out and f"{n} of {n} loop sets compiled" in out
+    assert main(["cache", "--warm"]) == 0
+    assert capsys.readouterr().out == f"{n} of {n} loop sets compiled and cached\n"
+
+
+def test_cache_warm_command_reports_a_failure(cache, monkeypatch, capsys):
+    monkeypatch.setattr(warmup, "all_tasks", lambda: [warmup.Task("broken", _Unreadable())])
+    assert main(["cache", "--warm"]) == 1
+    captured = capsys.readouterr()
+    assert "0 of 1 loop sets compiled" in captured.out
+    assert captured.err.startswith("ga-rotors: broken: TypeError")
+
+
+def test_run_warms_its_scene_first_then_never_again(cache, tmp_path, capsys):
+    out = tmp_path / "out"
+    assert main(["run", "spinning_disk", "--out", str(out), "--no-progress"]) == 0
+    err = capsys.readouterr().err
+    assert "ga-rotors: compiling" in err and "spinning_disk: rotor path" in err
+    assert main(["run", "spinning_disk", "--out", str(out), "--no-progress"]) == 0
+    assert "compiling" not in capsys.readouterr().err
