@@ -107,3 +107,14 @@ def test_run_warms_its_scene_first_then_never_again(cache, tmp_path, capsys):
     assert "ga-rotors: compiling" in err and "spinning_disk: rotor path" in err
     assert main(["run", "spinning_disk", "--out", str(out), "--no-progress"]) == 0
     assert "compiling" not in capsys.readouterr().err
+
+
+def test_paper_warms_itself_after_checking_its_output_directory(cache, tmp_path, capsys):
+    taken = tmp_path / "taken"
+    taken.write_text("x")
+    assert main(["paper", "--out", str(taken), "--no-figures"]) == 2
+    assert "compiling" not in capsys.readouterr().err  # refused before any compiling
+    assert main(["paper", "--out", str(tmp_path / "out"), "--no-figures"]) == 0
+    err = capsys.readouterr().err
+    assert "ga-rotors: compiling 4 loop set(s)" in err
+    assert "paper: its other computations" in err and "paper_15deg: euler path" in err

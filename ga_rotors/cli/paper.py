@@ -41,10 +41,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 def run(args: argparse.Namespace) -> int:
     from ..paper.reproduce import reproduce
     from ..paper.runs import summary
-    from ..warmup import paper_tasks, warm
 
     start = time.perf_counter()
-    warm(paper_tasks())  # the first run after an install or upgrade compiles, in parallel
     parallel = (os.cpu_count() or 1) > 1
     runs, written = reproduce(
         args.out, figures=not args.no_figures, data=not args.figures_only, parallel=parallel

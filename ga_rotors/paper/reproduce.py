@@ -144,7 +144,9 @@ def reproduce(
     data : bool
         Write ``summary.txt`` and one CSV per scene (``paper_15deg.csv``, ...).
     parallel : bool
-        Draw the figures in a forked process (POSIX; the command line does this).
+        Compile the loops not cached yet in parallel forked processes first
+        (:mod:`ga_rotors.warmup`, with progress lines on stderr), and draw the figures in
+        forked processes (POSIX; the command line does this).
 
     Returns
     -------
@@ -170,6 +172,10 @@ def reproduce(
 
 
 def _write_all(stage: Path, figures: bool, data: bool, parallel: bool):
+    if parallel:  # the first run after an install or upgrade compiles, and says so
+        from ..warmup import paper_tasks, warm
+
+        warm(paper_tasks(), processes=1)
     drawers = []
     if figures and parallel and hasattr(os, "fork"):
         drawers = _start_drawers(_SHARES)
