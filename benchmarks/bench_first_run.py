@@ -113,7 +113,9 @@ def one_repeat(name: str, results: dict) -> None:
             ("warm run", env_for("c"), cmd),
         ]
         for label, env, argv in rows:
-            results.setdefault((name, label), []).append(_timed(argv, env))
+            wall, cpu = _timed(argv, env)
+            results.setdefault((name, label), []).append((wall, cpu))
+            print(f"  {name}: {label}: wall {wall:.2f} s, CPU {cpu:.2f} s", flush=True)
     finally:
         shutil.rmtree(scratch, ignore_errors=True)
 
