@@ -14,8 +14,8 @@ on one pair of empty caches, interleaved with the other commands' repeats:
 
 * ``inline``: the work through the Python API (no warm-up): what the command cost before
   it warmed itself, compiling each loop when first called, one after the other;
-* ``first``: the command on empty caches: it compiles what it needs in parallel forked
-  processes (ga_rotors.warmup) with a progress line, then runs;
+* ``first``: the command on empty caches: it compiles what it needs first
+  (ga_rotors.warmup, a progress line per job), then runs;
 * ``after cache --warm``: ``ga-rotors cache --warm`` on empty caches (timed separately),
   then the command: the first run when the install step warms the cache;
 * ``warm``: the command again, everything cached.

@@ -15,7 +15,7 @@ angle 0, at tiny angles (1e-300 ... 1e-9), at exactly π and π − 1e-12, and a
 where clifford's own ``log_rotor`` fails. One rotor at a time, the kernels run
 uncompiled (:func:`ga_rotors._jit.plain`) and the results are built as MultiVectors from
 their coefficients, so no function here calls clifford's products: those are compiled
-by numba, without a cache, the first time a process uses them (3–8 s). ``R * S`` on the
+by numba, without a cache, the first time a process uses them (seconds). ``R * S`` on the
 returned MultiVectors is still clifford's product and pays that once per process.
 
 Inputs: rotors must be even (odd part, grades 1 and 3, at most UNIT_TOLERANCE) and of

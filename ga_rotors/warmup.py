@@ -2,16 +2,19 @@
 
 The first run of a loop compiles it (numba, seconds of CPU per loop) and stores the machine
 code (see docs/cache.md); every later process loads it. :func:`warm` moves that first
-compilation out of the command a user is waiting for, or at least spreads it over every
-core: each :class:`Task` is a tiny run of the real work (one scene on one orientation
-path, 2 output steps; the paper's computations on 10 steps), run in a forked process that
-leaves the compiled code in the cache. A task that succeeded is remembered by a marker
-file under the cache directory, named by the package version and the task, so a warm
-cache costs a few file checks.
+compilation out of the command a user is waiting for: each :class:`Task` is a tiny run of
+the real work (one scene on one orientation path, 2 output steps; the paper's
+computations on 10 steps) that leaves the compiled code in the cache, run here or in
+forked worker processes. A task that succeeded is remembered by a marker file under the
+cache directory, named by the package version and the task, so a warm cache costs a few
+file checks.
 
 ``ga-rotors cache --warm`` warms everything the bundled commands use (the paper and
-every bundled scene); ``ga-rotors paper`` and ``ga-rotors run`` warm what they need
-themselves, with a progress line, when their tasks have not been done yet.
+every bundled scene), one worker per CPU; ``ga-rotors paper`` and ``ga-rotors run`` warm
+what they need in their own process, one progress line per task, when their tasks have
+not been done yet. Why not in parallel there: measured (benchmarks/bench_coldstart.py, a
+loaded 2-core machine), parallel workers cost the paper's first run 50 % more CPU (each
+worker compiles the kernels every loop shares again) and gained no wall time.
 """
 
 from __future__ import annotations

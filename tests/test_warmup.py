@@ -104,7 +104,8 @@ def test_run_warms_its_scene_first_then_never_again(cache, tmp_path, capsys):
     out = tmp_path / "out"
     assert main(["run", "spinning_disk", "--out", str(out), "--no-progress"]) == 0
     err = capsys.readouterr().err
-    assert "ga-rotors: compiling" in err and "spinning_disk: rotor path" in err
+    assert "ga-rotors: compiling" in err and "in 1 process(es)" in err
+    assert "spinning_disk: rotor path" in err
     assert main(["run", "spinning_disk", "--out", str(out), "--no-progress"]) == 0
     assert "compiling" not in capsys.readouterr().err
 
@@ -116,5 +117,5 @@ def test_paper_warms_itself_after_checking_its_output_directory(cache, tmp_path,
     assert "compiling" not in capsys.readouterr().err  # refused before any compiling
     assert main(["paper", "--out", str(tmp_path / "out"), "--no-figures"]) == 0
     err = capsys.readouterr().err
-    assert "ga-rotors: compiling 4 loop set(s)" in err
+    assert "ga-rotors: compiling 4 loop set(s) in 1 process(es)" in err
     assert "paper: its other computations" in err and "paper_15deg: euler path" in err

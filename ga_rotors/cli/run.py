@@ -170,7 +170,7 @@ def run(args: argparse.Namespace) -> int:
 
     start = time.perf_counter()
     scene = load_scene(args.scene)
-    warm(scene_tasks(scene))  # a scene's first run compiles its paths' loops in parallel
+    warm(scene_tasks(scene), processes=1)  # a scene's first run compiles, and says so
     bar = ProgressBar(sys.stderr, args.progress)
     with warnings.catch_warnings(record=True) as caught, _user_code(args, scene):
         warnings.simplefilter("always", StepLimitWarning)

@@ -144,9 +144,9 @@ def reproduce(
     data : bool
         Write ``summary.txt`` and one CSV per scene (``paper_15deg.csv``, ...).
     parallel : bool
-        Compile the loops not cached yet in parallel forked processes first
-        (:mod:`ga_rotors.warmup`, with progress lines on stderr), and draw the figures in
-        forked processes (POSIX; the command line does this).
+        Draw the figures in forked processes (POSIX), and first compile the loops not
+        cached yet with a progress line on stderr (:mod:`ga_rotors.warmup`); the command
+        line does this.
 
     Returns
     -------
