@@ -3,8 +3,8 @@ API's first product in a fresh process.
 
 Run from the repository root::
 
-    python benchmarks/bench_coldstart.py                 # 3 repeats of everything
-    python benchmarks/bench_coldstart.py --repeats 1 --only rotor
+    python benchmarks/bench_first_run.py                 # 3 repeats of everything
+    python benchmarks/bench_first_run.py --repeats 1 --only rotor
 
 Every measurement is a fresh process. "First run after install" is simulated with empty
 caches: ``GA_ROTORS_CACHE_DIR`` (generated loops) and ``NUMBA_CACHE_DIR`` (numba's
@@ -93,7 +93,7 @@ def _fill(template, out):
 
 def one_repeat(name: str, results: dict) -> None:
     """inline, first, after cache --warm, warm for one command, each on fresh caches."""
-    scratch = Path(tempfile.mkdtemp(prefix="bench_coldstart-"))
+    scratch = Path(tempfile.mkdtemp(prefix="bench_first_run-"))
     try:
         out = str(scratch / "out")
 

@@ -12,7 +12,7 @@ file checks.
 ``ga-rotors cache --warm`` warms everything the bundled commands use (the paper and
 every bundled scene), one worker per CPU; ``ga-rotors paper`` and ``ga-rotors run`` warm
 what they need in their own process, one progress line per task, when their tasks have
-not been done yet. Why not in parallel there: measured (benchmarks/bench_coldstart.py, a
+not been done yet. Why not in parallel there: measured (benchmarks/bench_first_run.py, a
 loaded 2-core machine), parallel workers cost the paper's first run 50 % more CPU (each
 worker compiles the kernels every loop shares again) and gained no wall time.
 """
