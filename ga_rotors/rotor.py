@@ -174,7 +174,10 @@ def _vector3(x):
         return None
     if not all(type(v) in (float, int) for v in items):
         return None
-    v = (float(items[0]), float(items[1]), float(items[2]))
+    try:
+        v = (float(items[0]), float(items[1]), float(items[2]))
+    except OverflowError:  # an int beyond float64: the checked slow path refuses it
+        return None
     return v if _finite(v) else None
 
 

@@ -27,8 +27,6 @@ _SHARES = (
 )  # fmt: skip
 
 
-
-
 class _Drawer:
     """One forked figure process: it receives the figure data through a pipe, draws its
     share of the figures and sends back the paths (or the error) through another.
