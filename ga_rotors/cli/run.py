@@ -170,12 +170,16 @@ def run(args: argparse.Namespace) -> int:
 
     start = time.perf_counter()
     scene = load_scene(args.scene)
-    warm(scene_tasks(scene), processes=1)  # a scene's first run compiles, and says so
+    budget = _budget(args)
+    if not any(e["type"] == "user" for e in scene.data["effects"]):
+        # A scene's first run compiles, and says so; user code is left to the run itself,
+        # which checks the opt-in and reports a refusal or a compile error on one line.
+        warm(scene_tasks(scene), processes=1)
     bar = ProgressBar(sys.stderr, args.progress)
     with warnings.catch_warnings(record=True) as caught, _user_code(args, scene):
         warnings.simplefilter("always", StepLimitWarning)
         try:
-            trajectory = run_scene(scene, progress=bar, budget=_budget(args))
+            trajectory = run_scene(scene, progress=bar, budget=budget)
         finally:
             bar.close()
     for w in caught:
