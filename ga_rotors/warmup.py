@@ -192,7 +192,9 @@ def _run_one(index: int) -> tuple[float, str | None]:
     return time.perf_counter() - start, None
 
 
-def warm(tasks, processes: int | None = None, stream=None) -> list[tuple[Task, str]]:
+def warm(
+    tasks, processes: int | None = None, stream=None, show: bool = True
+) -> list[tuple[Task, str]]:
     """Run the tasks not done yet for this version, in parallel forked processes.
 
     Parameters
@@ -203,6 +205,9 @@ def warm(tasks, processes: int | None = None, stream=None) -> list[tuple[Task, s
     stream : file, optional
         Where the progress lines go (default: sys.stderr); nothing is written when every
         task was done already.
+    show : bool
+        Write the progress lines at all (``ga-rotors run`` shows them where it shows its
+        progress bar: on a terminal, or with ``--progress``).
 
     Returns
     -------
@@ -219,6 +224,10 @@ def warm(tasks, processes: int | None = None, stream=None) -> list[tuple[Task, s
     >>> warm(scene_tasks("spinning_disk"), stream=log), log.getvalue()     # done already
     ([], '')
     """
+    if not show:
+        import io
+
+        stream = io.StringIO()
     stream = sys.stderr if stream is None else stream
     directory = _marker_dir()
     if directory is None:  # no cache: every process compiles in memory anyway

@@ -101,12 +101,20 @@ def test_cache_warm_command_reports_a_failure(cache, monkeypatch, capsys):
 
 def test_run_warms_its_scene_first_then_never_again(cache, tmp_path, capsys):
     out = tmp_path / "out"
-    assert main(["run", "spinning_disk", "--out", str(out), "--no-progress"]) == 0
+    assert main(["run", "spinning_disk", "--out", str(out), "--progress"]) == 0
     err = capsys.readouterr().err
     assert "ga-rotors: compiling" in err and "in 1 process(es)" in err
     assert "spinning_disk: rotor path" in err
-    assert main(["run", "spinning_disk", "--out", str(out), "--no-progress"]) == 0
+    assert main(["run", "spinning_disk", "--out", str(out), "--progress"]) == 0
     assert "compiling" not in capsys.readouterr().err
+
+
+def test_run_warms_silently_without_progress(cache, tmp_path, capsys):
+    # Like the progress bar: shown on a terminal or with --progress, so that a scene the
+    # run refuses still gets exactly one line on stderr.
+    assert main(["run", "heavy_top", "--out", str(tmp_path / "o"), "--no-progress"]) == 0
+    assert "compiling" not in capsys.readouterr().err
+    assert len(list((cache / "warm").iterdir())) == len(warmup.scene_tasks("heavy_top"))
 
 
 def test_paper_warms_itself_after_checking_its_output_directory(cache, tmp_path, capsys):

@@ -172,9 +172,10 @@ def run(args: argparse.Namespace) -> int:
     scene = load_scene(args.scene)
     budget = _budget(args)
     if not any(e["type"] == "user" for e in scene.data["effects"]):
-        # A scene's first run compiles, and says so; user code is left to the run itself,
-        # which checks the opt-in and reports a refusal or a compile error on one line.
-        warm(scene_tasks(scene), processes=1)
+        # A scene's first run compiles, and says so where the progress bar shows; user
+        # code is left to the run itself, which checks the opt-in and reports on one line.
+        show = sys.stderr.isatty() if args.progress is None else args.progress
+        warm(scene_tasks(scene), processes=1, show=show)
     bar = ProgressBar(sys.stderr, args.progress)
     with warnings.catch_warnings(record=True) as caught, _user_code(args, scene):
         warnings.simplefilter("always", StepLimitWarning)
