@@ -235,7 +235,8 @@ def _resolve_initial(reader: Reader, value) -> dict:
 
 
 def adaptive(method) -> bool:
-    """Whether an integrator sets its accuracy by a tolerance (``rtol``), not a step.
+    """Whether an integrator sets its accuracy by a tolerance (``rtol``), not a step: what
+    it declares (:attr:`ga_rotors.integrators.Integrator.adaptive`).
 
     Examples
     --------
@@ -243,7 +244,7 @@ def adaptive(method) -> bool:
     >>> adaptive(get("dop853")), adaptive(get("rk4"))
     (True, False)
     """
-    return hasattr(method, "rtol")
+    return bool(method.adaptive)
 
 
 def _resolve_integrator(reader: Reader, value) -> dict:
