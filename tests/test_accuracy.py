@@ -116,6 +116,33 @@ def test_command_rewrites_only_the_generated_block(tmp_path, capsys):
     assert "Per-call overhead of the public API" in text
 
 
+def test_a_failure_mid_set_leaves_the_previous_figures(tmp_path, monkeypatch, capsys):
+    # --figures is all-or-nothing like every writer: the second case's figure fails after
+    # the first was drawn, and the folder keeps the previous run's set, with no debris.
+    from ga_rotors.accuracy import plots
+
+    figures = tmp_path / "figures"
+    argv = ["bench", "accuracy", "--quick", "--cases", "asymmetric_far,symmetric",
+            "--methods", "split4", "--no-peers", "--figures", str(figures)]  # fmt: skip
+    assert main(argv) == 0
+    before = {p.name: p.read_bytes() for p in figures.iterdir()}
+    assert sorted(before) == ["accuracy_asymmetric_far.png", "accuracy_symmetric.png"]
+    real, drawn = plots.plot, []
+
+    def fails_on_the_second(st, path):
+        if drawn:
+            raise OSError(28, "No space left on device")
+        real(st, path)
+        drawn.append(path)
+
+    monkeypatch.setattr(plots, "plot", fails_on_the_second)
+    assert main(argv) == 2
+    assert "--figures" in capsys.readouterr().err
+    assert len(drawn) == 1 and not drawn[0].exists()  # drawn into the staging folder
+    assert {p.name: p.read_bytes() for p in figures.iterdir()} == before
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["figures"]
+
+
 def test_command_rejects_unknown_case_and_method(capsys):
     assert main(["bench", "accuracy", "--cases", "nope"]) == 2
     assert "--cases: unknown ['nope']" in capsys.readouterr().err
