@@ -6,7 +6,9 @@ is the sum of exactly those kernels. An effect that is not declared is not in th
 generated source at all, and a scene without effects is the free problem, whose loop has
 no torque term. Every kernel returns the torque in the *principal body frame* the
 integration runs in; ``q`` is the body->space unit quaternion, ``w`` the body angular
-velocity, ``p`` the term's parameters.
+velocity, ``p`` the term's parameters. The kernels are internal (not in ``__all__``): compiled,
+unchecked, and called only from the generated loops with parameters built from a
+validated scene.
 
 =============== ======================================================== ==================
 type            torque (body frame)                                      parameters
@@ -56,19 +58,17 @@ from .integrators.base import TorqueTerm
 from .scene.reader import Reader, join
 from .trust import import_user_module
 
+# The torque kernels (gravity, isotropic_damping, damping, body_torque, space_torque) are
+# not in __all__: they are called from generated compiled loops, which bind them by module
+# and name, on values the scene has already validated; they check nothing themselves.
 __all__ = [
     "EFFECTS",
     "STANDARD_GRAVITY",
     "EffectType",
     "Key",
-    "body_torque",
-    "damping",
-    "gravity",
     "inertia_about_pivot",
-    "isotropic_damping",
     "load_user_kernel",
     "register",
-    "space_torque",
 ]
 
 #: m/s², the default gravity ``g = [0, 0, -STANDARD_GRAVITY]`` (space frame, z up).

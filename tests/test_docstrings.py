@@ -72,12 +72,14 @@ def test_the_walk_finds_the_packages_and_skips_private_modules():
 
 
 def test_compiled_and_cached_functions_are_checked_through_to_their_python_function():
-    from ga_rotors import effects
+    from ga_rotors.reference import coning
     from ga_rotors.symbolic import rotors
 
-    assert documented_object(effects.gravity) is effects.gravity.py_func
+    assert documented_object(coning.coning_rate) is coning.coning_rate.py_func
     assert inspect.isfunction(documented_object(rotors.rotor_sandwich))
-    assert "ga_rotors.effects.gravity" not in undocumented("ga_rotors.effects")
+    assert "ga_rotors.reference.coning.coning_rate" not in undocumented(
+        "ga_rotors.reference.coning"
+    )
 
 
 def test_the_examples_pattern_needs_a_header_and_a_doctest():

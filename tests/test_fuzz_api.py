@@ -257,6 +257,22 @@ def test_the_fuzzer_sees_every_public_function():
     assert public - skip - set(TARGETS) == set()
 
 
+@pytest.mark.parametrize(
+    "module", ["effects", "paths", "paths.euler", "paths.quaternion", "paths.rotor"]
+)
+def test_torque_and_path_kernels_are_not_public(module):
+    # The effect kernels and the orientation-path slot kernels are compiled and check
+    # nothing (they run inside generated loops on validated values): they stay out of
+    # __all__, so nothing public answers a hostile call silently. A kernel added to one of
+    # these __all__ fails here; make it private or wrap it with checks and fuzz it above.
+    import importlib
+
+    mod = importlib.import_module(f"ga_rotors.{module}")
+    compiled = [n for n in mod.__all__ if hasattr(getattr(mod, n), "py_func")]
+    unchecked = [n for n in mod.__all__ if n in ("initial_state", "quaternions")]
+    assert compiled == unchecked == []
+
+
 def test_found_cases_are_refused_by_name():
     # Cases the fuzzer found, kept as named tests (issue 11).
     with pytest.raises(InputError, match="energy overflows"):

@@ -27,26 +27,14 @@ import numpy as np
 
 from .._jit import jit
 from .._kernels import quat_from_euler, zyz_rates
-from ..integrators._arith import axpy3 as axpy
-from ..integrators._arith import load3 as load
-from ..integrators._arith import rk4_sum3 as rk4_sum
-from ..integrators._arith import store3 as store
+from ..integrators._arith import axpy3 as axpy  # noqa: F401 (a slot, bound by name)
+from ..integrators._arith import load3 as load  # noqa: F401 (a slot, bound by name)
+from ..integrators._arith import rk4_sum3 as rk4_sum  # noqa: F401 (a slot, bound by name)
+from ..integrators._arith import store3 as store  # noqa: F401 (a slot, bound by name)
 
-__all__ = [
-    "DIM",
-    "NSTATS",
-    "STATS",
-    "UNRESOLVED_TURN",
-    "axpy",
-    "initial_state",
-    "load",
-    "quaternions",
-    "rate",
-    "rk4_sum",
-    "store",
-    "to_quat",
-    "watch",
-]
+# The slot kernels and state helpers are the OrientationPath protocol, bound by name
+# (ga_rotors.paths), compiled and unchecked: internal, so not in __all__.
+__all__ = ["DIM", "NSTATS", "STATS", "UNRESOLVED_TURN"]
 
 DIM = 3
 

@@ -12,27 +12,14 @@ import numpy as np
 from .._jit import jit
 from .._kernels import qnormalize
 from .._rotor_kernels import quat_from_rotor, rotor_from_quat, rotor_rate
-from ..integrators._arith import axpy4 as axpy
-from ..integrators._arith import load4 as load
-from ..integrators._arith import rk4_sum4 as rk4_sum
-from ..integrators._arith import store4 as store
+from ..integrators._arith import axpy4 as axpy  # noqa: F401 (a slot, bound by name)
+from ..integrators._arith import load4 as load  # noqa: F401 (a slot, bound by name)
+from ..integrators._arith import rk4_sum4 as rk4_sum  # noqa: F401 (a slot, bound by name)
+from ..integrators._arith import store4 as store  # noqa: F401 (a slot, bound by name)
 
-__all__ = [
-    "COMPONENTS",
-    "DIM",
-    "NSTATS",
-    "axpy",
-    "from_quat",
-    "initial_state",
-    "load",
-    "normalize",
-    "quaternions",
-    "rate",
-    "rk4_sum",
-    "store",
-    "to_quat",
-    "watch",
-]
+# The slot kernels and state helpers are the OrientationPath protocol, bound by name
+# (ga_rotors.paths), compiled and unchecked: internal, so not in __all__.
+__all__ = ["COMPONENTS", "DIM", "NSTATS"]
 
 DIM = 4
 NSTATS = 0
