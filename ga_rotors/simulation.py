@@ -247,7 +247,7 @@ def simulate(
 
     # The step limit, judged once on the initial state (principal frame); the paths below
     # are integrated without checks (Integrator.integrate): checked once, here.
-    method.check_step(problem, w0, step, nsteps, where=step_limit_key)
+    initial_limit = method.check_step(problem, w0, step, nsteps, where=step_limit_key)
 
     starts = {}
     for p in requested:
@@ -305,6 +305,10 @@ def simulate(
         if hasattr(module, "report") and len(result.stats) == module.NSTATS:
             info["watch"] = module.report(result.stats)  # (scipy's dop853 keeps no watch)
         status[p] = info
+
+    if initial_limit is not None and not initial_limit.exceeded:
+        # a torque may carry ω past the limit the start was within: judged on the samples
+        method.watch_step(problem, grid, primary_w, h, nsteps, where=step_limit_key)
 
     # The loops return principal-frame states: the outputs are read from them on the
     # principal body (L is carried back to the user's frame below).

@@ -164,3 +164,52 @@ def test_step_limit_text_is_built_only_when_asked():
     explain = lim.explain
     lim = lim._replace(explain=lambda: calls.append(1) or explain())
     assert calls == [] and "orientation lags" in lim.effect and calls == [1]
+
+
+def _spin_up_scene(duration: float):
+    from ga_rotors.scene import Scene
+
+    # A constant torque of 10 N·m about axis 3 (I₃ = 2): ω₃ = 10 + 5 t exactly, so rk4 at
+    # h = 0.01 starts far within its limit and leaves it during the run.
+    return Scene({"body": {"moments": list(BODY)},
+                  "initial": {"angular_velocity": {"body": [0.0, 0.0, 10.0], "units": "rad/s"}},
+                  "time": {"duration": duration},
+                  "integrator": {"method": "rk4", "step": 0.01, "paths": ["quaternion"]},
+                  "effects": [{"type": "body_torque", "torque": [0.0, 0.0, 10.0]}]})  # fmt: skip
+
+
+def test_a_torque_spinning_past_the_limit_warns_at_the_first_sample_past_it():
+    from ga_rotors.scene import run_scene
+
+    duration, h = 20.0, 0.01
+    nsteps = round(duration / h)
+    lim = get("rk4").step_limit
+    # The oracle: the closed-form ω(t) on the step grid, its first step past the limit.
+    grid = h * np.arange(nsteps + 1)
+    past = [lim(BODY, (0.0, 0.0, 10.0 + 5.0 * t), h, nsteps).exceeded for t in grid]
+    t_cross = grid[past.index(True)]
+    assert not past[0] and 1.0 < t_cross < duration - 1.0  # a crossing mid-run
+    with pytest.warns(StepLimitWarning) as caught:
+        run_scene(_spin_up_scene(duration))
+    assert len(caught) == 1
+    text = str(caught[0].message)
+    assert text.startswith("<dict>: integrator.step: rk4 crosses its step limit at t = ")
+    t_warned = float(text.split("at t = ")[1].split(" s")[0])
+    # checked where |ω| grows by WATCH_GROWTH = 0.1 %: at most 0.1 % of 60 rad/s late
+    assert t_cross <= t_warned <= t_cross + 0.001 * (10.0 + 5.0 * t_cross) / 5.0 + h
+
+
+def test_a_run_that_stays_within_the_limit_does_not_warn():
+    from ga_rotors.scene import run_scene
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        run_scene(_spin_up_scene(0.5))  # ω₃ reaches 12.5 rad/s: well within
+
+
+def test_watch_step_ignores_runs_without_a_limit_or_a_body():
+    t, w = np.array([0.0, 1.0]), np.array([[0.0, 0.0, 1.0], [0.0, 0.0, 1e6]])
+    assert get("dop853").watch_step(Problem(BODY), t, w, 0.01, 100) is None
+    assert get("rk4").watch_step(Problem(BODY), t[:0], w[:0], 0.01, 100) is None
+    with pytest.warns(StepLimitWarning, match="at t = 1 s"):
+        assert get("rk4").watch_step(Problem(BODY), t, w, 0.01, 100)[0] == 1.0

@@ -136,6 +136,7 @@ __all__ = [
     "PROPERTIES",
     "TORQUED",
     "TORQUE_SUPPORT",
+    "WATCH_GROWTH",
     "Integrator",
     "LoopResult",
     "PrescribedOmega",
@@ -154,6 +155,11 @@ FREE = "free"
 TORQUED = "torqued"
 KINEMATIC = "kinematic"
 PROBLEM_KINDS = (FREE, TORQUED, KINEMATIC)
+
+#: After a run, the step limit is evaluated again at each sample where |ω| or |L| first
+#: grows by this factor past every earlier sample's (:meth:`Integrator.watch_step`): the
+#: crossing it reports is at most that much growth late, and a long run costs few checks.
+WATCH_GROWTH = 1.001
 
 #: What an integrator may declare it preserves by construction.
 PROPERTIES = frozenset(
@@ -531,6 +537,59 @@ class Integrator(ABC):
 
         warnings.warn(f"{where}: {detail}", StepLimitWarning, stacklevel=3)
         return limit
+
+    def watch_step(self, problem: Problem, t, w, h: float, nsteps: int, where: str = "step"):
+        """After a run: the first stored sample whose ω is past the declared step limit,
+        warned about (:class:`~ga_rotors.errors.StepLimitWarning`, naming its time), or None.
+
+        A torque or damping changes ω, so a run that started within its limit may leave
+        it. The limit is evaluated at each stored sample's ω (``t``, ``w``: the samples,
+        principal frame) where |ω| or |L| first exceeds every earlier sample's by
+        :data:`WATCH_GROWTH` (the limits' quantities grow with them; other samples are not
+        evaluated, which keeps the watch cheap on long runs): with ``sample_every = 1``
+        that is every step that sets such a high. ``where`` starts the message, as in
+        :meth:`check_step`. Runs past the limit from the start are :meth:`check_step`'s.
+
+        Examples
+        --------
+        A body spun up by a torque, |ω| = 10 + 10 t about its axis 3: rk4 at h = 0.01
+        starts far within its limit (a lag of 5e-6 rad over 1000 steps) and crosses it at
+        t = 7 s, where |ω| = 80 rad/s would lag the orientation 0.16 rad.
+
+        >>> import warnings
+        >>> t = np.linspace(0.0, 10.0, 11)
+        >>> w = np.outer(10.0 + 10.0 * t, [0.0, 0.0, 1.0])
+        >>> with warnings.catch_warnings(record=True) as caught:
+        ...     warnings.simplefilter("always")
+        ...     found = get("rk4").watch_step(Problem((1.0, 1.5, 2.0)), t, w, 0.01, 1000)
+        >>> found[0], round(found[1].value, 2), "at t = 7 s" in str(caught[0].message)
+        (7.0, 0.16, True)
+        """
+        if self.step_limit is None or problem.inertia is None or len(w) == 0:
+            return None
+        w = np.asarray(w, dtype=np.float64)
+        inertia = np.asarray(problem.inertia, dtype=np.float64)
+        candidates = np.zeros(len(w), dtype=bool)
+        with np.errstate(divide="ignore"):  # |ω| = 0: log is -inf, never a new high
+            for size in (np.linalg.norm(w, axis=1), np.linalg.norm(w * inertia, axis=1)):
+                level = np.floor(np.log(size) / np.log(WATCH_GROWTH))
+                before = np.maximum.accumulate(np.concatenate([[-np.inf], level[:-1]]))
+                candidates |= level > before  # a new high, by a factor WATCH_GROWTH
+        candidates = np.flatnonzero(candidates)
+        for k in candidates:
+            limit = self.step_limit(problem.inertia, w[k], h, nsteps)
+            if limit.exceeded:
+                from ..errors import StepLimitWarning
+
+                warnings.warn(
+                    f"{where}: {self.name} crosses its step limit at t = {float(t[k]):g} s: "
+                    f"{limit.quantity} = {limit.value:.3g} (limit {limit.limit:g}) at that "
+                    f"sample's ω: {limit.effect}; take a smaller step",
+                    StepLimitWarning,
+                    stacklevel=3,
+                )
+                return float(t[k]), limit
+        return None
 
     def _validate_declaration(self) -> None:
         if not self.name or not self.name.replace("_", "").isalnum():
