@@ -1,4 +1,4 @@
-"""The integrator interface, the problem description, and the registry.
+"""The integrator interface and the registry (the problem description is :mod:`.problem`).
 
 How an integrator plugs in
 --------------------------
@@ -118,13 +118,22 @@ import importlib
 import warnings
 from abc import ABC, abstractmethod
 from collections.abc import Callable
-from dataclasses import dataclass, field
 from pathlib import Path as FilePath
-from typing import Any, NamedTuple
+from typing import NamedTuple
 
 import numpy as np
 
 from ..errors import InputError
+from .problem import (
+    FREE,
+    KINEMATIC,
+    PROBLEM_KINDS,
+    TORQUED,
+    PrescribedOmega,
+    Problem,
+    TorqueTerm,
+    problem_for,
+)
 
 __all__ = [
     "ANY_TORQUE",
@@ -150,11 +159,6 @@ __all__ = [
     "register",
     "torque_conflict",
 ]
-
-FREE = "free"
-TORQUED = "torqued"
-KINEMATIC = "kinematic"
-PROBLEM_KINDS = (FREE, TORQUED, KINEMATIC)
 
 #: After a run, the step limit is evaluated again at each sample where |ω| or |L| first
 #: grows by this factor past every earlier sample's (:meth:`Integrator.watch_step`): the
@@ -182,180 +186,6 @@ BUILTIN_MODULES = (
     "ga_rotors.integrators.dop853",
     "ga_rotors.integrators.dp8",
 )
-
-
-def _kernel_location(kernel, what: str) -> tuple[str, str]:
-    """(module, name) under which ``kernel`` can be imported, or InputError."""
-    func = getattr(kernel, "py_func", kernel)
-    module, name = getattr(func, "__module__", None), getattr(func, "__qualname__", "")
-    if not callable(kernel) or not module or not name or "." in name or "<" in name:
-        raise InputError(
-            f"{what}: expected a compiled kernel defined at module level of an importable "
-            f"module, got {kernel!r}"
-        )
-    try:
-        found = getattr(importlib.import_module(module), name)
-    except (ImportError, AttributeError):
-        found = None
-    if found is not kernel:
-        raise InputError(f"{what}: {module}.{name} does not import as the kernel given")
-    return module, name
-
-
-def _params(values, what: str) -> tuple[float, ...]:
-    arr = np.asarray(values, dtype=np.float64).reshape(-1)
-    if not np.isfinite(arr).all():
-        raise InputError(f"{what}: parameters must be finite, got {tuple(arr)}")
-    return tuple(float(v) for v in arr)
-
-
-@dataclass(frozen=True)
-class TorqueTerm:
-    """One declared torque: ``kernel(t, q, w, p) -> body-frame torque`` and its parameters.
-
-    ``depends_on_omega`` says whether the torque reads ``w``. The default, True, is the
-    safe one for a kernel nobody has vouched for; declare False for a torque of
-    orientation and time only (gravity, a constant body or space torque), which the
-    splitting and variational methods integrate at their full order.
-
-    Examples
-    --------
-    >>> from ga_rotors._kernels import cross
-    >>> TorqueTerm(cross, (1.0, 2.0))
-    Traceback (most recent call last):
-    ...
-    ga_rotors.errors.InputError: ...
-    """
-
-    kernel: Callable
-    params: tuple[float, ...] = ()
-    name: str = ""
-    depends_on_omega: bool = True
-
-    def __post_init__(self):
-        object.__setattr__(self, "params", _params(self.params, "torque params"))
-        if not isinstance(self.depends_on_omega, bool):
-            raise InputError(
-                f"depends_on_omega: expected True or False, got {self.depends_on_omega!r}"
-            )
-        _kernel_location(self.kernel, "torque kernel")
-        if not self.name:
-            object.__setattr__(self, "name", _kernel_location(self.kernel, "torque kernel")[1])
-        if _arity(self.kernel) not in (None, 4):
-            raise InputError(
-                f"torque kernel {self.name}: expected signature kernel(t, q, w, p), "
-                f"got {_arity(self.kernel)} parameters"
-            )
-
-    @property
-    def location(self) -> tuple[str, str]:
-        return _kernel_location(self.kernel, "torque kernel")
-
-
-@dataclass(frozen=True)
-class PrescribedOmega:
-    """A prescribed body angular velocity ``kernel(t, p) -> (ω1, ω2, ω3)`` and parameters.
-
-    Examples
-    --------
-    >>> from ga_rotors.reference.coning import coning_rate
-    >>> omega = PrescribedOmega(coning_rate, (2.0, 0.5))
-    >>> omega.name, omega.params, Problem(omega=omega).kind
-    ('coning_rate', (2.0, 0.5), 'kinematic')
-    """
-
-    kernel: Callable
-    params: tuple[float, ...] = ()
-    name: str = ""
-
-    def __post_init__(self):
-        object.__setattr__(self, "params", _params(self.params, "omega params"))
-        _kernel_location(self.kernel, "omega kernel")
-        if not self.name:
-            object.__setattr__(self, "name", _kernel_location(self.kernel, "omega kernel")[1])
-        if _arity(self.kernel) not in (None, 2):
-            raise InputError(
-                f"omega kernel {self.name}: expected signature kernel(t, p), "
-                f"got {_arity(self.kernel)} parameters"
-            )
-
-    @property
-    def location(self) -> tuple[str, str]:
-        return _kernel_location(self.kernel, "omega kernel")
-
-
-def _arity(kernel) -> int | None:
-    code = getattr(getattr(kernel, "py_func", kernel), "__code__", None)
-    return None if code is None else code.co_argcount
-
-
-@dataclass(frozen=True)
-class Problem:
-    """What is integrated: a body with declared torques, or a prescribed ω(t).
-
-    ``accept_lower_order=True`` lets a method that handles orientation-only torques run
-    with a torque that depends on ω, knowing it is then first-order accurate.
-
-    Examples
-    --------
-    >>> Problem((1.0, 2.0, 3.0)).kind
-    'free'
-    """
-
-    inertia: tuple[float, float, float] | None = None
-    torques: tuple[TorqueTerm, ...] = ()
-    omega: PrescribedOmega | None = None
-    accept_lower_order: bool = False
-    # Values derived from this (immutable) problem, computed once: see ``derived``.
-    _derived: dict = field(default_factory=dict, init=False, repr=False, compare=False)
-
-    def __post_init__(self):
-        object.__setattr__(self, "torques", tuple(self.torques))
-        for term in self.torques:
-            if not isinstance(term, TorqueTerm):
-                raise InputError(f"torques: expected TorqueTerm items, got {term!r}")
-        if self.omega is not None:
-            if not isinstance(self.omega, PrescribedOmega):
-                raise InputError(f"omega: expected a PrescribedOmega, got {self.omega!r}")
-            if self.torques:
-                raise InputError("omega: a prescribed ω(t) takes no torques (no dynamics)")
-        elif self.inertia is None:
-            raise InputError("inertia: a dynamics problem needs the principal moments")
-        if self.inertia is not None:
-            object.__setattr__(self, "inertia", tuple(float(i) for i in self.inertia))
-        if not isinstance(self.accept_lower_order, bool):
-            raise InputError(
-                f"accept_lower_order: expected True or False, got {self.accept_lower_order!r}"
-            )
-
-    @property
-    def kind(self) -> str:
-        if self.omega is not None:
-            return KINEMATIC
-        return TORQUED if self.torques else FREE
-
-    def params(self) -> np.ndarray:
-        """The packed parameter array the generated ``torque``/``omega`` slices."""
-        terms = (self.omega,) if self.omega is not None else self.torques
-        flat = [p for term in terms for p in term.params]
-        return np.array(flat, dtype=np.float64)
-
-    def derived(self, key, make: Callable[[], Any]):
-        """``make()``, computed on the first call with this ``key`` and remembered: what an
-        integrator derives from a problem (its checks passed, its compiled loop, the
-        packed parameters) is computed once per problem, not once per run.
-
-        Examples
-        --------
-        >>> p = Problem((1.0, 2.0, 3.0))
-        >>> p.derived("answer", lambda: 42), p.derived("answer", lambda: 0)
-        (42, 42)
-        """
-        try:
-            return self._derived[key]
-        except KeyError:
-            value = self._derived[key] = make()
-            return value
 
 
 class LoopResult(NamedTuple):
@@ -616,33 +446,6 @@ class Integrator(ABC):
             )
         if not isinstance(self.adaptive, bool):
             raise InputError(f"{self.name}: adaptive must be True or False, got {self.adaptive!r}")
-
-
-_PROBLEMS: dict[tuple, Problem] = {}
-
-
-def problem_for(inertia, torques=(), accept_lower_order: bool = False) -> Problem:
-    """The :class:`Problem` of these moments and torques, shared by the calls that repeat
-    them (the last 64 kept), so what runs derive from a problem — its checks, its compiled
-    loop — is derived once: :func:`ga_rotors.simulation.simulate` builds its problem here.
-
-    Examples
-    --------
-    >>> problem_for((1.0, 2.0, 3.0)) is problem_for([1, 2, 3])
-    True
-    >>> problem_for((1.0, 2.0, 3.0), accept_lower_order=True).accept_lower_order
-    True
-    """
-    try:
-        key = (tuple(float(i) for i in inertia), tuple(torques), accept_lower_order)
-        found = _PROBLEMS.get(key)
-    except TypeError:  # something unhashable: let Problem say what is wrong with it
-        return Problem(inertia, tuple(torques), accept_lower_order=accept_lower_order)
-    if found is None:
-        if len(_PROBLEMS) >= 64:
-            _PROBLEMS.clear()
-        found = _PROBLEMS[key] = Problem(key[0], key[1], accept_lower_order=accept_lower_order)
-    return found
 
 
 def torque_conflict(integrator: Integrator, torques):
