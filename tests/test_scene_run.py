@@ -13,8 +13,8 @@ import numpy as np
 import pytest
 
 from ga_rotors import effects
-from ga_rotors.integrators import Problem, _codegen, get
-from ga_rotors.integrators import TemplateIntegrator
+from ga_rotors.errors import SceneError
+from ga_rotors.integrators import Problem, TemplateIntegrator, _codegen, get
 from ga_rotors.scene import Scene, load_scene, run_scene
 from ga_rotors.scene import run as scene_run
 
@@ -252,3 +252,22 @@ def test_an_adaptive_scene_runs_at_its_tolerance():
         errors[tol] = rep.values["error_rotor"]
     # A tighter tolerance must buy accuracy (DOP853 is order 8: far more than 10×).
     assert errors[1e-11] < errors[1e-8] / 10
+
+
+def test_an_exact_reference_that_refuses_the_state_names_the_file_and_key(tmp_path):
+    """The heavy-top reference is singular with the symmetry axis upright: a scene asking
+    for its error gets one line naming the file and initial.orientation, not a bare
+    reference message."""
+    import ga_rotors.scene.loading as loading
+
+    text = loading.bundled_path("heavy_top").read_text(encoding="utf-8")
+    text = text.replace("euler = [0.0, 30.0, 0.0]", "euler = [0.0, 0.0, 0.0]")
+    path = tmp_path / "upright.toml"
+    path.write_text(text, encoding="utf-8")
+    scene = load_scene(path)
+    with pytest.raises(SceneError) as info:
+        _ = scene.exact_solution
+    assert info.value.file.endswith("upright.toml")
+    assert info.value.key == "initial.orientation"
+    assert "symmetry axis is vertical" in info.value.detail
+    assert "\n" not in str(info.value)

@@ -219,8 +219,9 @@ class HeavyTop:
         p0 = 2 * (qw * qw + qz * qz) / rho  # 1 + u₀
         if v0 == 0 or p0 == 0:
             raise InputError(
-                "orientation: the symmetry axis is vertical (θ0 = 0 or π), where the z–y′–z″ "
-                "angles of the heavy-top solution are singular; tilt it"
+                "the symmetry axis is vertical (θ0 = 0 or π), where the z–y′–z″ "
+                "angles of the heavy-top solution are singular; tilt it",
+                key="orientation",
             )
         u0 = (p0 - v0) / 2
         wp2 = w1 * w1 + w2 * w2

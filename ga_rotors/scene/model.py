@@ -92,6 +92,16 @@ def _whole(reader: Reader, span: float, step: float, key: str, message: str) -> 
         raise reader.error(key, message) from None
 
 
+#: The scene key an exact reference's refused argument comes from (the state otherwise).
+_REFERENCE_KEYS = {
+    "moments": "body",
+    "body": "body",
+    "orientation": "initial.orientation",
+    "q": "initial.orientation",
+    "angular_velocity": "initial.angular_velocity",
+}
+
+
 class Scene:
     """A validated scene: the resolved data and what it implies.
 
@@ -485,19 +495,27 @@ class Scene:
         >>> scene.exact_solution.name, scene.exact_solution is scene.exact_solution
         ('symmetric_top', True)
         """
+        from ..errors import PrecisionError
         from . import exact
 
         effects = self.data["effects"]
         damping = effects[0]["coefficient"] if self.exact == "damped_symmetric_top" else None
-        return exact.build(
-            self.exact,
-            self.body,
-            self.orientation,
-            self.angular_velocity,
-            self.data["time"]["start"],
-            gravity=self.gravity,
-            damping=damping,
-        )
+        try:
+            return exact.build(
+                self.exact,
+                self.body,
+                self.orientation,
+                self.angular_velocity,
+                self.data["time"]["start"],
+                gravity=self.gravity,
+                damping=damping,
+            )
+        except (InputError, PrecisionError) as exc:
+            # The reference refuses this body or state (outside its domain or its
+            # accuracy): one line naming the scene file and the key it came from.
+            key = _REFERENCE_KEYS.get(getattr(exc, "key", None), "initial")
+            detail = getattr(exc, "detail", None) or str(exc)
+            raise SceneError(self.file, key, f"no exact {self.exact} solution: {detail}") from None
 
     @property
     def exact_has_orientation(self) -> bool:
