@@ -6,6 +6,7 @@ import io
 import os
 import subprocess
 import sys
+import textwrap
 import tomllib
 from pathlib import Path
 
@@ -198,3 +199,32 @@ def test_run_reports_progress_while_the_loops_run(short, tmp_path, monkeypatch, 
     monkeypatch.setattr(ProgressBar, "__call__", lambda self, d, t: seen.append((d, t)))
     assert main(["run", str(short), "--out", str(tmp_path / "o"), "--progress"]) == 0
     assert seen[-1] == (400, 400) and len(seen) == 2 * 4  # two paths, four chunks each
+
+
+def test_run_prints_the_packages_warnings_as_one_line_each(tmp_path, capsys):
+    """A spin started upright puts every sample's ZYZ angles at gimbal lock: the run says
+    so in one line on stderr, with no source excerpt."""
+    path = tmp_path / "upright_spin.toml"
+    path.write_text(
+        textwrap.dedent(
+            """
+            [body]
+            moments = [1.0, 1.0, 2.0]
+            [initial.angular_velocity]
+            body = [0.0, 0.0, 1.0]
+            units = "rad/s"
+            [time]
+            duration = 0.01
+            [integrator]
+            step = 0.005
+            [output]
+            quantities = ["angles"]
+            """
+        ),
+        encoding="utf-8",
+    )
+    assert main(["run", str(path), "--out", str(tmp_path / "o"), "--no-progress"]) == 0
+    err = capsys.readouterr().err
+    lines = [line for line in err.splitlines() if "gimbal" in line.lower()]
+    assert lines and all(line.startswith("ga-rotors: warning: ") for line in lines)
+    assert "warnings.warn" not in err and ".py:" not in err

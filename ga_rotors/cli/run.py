@@ -47,8 +47,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         metavar="N",
         type=float,
         default=None,
-        help="refuse a scene needing more integration steps, summed over paths "
-        "(default 1e8)",
+        help="refuse a scene needing more integration steps, summed over paths (default 1e8)",
     )
     parser.add_argument(
         "--max-memory",
@@ -164,7 +163,7 @@ def _budget(args: argparse.Namespace):
 def run(args: argparse.Namespace) -> int:
     from pathlib import Path
 
-    from ..errors import StepLimitWarning
+    from ..errors import GimbalLockWarning, IntegrationStoppedWarning, StepLimitWarning
     from ..scene import load_scene, report, run_scene, write_outputs
     from ..warmup import scene_tasks, warm
 
@@ -177,14 +176,18 @@ def run(args: argparse.Namespace) -> int:
         show = sys.stderr.isatty() if args.progress is None else args.progress
         warm(scene_tasks(scene), processes=1, show=show)
     bar = ProgressBar(sys.stderr, args.progress)
+    own = (StepLimitWarning, GimbalLockWarning, IntegrationStoppedWarning)
     with warnings.catch_warnings(record=True) as caught, _user_code(args, scene):
-        warnings.simplefilter("always", StepLimitWarning)
+        for category in own:
+            warnings.simplefilter("always", category)
         try:
             trajectory = run_scene(scene, progress=bar, budget=budget)
         finally:
             bar.close()
     for w in caught:
-        if issubclass(w.category, StepLimitWarning):  # one line, no source excerpt
+        # The package's own warnings are about the scene, not a line of its code: one
+        # line each, no source excerpt.
+        if issubclass(w.category, own):
             print(f"ga-rotors: warning: {w.message}", file=sys.stderr)
         else:
             warnings.warn_explicit(w.message, w.category, w.filename, w.lineno)
