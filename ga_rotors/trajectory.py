@@ -241,6 +241,29 @@ class Trajectory:
     def __len__(self) -> int:
         return self._arrays["t"].shape[0]
 
+    def _repr_html_(self) -> str:
+        from .view.tables import trajectory_html  # notebook display
+
+        return trajectory_html(self)
+
+    def view(self, **kwargs):
+        """An interactive page of this run (:class:`ga_rotors.view.View`; needs plotly).
+
+        In Jupyter the returned view displays itself inline; ``.save(path)`` writes the
+        self-contained page. Keywords as for :func:`ga_rotors.view.from_trajectory`.
+
+        Examples
+        --------
+        >>> from ga_rotors import simulate
+        >>> tr = simulate((1.0, 1.0, 2.0), [1.0, 0, 0, 0], [0.1, 0.0, 1.0], duration=0.5,
+        ...               step=0.1)
+        >>> tr.view(title="disk")
+        View('disk', paths=rotor, 6 samples)
+        """
+        from .view import View
+
+        return View.from_trajectory(self, **kwargs)
+
     def __repr__(self) -> str:
         shapes = ", ".join(f"{k}{tuple(v.shape)}" for k, v in self._arrays.items())
         return f"Trajectory({shapes})"

@@ -21,16 +21,16 @@ def python_blocks(page: Path) -> list[tuple[int, str]]:
     return [(text.count("\n", 0, m.start()) + 2, m.group(1)) for m in FENCE.finditer(text)]
 
 
-PAGES = sorted(p for p in DOCS.glob("*.md") if python_blocks(p))
+PAGES = sorted(p for p in DOCS.rglob("*.md") if python_blocks(p))
 
 
 def test_docs_have_runnable_examples():
     assert PAGES, "docs/ has no page with a ```python example"
 
 
-@pytest.mark.parametrize("page", PAGES, ids=[p.name for p in PAGES])
+@pytest.mark.parametrize("page", PAGES, ids=[p.relative_to(DOCS).as_posix() for p in PAGES])
 def test_doc_examples_run(page, tmp_path, monkeypatch):
     monkeypatch.chdir(tmp_path)
-    namespace = {"__name__": f"docs_{page.stem}"}
+    namespace = {"__name__": "docs_" + page.relative_to(DOCS).with_suffix("").as_posix()}
     for line, code in python_blocks(page):
         exec(compile(code, f"{page}:{line}", "exec"), namespace)

@@ -18,9 +18,16 @@ def test_quick_start_is_two_commands_main_job_then_tests():
     main_job, tests = _quick_start_commands()
     assert "\n" not in main_job and "\n" not in tests
     assert main_job.endswith("ga-rotors paper")
-    assert tests.endswith("python -m pytest") and re.search(r'"\.\[test[],]', tests)
+    assert tests.endswith("python -m pytest") and re.search(r'"\.\[test(,\w+)*\]"', tests)
 
 
 def test_ci_runs_exactly_the_readmes_test_command():
     ci = (ROOT / ".ci" / "run").read_text(encoding="utf-8").splitlines()
     assert _quick_start_commands()[1] in ci
+
+
+def test_readme_links_work_on_a_package_index():
+    # A package index shows the README without the repository: relative links would break.
+    text = (ROOT / "README.md").read_text(encoding="utf-8")
+    links = re.findall(r"\]\(([^)\s]+)\)", text)
+    assert links and all(re.match(r"https?://", link) for link in links), links

@@ -36,6 +36,7 @@ COMMANDS: dict[str, str] = {
     "show": "ga_rotors.cli.show",
     "cache": "ga_rotors.cli.cache",
     "sweep": "ga_rotors.cli.sweep",
+    "view": "ga_rotors.cli.view",
 }
 
 

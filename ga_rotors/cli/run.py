@@ -208,4 +208,6 @@ def run(args: argparse.Namespace) -> int:
     if incomplete:
         print("ga-rotors: error: the run is incomplete (see the first line)", file=sys.stderr)
         return 3
+    saved = any(p.suffix == ".npz" for p in written)
+    print(f'see it move: ga-rotors view {out if saved else args.scene} (needs "ga-rotors[view]")')
     return 0

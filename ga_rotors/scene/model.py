@@ -621,6 +621,11 @@ class Scene:
     def __repr__(self) -> str:
         return f"Scene({self.name!r}, {self.kind}, {self.steps} steps)"
 
+    def _repr_html_(self) -> str:
+        from ..view.tables import scene_html  # notebook display
+
+        return scene_html(self)
+
 
 _IDENTITY = (1.0, 0.0, 0.0, 0.0)
 

@@ -56,7 +56,7 @@ def _finding(f: Finding) -> list[str]:
     verdict = f"**{f.verdict.value}**"
     lines = [f'<a id="{_anchor(f)}"></a>', f"### {f.source} {f.label}: {f.topic} ({verdict})", ""]
     lines.append(f"- printed (as extracted): {_code(f.printed)}")
-    lines.append(f"- read as: {f.reading}")
+    lines.append(f"- read as: {_code(f.reading)}")
     lines.append(f"- reconstruction: {f.reconstruction}")
     for r in f.readings:
         mark = "tested" if r.tested else "considered"

@@ -1,0 +1,375 @@
+"""The pictures of the learning path (docs/learn/), each computed with the package's algebra.
+
+Every picture is drawn from products evaluated in clifford's Cl(3,0) (through
+:func:`ga_rotors.rotor.layout`) or from a run of :func:`ga_rotors.simulation.simulate`, so a
+picture cannot disagree with the code it teaches. :data:`PICTURES` names them;
+:func:`draw_all` writes them (PNG at 150 dpi by default, SVG or PDF on request)::
+
+    python -m ga_rotors.view.diagrams docs/learn/images
+"""
+
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+
+import numpy as np
+
+__all__ = ["PICTURES", "draw_all", "reflect"]
+
+_COLOURS = {"a": "#1f77b4", "b": "#d62728", "v": "#2ca02c", "image": "#9467bd", "mirror": "#555"}
+
+
+def _e():
+    from ..rotor import layout
+
+    blades = layout().blades
+    return blades["e1"], blades["e2"], blades["e3"]
+
+
+def _mv(v):
+    e1, e2, e3 = _e()
+    v = [*v, 0.0, 0.0][:3]
+    return float(v[0]) * e1 + float(v[1]) * e2 + float(v[2]) * e3
+
+
+def _vector(m) -> np.ndarray:
+    return np.array([m[(1,)], m[(2,)], m[(3,)]], dtype=float)
+
+
+def reflect(v, n) -> np.ndarray:
+    """Reflect the vector v in the plane (through 0) with unit normal n: v ↦ −n v n.
+
+    Computed as a product in Cl(3,0), the way the learning path introduces it.
+
+    Examples
+    --------
+    >>> reflect([1.0, 2.0, 3.0], [0.0, 0.0, 1.0])      # the mirror is the xy-plane
+    array([ 1.,  2., -3.])
+    """
+    n = np.asarray(n, dtype=float)
+    n = n / np.linalg.norm(n)
+    return _vector(-_mv(n) * _mv(v) * _mv(n))
+
+
+def _figure(ncols=1, width=4.2, height=3.6, projection=None):
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, axes = plt.subplots(
+        1, ncols, figsize=(width * ncols, height), subplot_kw={"projection": projection}
+    )
+    axes = np.atleast_1d(axes)
+    if projection is None:
+        for ax in axes:
+            ax.set_aspect("equal")
+            ax.axhline(0, color="#ddd", lw=0.8, zorder=0)
+            ax.axvline(0, color="#ddd", lw=0.8, zorder=0)
+    return fig, axes
+
+
+def _arrow(ax, v, colour, label, origin=(0.0, 0.0), offset=(0.05, 0.05)):
+    ax.annotate("", xy=(origin[0] + v[0], origin[1] + v[1]), xytext=origin,
+                arrowprops=dict(arrowstyle="-|>", color=colour, lw=2))  # fmt: skip
+    ax.text(origin[0] + v[0] + offset[0], origin[1] + v[1] + offset[1], label, color=colour,
+            fontsize=12)  # fmt: skip
+
+
+def _letter(ax, letter):
+    ax.set_title(f"({letter})", loc="left", fontsize=11, fontweight="bold")
+
+
+def _circulation(ax, centre, radius, clockwise, colour):
+    from matplotlib.patches import FancyArrowPatch
+
+    a0, a1 = (200, -80) if clockwise else (-20, 260)
+    t = np.radians(np.linspace(a0, a1, 40))
+    xs, ys = centre[0] + radius * np.cos(t), centre[1] + radius * np.sin(t)
+    ax.plot(xs[:-1], ys[:-1], color=colour, lw=1.5)
+    ax.add_patch(FancyArrowPatch((xs[-2], ys[-2]), (xs[-1], ys[-1]), arrowstyle="-|>",
+                                 mutation_scale=14, color=colour))  # fmt: skip
+
+
+def geometric_product():
+    """a and b in the e1e2-plane: ab = a·b + a∧b, the wedge as the oriented parallelogram."""
+    a, b = np.array([2.0, 0.5]), np.array([0.8, 1.6])
+    ab = _mv(a) * _mv(b)
+    e1, e2, _ = _e()
+    dot, wedge = float(ab[()]), float((ab(2) * ~(e1 * e2))[()])
+    fig, (ax,) = _figure(width=5.0)
+    ax.fill([0, a[0], a[0] + b[0], b[0]], [0, a[1], a[1] + b[1], b[1]], color="#f2c94c",
+            alpha=0.5, label=f"a∧b = {wedge:g} e12 (area, orientation)")  # fmt: skip
+    _circulation(ax, (a + b) / 2, 0.35, clockwise=wedge < 0, colour="#b8860b")
+    _arrow(ax, a, _COLOURS["a"], "a")
+    _arrow(ax, b, _COLOURS["b"], "b")
+    ax.set_xlim(-0.4, 3.2)
+    ax.set_ylim(-0.4, 2.5)
+    ax.set_title(f"ab = a·b + a∧b = {dot:g} + {wedge:g} e12", fontsize=11)
+    ax.legend(loc="upper left", fontsize=9, frameon=False)
+    return fig
+
+
+def bivector_orientation():
+    """(a) a∧b, (b) b∧a = −a∧b, (c) a∧(b + 0.8a) = a∧b: a bivector is an oriented area."""
+    a, b = np.array([1.6, 0.2]), np.array([0.4, 1.2])
+    e1, e2, _ = _e()
+
+    def wedge(x, y):
+        return float(((_mv(x) ^ _mv(y)) * ~(e1 * e2))[()])
+
+    fig, axes = _figure(3, width=3.4, height=3.2)
+    cases = [(a, b, "a∧b"), (b, a, "b∧a"), (a, b + 0.8 * a, "a∧(b + 0.8a)")]
+    for ax, letter, (x, y, name) in zip(axes, "abc", cases, strict=True):
+        w = wedge(x, y)
+        ax.fill([0, x[0], x[0] + y[0], y[0]], [0, x[1], x[1] + y[1], y[1]], color="#f2c94c",
+                alpha=0.5)  # fmt: skip
+        _circulation(ax, (x + y) / 2, 0.3, clockwise=w < 0, colour="#b8860b")
+        _arrow(ax, x, _COLOURS["a"], "1st")
+        _arrow(ax, y, _COLOURS["b"], "2nd")
+        ax.set_xlim(-0.3, 3.6)
+        ax.set_ylim(-0.3, 2.4)
+        _letter(ax, letter)
+        ax.set_xlabel(f"{name} = {w:+.2f} e12", fontsize=11)
+    return fig
+
+
+def reflection():
+    """v and its mirror image −n v n in the line ⊥ n."""
+    n = np.array([np.cos(np.radians(110)), np.sin(np.radians(110))])
+    v = np.array([1.6, 0.9])
+    image = reflect(v, n)[:2]
+    fig, (ax,) = _figure(width=4.6)
+    mirror = np.array([n[1], -n[0]]) * 2.2
+    ax.plot([-mirror[0], mirror[0]], [-mirror[1], mirror[1]], color=_COLOURS["mirror"], lw=2,
+            label="mirror (the line ⊥ n)")  # fmt: skip
+    _arrow(ax, n * 0.8, "#555", "n")
+    _arrow(ax, v, _COLOURS["v"], "v")
+    _arrow(ax, image, _COLOURS["image"], "−n v n")
+    ax.plot([v[0], image[0]], [v[1], image[1]], ":", color="#999")
+    ax.set_xlim(-2.2, 2.2)
+    ax.set_ylim(-1.6, 2.2)
+    ax.legend(loc="lower left", fontsize=9, frameon=False)
+    return fig
+
+
+def two_reflections():
+    """Reflect in n, then in m (β apart): a rotation by 2β, R = m n."""
+    beta = np.radians(30)
+    n = np.array([0.0, 1.0])
+    m = np.array([-np.sin(beta), np.cos(beta)])
+    v = np.array([1.7, 0.6])
+    once = reflect(v, n)[:2]
+    twice = reflect(once, m)[:2]
+    fig, (ax,) = _figure(width=4.8, height=4.2)
+    for normal, name, style in ((n, "mirror ⊥ n", "-"), (m, "mirror ⊥ m", "--")):
+        d = np.array([normal[1], -normal[0]]) * 2.1
+        ax.plot([-d[0], d[0]], [-d[1], d[1]], style, color=_COLOURS["mirror"], lw=1.5, label=name)
+    _arrow(ax, v, _COLOURS["v"], "v")
+    _arrow(ax, once, "#999", "−n v n")
+    _arrow(ax, twice, _COLOURS["image"], "(mn) v (nm)")
+    t = np.linspace(np.arctan2(v[1], v[0]), np.arctan2(twice[1], twice[0]), 40)
+    ax.plot(0.7 * np.cos(t), 0.7 * np.sin(t), color=_COLOURS["image"], lw=1)
+    ax.text(0.75, 0.75, "2β = 60°", color=_COLOURS["image"], fontsize=11)
+    t = np.linspace(0, beta, 20)
+    ax.plot(1.5 * np.cos(t + np.pi), 1.5 * np.sin(t + np.pi), color="#555", lw=1)
+    ax.text(-1.95, -0.45, "β = 30°", color="#555", fontsize=11)
+    ax.set_xlim(-2.2, 2.2)
+    ax.set_ylim(-2.0, 2.2)
+    ax.legend(loc="lower right", fontsize=9, frameon=False)
+    return fig
+
+
+def double_cover():
+    """The rotor of a turn by α about z over 0 ≤ α ≤ 4π, against the rotation itself."""
+    from ..rotor import from_axis_angle, to_matrix
+
+    alpha = np.linspace(0, 4 * np.pi, 241)
+    scalar, e12 = [], []
+    cos_entry = []
+    for a in alpha:
+        R = from_axis_angle([0, 0, 1], a)
+        scalar.append(R[()])
+        e12.append(R[(1, 2)])
+        cos_entry.append(to_matrix(R)[0, 0])
+    fig, (ax,) = _figure(width=7.0, height=3.4)
+    ax.set_aspect("auto")
+    turns = alpha / (2 * np.pi)
+    ax.plot(turns, scalar, lw=2, label="rotor: scalar part cos(α/2)")
+    ax.plot(turns, e12, lw=2, label="rotor: e12 part −sin(α/2)")
+    ax.plot(turns, cos_entry, "k:", lw=2, label="rotation matrix: entry cos α")
+    for x, text in ((1, "R = −1\nsame rotation as 1"), (2, "R = +1 again")):
+        ax.axvline(x, color="#aaa", lw=0.8)
+        ax.text(x + 0.03, -0.95, text, fontsize=9)
+    ax.set_xlabel("turns α / 2π")
+    ax.set_xlim(0, 2)
+    ax.legend(loc="upper right", fontsize=8, frameon=False)
+    return fig
+
+
+def _quaternion_name(q) -> str:
+    k = int(np.argmax(np.abs(q)))
+    return ("−" if q[k] < 0 else "") + ("1", "i", "j", "k")[k]
+
+
+def isomorphism_tables():
+    """Products of the images of i, j, k mapped back to ℍ: (a) the map, (b) the naive map.
+
+    Green: equals the Hamilton product (ij = k, ...); red: its negative.
+    """
+    from ..isomorphism import ANTI_ISOMORPHISM, ISOMORPHISM, from_even, to_even
+    from ..quaternion import multiply
+    from ..rotor import layout
+
+    lay = layout()
+    units = np.eye(4)[1:]
+    names = ("i", "j", "k")
+    maps = ((ISOMORPHISM, "i ↦ −e23, j ↦ −e31, k ↦ −e12"),
+            (ANTI_ISOMORPHISM, "naive: i ↦ e23, j ↦ e31, k ↦ e12"))  # fmt: skip
+    fig, axes = _figure(2, width=3.8, height=3.6)
+    for ax, letter, (table, title) in zip(axes, "ab", maps, strict=True):
+        agree = np.zeros((3, 3))
+        for r in range(3):
+            for c in range(3):
+                x, y = (lay.MultiVector(to_even(units[k], table)) for k in (r, c))
+                back = from_even((x * y).value, table, name="product")
+                agree[r, c] = 1.0 if np.allclose(back, multiply(units[r], units[c])) else -1.0
+                ax.text(c, r, _quaternion_name(back), ha="center", va="center", fontsize=13)
+        ax.imshow(agree, cmap="RdYlGn", vmin=-2, vmax=2)
+        ax.set_xticks(range(3), names)
+        ax.set_yticks(range(3), names)
+        ax.set_xlabel("right factor")
+        ax.set_ylabel("left factor")
+        _letter(ax, letter)
+        ax.set_title(title, fontsize=9, loc="right")
+    return fig
+
+
+def sandwich():
+    """v ↦ R v R̃ for a turn by 120° about (1, 1, 1)/√3: the plane of R and the cone v sweeps."""
+    from ..quaternion import from_axis_angle as q_axis_angle
+    from ..quaternion import rotate
+    from ..rotor import apply, from_axis_angle
+
+    axis = np.ones(3) / np.sqrt(3)
+    v = np.array([1.0, 0.0, 0.0])
+    fig, (ax,) = _figure(width=4.8, height=4.6, projection="3d")
+    path = np.array([apply(from_axis_angle(axis, a), v) for a in np.linspace(0, 2 * np.pi / 3, 40)])
+    image = apply(from_axis_angle(axis, 2 * np.pi / 3), v)
+    assert np.allclose(image, rotate(q_axis_angle(axis, 2 * np.pi / 3), v))
+    u1 = np.cross(axis, [0, 0, 1.0])
+    u1 /= np.linalg.norm(u1)
+    u2 = np.cross(axis, u1)
+    s = np.linspace(0, 2 * np.pi, 60)
+    disk = np.outer(np.cos(s), u1) + np.outer(np.sin(s), u2)
+    ax.plot_trisurf(*np.vstack([[0, 0, 0], disk * 1.1]).T, color="#f2c94c", alpha=0.3)
+    for vec, colour, name in ((v, _COLOURS["v"], "v"), (image, _COLOURS["image"], "R v R̃"),
+                              (axis, "#555", "u (⊥ plane of R)")):  # fmt: skip
+        ax.quiver(0, 0, 0, *vec, color=colour, lw=2, arrow_length_ratio=0.12)
+        ax.text(*(vec * 1.12), name, color=colour, fontsize=10)
+    ax.plot(*path.T, ":", color=_COLOURS["image"])
+    ax.set_box_aspect((1, 1, 1))
+    ax.set_xticklabels([])
+    ax.set_yticklabels([])
+    ax.set_zticklabels([])
+    for setter in (ax.set_xlim, ax.set_ylim, ax.set_zlim):
+        setter(-1, 1)
+    ax.set_xlabel("x")
+    ax.set_ylabel("y")
+    ax.set_zlabel("z")
+    return fig
+
+
+def rotor_kinematics():
+    """Ṙ = ½ R Ω integrated (RK4) for a constant ω, against exp(−I ω t / 2)."""
+    from ..rotor import from_rotation_vector
+    from ..simulation import simulate
+
+    w = np.array([0.0, 0.6, 1.2])
+    tr = simulate((1.0, 1.0, 1.0), [1, 0, 0, 0], w, duration=6.0, step=0.25, paths=("rotor",))
+    fig, (ax,) = _figure(width=7.0, height=3.4)
+    ax.set_aspect("auto")
+    t = np.linspace(0, 6, 200)
+    exact = np.array([from_rotation_vector(w * s).value[[0, 4, 5, 6]] for s in t])
+    labels = ("1", "e12", "e13", "e23")
+    for k in range(4):
+        (line,) = ax.plot(t, exact[:, k], lw=1.5, label=f"exp(−Iωt/2): {labels[k]}")
+        ax.plot(tr.t, tr["rotor_blades"][:, k], "o", ms=4, color=line.get_color())
+    ax.set_xlabel("t (s)")
+    ax.set_title("lines: exact rotor; dots: RK4 on Ṙ = ½RΩ, h = 0.25 s", fontsize=10)
+    ax.legend(loc="lower left", fontsize=8, frameon=False, ncols=2)
+    return fig
+
+
+def gyroscope():
+    """A torque-free disk: its symmetry axis circles L (fixed in space) on the unit sphere."""
+    from .. import quaternion as Q
+    from ..shapes import disk
+    from ..simulation import simulate
+
+    moments = disk(2.0, 0.075)
+    tr = simulate(moments, [1, 0, 0, 0], [2.5, 0.0, 2.0], duration=3.0, step=1e-3,
+                  paths=("quaternion",))  # fmt: skip
+    axis = Q.rotate(tr.q, [0.0, 0.0, 1.0])
+    L = Q.rotate(tr.q, tr.w * np.array(moments))
+    fig, (ax,) = _figure(width=4.8, height=4.6, projection="3d")
+    u, v = np.meshgrid(np.linspace(0, 2 * np.pi, 30), np.linspace(0, np.pi, 15))
+    ax.plot_wireframe(np.cos(u) * np.sin(v), np.sin(u) * np.sin(v), np.cos(v), color="#ddd",
+                      lw=0.5)  # fmt: skip
+    ax.plot(*axis.T, color=_COLOURS["a"], lw=2, label="symmetry axis e3 (space)")
+    l_dir = L[0] / np.linalg.norm(L[0])
+    ax.quiver(0, 0, 0, *l_dir, color="#9467bd", lw=2, arrow_length_ratio=0.1, label="L")
+    ax.set_box_aspect((1, 1, 1))
+    ax.set_xticklabels([])
+    ax.set_yticklabels([])
+    ax.set_zticklabels([])
+    ax.view_init(elev=20, azim=35)
+    ax.legend(loc="upper left", fontsize=8, frameon=False)
+    return fig
+
+
+#: name -> function drawing it (a matplotlib Figure), in the learning path's order.
+PICTURES = {
+    "geometric_product": geometric_product,
+    "bivector_orientation": bivector_orientation,
+    "reflection": reflection,
+    "two_reflections": two_reflections,
+    "double_cover": double_cover,
+    "isomorphism_tables": isomorphism_tables,
+    "sandwich": sandwich,
+    "rotor_kinematics": rotor_kinematics,
+    "gyroscope": gyroscope,
+}
+
+
+def draw_all(out_dir, fmt: str = "png", dpi: int = 150, names=None) -> list[Path]:
+    """Draw the learning path's pictures into ``out_dir`` (atomically, one file each).
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> [p.name for p in draw_all(tempfile.mkdtemp(), names=["reflection"])]
+    ['reflection.png']
+    """
+    import matplotlib.pyplot as plt
+
+    from ..errors import InputError
+    from ..files import atomic_write
+
+    if fmt not in ("png", "svg", "pdf"):
+        raise InputError(f"fmt: expected png, svg or pdf, got {fmt!r}")
+    out = Path(out_dir)
+    written = []
+    for name in names or PICTURES:
+        fig = PICTURES[name]()
+        fig.tight_layout()
+        save = lambda fh, f=fig: f.savefig(fh, format=fmt, dpi=dpi)  # noqa: E731
+        written.append(atomic_write(out / f"{name}.{fmt}", save))
+        plt.close(fig)
+    return written
+
+
+if __name__ == "__main__":  # pragma: no cover
+    for path in draw_all(sys.argv[1] if len(sys.argv) > 1 else "docs/learn/images"):
+        print(path)

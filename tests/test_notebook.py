@@ -1,0 +1,55 @@
+"""Notebook display: scenes and trajectories show summary tables, a trajectory its viewer."""
+
+from __future__ import annotations
+
+import html
+
+import pytest
+
+from ga_rotors.errors import GimbalLockWarning, IntegrationStoppedWarning
+from ga_rotors.scene import load_scene, run_scene
+from ga_rotors import simulate
+
+
+def test_a_scene_shows_what_it_resolves_to():
+    scene = load_scene("heavy_top")
+    text = scene._repr_html_()
+    for line in scene.describe().splitlines():
+        key, _, value = line.removeprefix("# ").partition(": ")
+        assert f'<th style="text-align: left; padding-right: 1em">{html.escape(key)}</th>' in text
+        assert f"<td>{html.escape(value)}</td>" in text
+
+
+def test_untrusted_scene_text_is_escaped():
+    scene = load_scene("spinning_disk").replace({"scene.description": "<script>alert(1)</script>"})
+    text = scene._repr_html_()
+    assert "<script>" not in text and "&lt;script&gt;alert(1)&lt;/script&gt;" in text
+
+
+def test_a_trajectory_shows_its_samples_paths_and_arrays():
+    scene = load_scene("heavy_top").replace({"time.duration": 0.05})
+    tr = run_scene(scene)
+    text = tr._repr_html_()
+    assert f"{len(tr.t)} samples" in text and "<b>heavy_top</b>" in text
+    for name in tr.names[1:]:
+        assert f'<th style="text-align: left; padding-right: 1em">{name}</th>' in text
+    assert "path rotor" in text and "complete" in text
+
+
+def test_a_path_that_stopped_early_says_so():
+    # The Euler path starts at θ = 0 (locked) and stops when its state stops being finite.
+    with pytest.warns(GimbalLockWarning), pytest.warns(IntegrationStoppedWarning):
+        tr = simulate((1.0, 1.0, 2.0), [1.0, 0, 0, 0], [0.0, 0.0, 1.0], duration=0.5,
+                      step=0.1, paths=("quaternion", "euler"))  # fmt: skip
+    status = tr.meta["paths"]["euler"]
+    if status["complete"]:
+        pytest.skip("the Euler path ran to the end here")
+    assert f"ended at t = {status['ended_at']}" in tr._repr_html_()
+
+
+def test_a_trajectory_plays_in_the_viewer():
+    pytest.importorskip("plotly")
+    tr = simulate((1.0, 1.0, 2.0), [1.0, 0, 0, 0], [0.1, 0.0, 1.0], duration=0.5, step=0.1)
+    view = tr.view(title="disk")
+    assert view._repr_html_().startswith("<iframe srcdoc=")
+    assert view.data.paths["rotor"].shape == (6, 4)
