@@ -6,9 +6,9 @@ import html
 
 import pytest
 
+from ga_rotors import simulate
 from ga_rotors.errors import GimbalLockWarning, IntegrationStoppedWarning
 from ga_rotors.scene import load_scene, run_scene
-from ga_rotors import simulate
 
 
 def test_a_scene_shows_what_it_resolves_to():

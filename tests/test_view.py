@@ -15,10 +15,10 @@ import pytest
 pytest.importorskip("plotly")
 
 from ga_rotors import quaternion as Q
+from ga_rotors import simulate
 from ga_rotors.cli import main
 from ga_rotors.errors import GimbalLockWarning, InputError, IntegrationStoppedWarning
 from ga_rotors.scene import load_scene
-from ga_rotors import simulate
 from ga_rotors.view import View, ViewData, from_trajectory
 from ga_rotors.view.data import symmetry_axis
 from ga_rotors.view.page import MAX_FRAMES, _payload, page_html
