@@ -67,7 +67,7 @@ def test_full_command_draws_every_figure_in_its_worker(tmp_path):
         env=env, capture_output=True, text=True, timeout=300,
     )  # fmt: skip
     assert proc.returncode == 0, proc.stderr
-    assert "wrote 14 files" in proc.stdout
+    assert "wrote 15 files" in proc.stdout
     for stem in paper_figures.FIGURES:
         assert paper_figures.read_digest(tmp_path / f"{stem}.png") == DIGEST
     assert not list(tmp_path.glob(".*.tmp"))

@@ -40,6 +40,8 @@ FIGURES = {
     "fig05_quaternion_15deg": "Fig. 5: quaternion path, θ₀ = 15°",
     "fig06_euler_path_0.001deg": "Fig. 6: Euler angles from the Euler-angle path, θ₀ = 0.001°",
     "fig07_rotor_angles_0.001deg": "Fig. 7: Euler angles of the rotor path, θ₀ = 0.001°",
+    "fig06_07_overlay_0.001deg": "Figs. 6–7 overlaid: Euler-angle path (solid) and rotor path "
+    "(dashed), θ₀ = 0.001°",
     "fig08_euler_rates_0.001deg": "Fig. 8: angle rates along the Euler-angle path, θ₀ = 0.001°",
     "fig09_body_rates_0.001deg": "Fig. 9: body angular velocity, θ₀ = 0.001°",
     "fig10_quaternion_0.001deg": "Fig. 10: quaternion path, θ₀ = 0.001°",
@@ -47,7 +49,7 @@ FIGURES = {
 }
 
 _DEG = 180.0 / np.pi
-_DPI = 72
+_DPI = 150  # 8 pt text is 17 px: legible on screen and in print
 _WIDTH = 9.0
 _ROW = 1.45
 #: Arrays the figures read from a scene's trajectory.
@@ -55,6 +57,11 @@ _ARRAYS = (
     "t", "w", "q", "euler", "angles", "psi_plus_phi", "euler_rates", "error_R", "error_q",
     "error_euler",
 )  # fmt: skip
+#: Two curves in one panel: what each is (the second is drawn dashed, on top).
+_PAIR_LABELS = {
+    "fig03": ("Euler-angle path", "rotor path"),
+    "fig06_07": ("Euler-angle path (Fig. 6)", "rotor path (Fig. 7)"),
+}
 
 
 @dataclass
@@ -87,10 +94,17 @@ def figure_data(runs) -> list[FigureData]:
     >>> sorted(data[0].arrays) == sorted(_ARRAYS)
     True
     """
-    return [
-        FigureData(s.model.name, s.model.label, s.theta0_deg, {k: s.trajectory[k] for k in _ARRAYS})
-        for s in runs
-    ]
+    from ..quaternion import distance
+
+    data = []
+    for s in runs:
+        arrays = {k: s.trajectory[k] for k in _ARRAYS}
+        # How far apart the two paths' orientations are (Figs. 6–7 overlaid), in degrees.
+        q_euler = s.trajectory.quaternions("euler")
+        q_rotor = s.trajectory.quaternions("rotor")[: q_euler.shape[0]]
+        arrays["path_gap"] = np.degrees(distance(q_euler, q_rotor))
+        data.append(FigureData(s.model.name, s.model.label, s.theta0_deg, arrays))
+    return data
 
 
 def _panels(stem: str, d: FigureData) -> list[tuple[str, list[tuple[np.ndarray, np.ndarray]]]]:
@@ -100,6 +114,13 @@ def _panels(stem: str, d: FigureData) -> list[tuple[str, list[tuple[np.ndarray, 
     te = t[: a["euler"].shape[0]]
     path, rotor = a["euler"] * _DEG, a["angles"] * _DEG
     names = ("ψ (°)", "θ (°)", "φ (°)")
+    if stem.startswith("fig06_07"):
+        gap = a["path_gap"]
+        return [
+            ("θ (°)", [(te, path[:, 1]), (t, rotor[:, 1])]),
+            ("ψ + φ (°)", [(te, path[:, 0] + path[:, 2]), (t, a["psi_plus_phi"] * _DEG)]),
+            ("paths apart (°)", [(te[: gap.shape[0]], gap)]),
+        ]
     if stem.startswith("fig03"):
         return [(n, [(te, path[:, k]), (t, rotor[:, k])]) for k, n in enumerate(names)]
     if stem.startswith(("fig04", "fig09")):
@@ -147,21 +168,35 @@ class _Canvas:
         for ax in self.axes[-1]:
             ax.set_xlabel("t (s)", fontsize=8)
 
-    def fill(self, title: str, columns: list[tuple[str, list]]) -> None:
+    def fill(self, title: str, columns: list[tuple[str, list]], symlog: bool = False) -> None:
         for col, (heading, panels) in enumerate(columns):
             self.axes[0, col].set_title(heading, fontsize=8)
             for row, (ylabel, curves) in enumerate(panels):
                 ax = self.axes[row, col]
                 lines = self.lines[row * 2 + col]
+                peak = max(float(np.nanmax(np.abs(y))) for _, y in curves)
+                # Spikes of 1e4 would flatten everything else on a linear axis: symlog,
+                # linear below 1 (the rates between the spikes), logarithmic above.
+                spiky = symlog and peak > 10.0
+                if spiky:
+                    shift, scale = 0.0, 1.0
+                else:
+                    shift, scale, ylabel = _readable(ylabel, curves, ax.get_yscale() == "log")
                 for k, line in enumerate(lines):
                     if k < len(curves):
-                        line.set_data(*curves[k])
+                        t, y = curves[k]
+                        line.set_data(t, (y - shift) / scale)
                         line.set_visible(True)
                     else:
                         line.set_visible(False)
+                if spiky:
+                    ax.set_yscale("symlog", linthresh=1.0)
                 ax.set_ylabel(ylabel, fontsize=8)
                 ax.relim(visible_only=True)
                 ax.autoscale_view()
+                # Panel letters in reading order, as the text cites them ("Fig. 6(a)").
+                letter = "abcdefghijklmnop"[row * len(columns) + col]
+                ax.set_title(f"({letter})", loc="left", fontsize=8, fontweight="bold")
         self.fig.suptitle(title, fontsize=10)
 
     def png(self, digest: str) -> bytes:
@@ -169,9 +204,36 @@ class _Canvas:
         return palette_png(self.fig, DIGEST_PREFIX + digest)
 
 
+def _readable(ylabel: str, curves, log: bool) -> tuple[float, float, str]:
+    """(shift, scale, label) so that ticks need no offset text such as ``1e−8+1.572e1``.
+
+    A panel whose values vary by less than 1e-3 of their size shows y − shift, and a panel
+    whose values are all tiny or huge shows y / scale; both are written into the label.
+    """
+    values = np.concatenate([np.asarray(y, dtype=float) for _, y in curves])
+    values = values[np.isfinite(values)]
+    if log or values.size == 0:
+        return 0.0, 1.0, ylabel
+    lo, hi = float(values.min()), float(values.max())
+    shift = 0.0
+    if hi > lo and (hi - lo) < 1e-3 * max(abs(lo), abs(hi)):
+        shift = float(f"{values[0]:.4g}")
+    span = max(abs(lo - shift), abs(hi - shift))
+    exponent = int(np.floor(np.log10(span))) if span > 0 else 0
+    scale = 10.0**exponent if (exponent < -2 or exponent > 3) else 1.0
+    name, _, unit = ylabel.partition(" (")
+    unit = unit.removesuffix(")")
+    if shift:
+        name = f"{name} − {shift:g}"
+    if scale != 1.0:
+        unit = f"1e{exponent} {unit}".strip()
+    return shift, scale, f"{name} ({unit})" if unit else name
+
+
 def palette_png(fig, description: str, dpi: int = _DPI) -> bytes:
-    """A matplotlib Figure as a 64-colour palette PNG (a third of the RGB size: these are
-    line plots), with ``description`` in its ``Description`` text chunk.
+    """A matplotlib Figure as a 256-colour palette PNG (a third of the RGB size: these are
+    line plots, and 256 colours keep the anti-aliased text sharp), with ``description`` in
+    its ``Description`` text chunk and its resolution in ``pHYs``.
 
     Examples
     --------
@@ -189,17 +251,20 @@ def palette_png(fig, description: str, dpi: int = _DPI) -> bytes:
     fig.set_dpi(dpi)
     canvas.draw()
     image = Image.frombuffer("RGBA", canvas.get_width_height(), canvas.buffer_rgba())
-    image = image.convert("RGB").quantize(colors=64, method=Image.Quantize.FASTOCTREE)
+    image = image.convert("RGB").quantize(colors=256, method=Image.Quantize.FASTOCTREE)
     info = PngImagePlugin.PngInfo()
     info.add_text("Description", description)
     buf = io.BytesIO()
-    image.save(buf, format="png", pnginfo=info)
+    image.save(buf, format="png", pnginfo=info, dpi=(dpi, dpi))
     return buf.getvalue()
 
 
-def _error_columns(data: list[FigureData]) -> list[tuple[str, list]]:
+def _error_columns(data: list[FigureData]) -> tuple[list[tuple[str, list]], float]:
+    """The error panels, and the largest relative gap between the rotor and quaternion
+    paths' errors (the legend states their overlap: the dashed line lies on the solid one)."""
     floor = 1e-17  # an exact zero (t = 0) has no place on a log axis
     columns = []
+    gap = 0.0
     for model in dict.fromkeys(d.model for d in data):
         panels = []
         for d in (d for d in data if d.model == model):
@@ -208,9 +273,12 @@ def _error_columns(data: list[FigureData]) -> list[tuple[str, list]]:
             for name in ("error_R", "error_q", "error_euler"):
                 e = d.arrays[name]
                 curves.append((t[: e.shape[0]], np.maximum(e, floor)))
+            e_r, e_q = d.arrays["error_R"], d.arrays["error_q"]
+            scale = max(float(np.abs(e_r).max()), floor)
+            gap = max(gap, float(np.abs(e_r - e_q).max()) / scale)
             panels.append((f"θ₀ = {d.theta0_deg:g}°: error (rad)", curves))
         columns.append((f"{model}: rotor, quaternion, Euler-angle path", panels))
-    return columns
+    return columns, gap
 
 
 def draw_all(data: list[FigureData], out_dir, digest: str, stems=None) -> list[Path]:
@@ -228,6 +296,8 @@ def draw_all(data: list[FigureData], out_dir, digest: str, stems=None) -> list[P
     ...     png.name, read_digest(png)
     ('fig04_body_rates_15deg.png', '0123abcd')
     """
+    from matplotlib.ticker import MaxNLocator
+
     from ..files import atomic_write
 
     out_dir = Path(out_dir)
@@ -238,10 +308,14 @@ def draw_all(data: list[FigureData], out_dir, digest: str, stems=None) -> list[P
         title = FIGURES[stem]
         if stem == "errors":
             canvas = _Canvas(2, log=True, three=True)
-            canvas.fill(title, _error_columns(data))
+            columns, gap = _error_columns(data)
+            canvas.fill(title, columns)
             canvas.axes[0, 0].legend(
-                canvas.lines[0], ["rotor", "quaternion", "Euler angles"], fontsize=7
-            )
+                canvas.lines[0],
+                ["rotor", f"quaternion (on the rotor's line: they differ by ≤ {gap:.0e} of it)",
+                 "Euler-angle path"],
+                fontsize=7, loc="lower right",
+            )  # fmt: skip
         else:
             theta = 15.0 if stem.endswith("_15deg") else 0.001
             pair = [by_key[("paper", theta)], by_key[("disk", theta)]]
@@ -250,7 +324,16 @@ def draw_all(data: list[FigureData], out_dir, digest: str, stems=None) -> list[P
             if nrows not in canvases:
                 canvases[nrows] = _Canvas(nrows)
             canvas = canvases[nrows]
-            canvas.fill(title, columns)
+            for ax in canvas.axes.flat:  # a reused canvas: back to the defaults
+                ax.set_yscale("linear")
+                ax.yaxis.set_major_locator(MaxNLocator(4))
+                if ax.get_legend():
+                    ax.get_legend().remove()
+            canvas.fill(title, columns, symlog=stem.startswith("fig08"))
+            pair_labels = _PAIR_LABELS.get(stem[:8] if stem.startswith("fig06_07") else stem[:5])
+            if pair_labels:
+                canvas.axes[0, 0].legend(canvas.lines[0], pair_labels, fontsize=7,
+                                         loc="upper right")  # fmt: skip
         data_png = canvas.png(digest)
         written.append(atomic_write(out_dir / f"{stem}.png", lambda fh, b=data_png: fh.write(b)))
     return written

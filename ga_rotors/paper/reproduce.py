@@ -22,8 +22,8 @@ DEFAULT_OUT = "results"
 _SHARES = (
     ("fig03_euler_angles_15deg", "fig05_quaternion_15deg", "fig07_rotor_angles_0.001deg",
      "fig08_euler_rates_0.001deg", "fig09_body_rates_0.001deg"),
-    ("fig04_body_rates_15deg", "fig06_euler_path_0.001deg", "fig10_quaternion_0.001deg",
-     "errors"),
+    ("fig04_body_rates_15deg", "fig06_euler_path_0.001deg", "fig06_07_overlay_0.001deg",
+     "fig10_quaternion_0.001deg", "errors"),
 )  # fmt: skip
 
 

@@ -23,7 +23,7 @@ DIGEST_PREFIX = "ga_rotors scene data "
 
 _WIDTH = 7.0
 _ROW = 1.55
-_DPI = 72
+_DPI = 150  # 7 pt tick labels are 15 px
 
 
 def data_digest(scene: Scene, trajectory: Trajectory, digits: int = 6) -> str:
@@ -144,11 +144,20 @@ def _error(axes, ctx: _Context) -> None:
 
     (ax,) = axes
     exact = ctx.get("exact")
-    for path in ctx.scene.paths:
+    first = None
+    for k, path in enumerate(ctx.scene.paths):
         q = Q.normalize(ctx.tr.quaternions(path))
         e = exact.orientation_error(ctx.tr.t[: q.shape[0]], q)
-        ax.semilogy(ctx.tr.t[: q.shape[0]], np.maximum(e, 1e-17), lw=0.8,
-                    label=path)  # fmt: skip
+        label = path
+        if first is None:
+            first = (path, e)
+        else:  # drawn dashed on top; say so when it hides the first path's line
+            m = min(e.shape[0], first[1].shape[0])
+            gap = float(np.abs(e[:m] - first[1][:m]).max()) / max(float(first[1].max()), 1e-300)
+            if gap < 1e-2:
+                label = f"{path} (dashed, on the {first[0]} line: ≤ {gap:.0e} apart)"
+        ax.semilogy(ctx.tr.t[: q.shape[0]], np.maximum(e, 1e-17), lw=0.8 if k == 0 else 1.2,
+                    ls="-" if k == 0 else (0, (4, 3)), label=label)  # fmt: skip
     ax.set_ylabel("error (rad)", fontsize=8)
     ax.legend(fontsize=7, loc="lower right")
 
@@ -191,10 +200,14 @@ def draw(scene: Scene, trajectory: Trajectory):
         n, func = PANELS[p]
         func(axes[row : row + n], ctx)
         row += n
-    for ax in axes:
+    for letter, ax in zip("abcdefghij", axes, strict=False):
         ax.tick_params(labelsize=7)
+        if ax.get_yscale() == "linear":  # no "1e−8+1.572e1" offset text
+            ax.ticklabel_format(axis="y", useOffset=False)
+        ax.set_title(f"({letter})", loc="left", fontsize=8, fontweight="bold", pad=2)
     axes[-1].set_xlabel("t (s)", fontsize=8)
-    fig.suptitle(f"{scene.name}", fontsize=10)
+    title = scene.name + (f": {scene.description}" if scene.description else "")
+    fig.suptitle(title if len(title) <= 90 else title[:89] + "…", fontsize=9)
     return fig
 
 
