@@ -17,7 +17,7 @@ import numpy as np
 from ..trajectory import Trajectory
 from .model import Scene
 
-__all__ = ["DIGEST_PREFIX", "PANELS", "data_digest", "draw", "figure_png"]
+__all__ = ["DIGEST_PREFIX", "PANELS", "data_digest", "draw", "energy_balance", "figure_png"]
 
 DIGEST_PREFIX = "ga_rotors scene data "
 
@@ -136,7 +136,49 @@ def _invariants(axes, ctx: _Context) -> None:
         ax.set_ylabel("|L| (kg·m²/s)", fontsize=8)
         ax.legend(fontsize=7, loc="upper right")
     else:
-        ax.text(0.5, 0.5, "no simple conserved quantity", ha="center", transform=ax.transAxes)
+        _energy_balance(ax, ctx)
+
+
+def energy_balance(scene: Scene, tr: Trajectory, q: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """(E − E₀, W): the kinetic energy gained and the work the torques did, per sample.
+
+    Nothing is conserved under a general torque, but energy balances: dE/dt = τ·ω, so
+    E(t) − E(0) = W(t) = ∫ τ·ω dt (trapezoid rule on the samples; their spacing limits the
+    agreement, not the integrator). Damping makes W negative: the energy dissipated.
+
+    Examples
+    --------
+    >>> from ga_rotors.scene import Scene, run_scene
+    >>> scene = Scene({"body": {"moments": [1.0, 2.0, 3.0]},
+    ...                "initial": {"angular_velocity": {"body": [0.0, 0.0, 1.0],
+    ...                                                 "units": "rad/s"}},
+    ...                "time": {"duration": 1.0}, "integrator": {"step": 1e-3},
+    ...                "effects": [{"type": "body_torque", "torque": [0.0, 0.0, 0.5]}]})
+    >>> tr = run_scene(scene)
+    >>> gain, work = energy_balance(scene, tr, tr.quaternions())
+    >>> round(float(gain[-1]), 6), round(float(work[-1]), 6)   # ω₃ 1 → 7/6: ΔE = 0.5·3·(49/36 − 1)
+    (0.541667, 0.541667)
+    """
+    w = tr.w
+    t = tr.t[: w.shape[0]]
+    q = q[: w.shape[0]]
+    power = np.zeros(t.shape[0])
+    for term in scene.torques():
+        params = np.asarray(term.params, dtype=np.float64)
+        for i in range(t.shape[0]):
+            tau = term.kernel(float(t[i]), tuple(q[i]), tuple(w[i]), params)
+            power[i] += tau[0] * w[i, 0] + tau[1] * w[i, 1] + tau[2] * w[i, 2]
+    work = np.concatenate([[0.0], np.cumsum(0.5 * (power[1:] + power[:-1]) * np.diff(t))])
+    energy = scene.body.energy(w)
+    return energy - energy[0], work
+
+
+def _energy_balance(ax, ctx: _Context) -> None:
+    gain, work = energy_balance(ctx.scene, ctx.tr, ctx.get("q"))
+    ax.plot(ctx.t, gain, lw=1.0, label="kinetic energy gained E − E₀")
+    ax.plot(ctx.t, work, lw=1.2, ls=(0, (4, 3)), label="work done by the torques ∫τ·ω dt")
+    ax.set_ylabel("energy (J)", fontsize=8)
+    ax.legend(fontsize=7, loc="best")
 
 
 def _error(axes, ctx: _Context) -> None:
