@@ -98,3 +98,14 @@ def test_committed_paper_and_scene_figures_are_150_dpi():
     for png in pngs:
         with Image.open(png) as image:
             assert image.info.get("dpi", (0, 0))[0] >= 149.5, png.name
+
+
+@pytest.mark.parametrize("fmt", ["svg", "pdf"])
+def test_paper_figures_in_vector_formats_on_request(tmp_path, fmt):
+    from ga_rotors.cli import main
+
+    assert main(["paper", "--out", str(tmp_path), "--figures-only", "--format", fmt]) == 0
+    written = sorted(p.stem for p in tmp_path.iterdir())
+    assert written == sorted(paper_figures.FIGURES)
+    head = (tmp_path / f"errors.{fmt}").read_bytes()[:200]
+    assert head.startswith(b"%PDF") if fmt == "pdf" else b"<svg" in head or b"<?xml" in head

@@ -15,7 +15,7 @@ import os
 import time
 from pathlib import Path
 
-from ..paper.reproduce import DEFAULT_OUT
+from ..paper.reproduce import DEFAULT_OUT, FORMATS
 
 __all__ = ["add_arguments", "run"]
 
@@ -36,6 +36,12 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         action="store_true",
         help="write only the PNG figures (how docs/figures/ is made)",
     )
+    parser.add_argument(
+        "--format",
+        choices=FORMATS,
+        default="png",
+        help="figure format: PNG at 150 dpi (default), or vector SVG or PDF for print",
+    )
 
 
 def run(args: argparse.Namespace) -> int:
@@ -45,7 +51,11 @@ def run(args: argparse.Namespace) -> int:
     start = time.perf_counter()
     parallel = (os.cpu_count() or 1) > 1
     runs, written = reproduce(
-        args.out, figures=not args.no_figures, data=not args.figures_only, parallel=parallel
+        args.out,
+        figures=not args.no_figures,
+        data=not args.figures_only,
+        parallel=parallel,
+        fmt=args.format,
     )
     print(summary(runs))
     print()

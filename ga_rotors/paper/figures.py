@@ -281,10 +281,14 @@ def _error_columns(data: list[FigureData]) -> tuple[list[tuple[str, list]], floa
     return columns, gap
 
 
-def draw_all(data: list[FigureData], out_dir, digest: str, stems=None) -> list[Path]:
-    """Write figures as ``<out_dir>/<stem>.png`` (atomically); return the paths.
+def draw_all(
+    data: list[FigureData], out_dir, digest: str, stems=None, fmt: str = "png"
+) -> list[Path]:
+    """Write figures as ``<out_dir>/<stem>.<fmt>`` (atomically); return the paths.
 
-    ``stems``: the figures to draw (default: all of :data:`FIGURES`, in order).
+    ``stems``: the figures to draw (default: all of :data:`FIGURES`, in order). ``fmt``:
+    ``png`` (150 dpi, the data digest in its metadata), or ``svg``/``pdf`` (vector, the
+    digest in the file's description/subject).
 
     Examples
     --------
@@ -334,8 +338,14 @@ def draw_all(data: list[FigureData], out_dir, digest: str, stems=None) -> list[P
             if pair_labels:
                 canvas.axes[0, 0].legend(canvas.lines[0], pair_labels, fontsize=7,
                                          loc="upper right")  # fmt: skip
-        data_png = canvas.png(digest)
-        written.append(atomic_write(out_dir / f"{stem}.png", lambda fh, b=data_png: fh.write(b)))
+        if fmt == "png":
+            payload = canvas.png(digest)
+        else:
+            buf = io.BytesIO()
+            key = "Description" if fmt == "svg" else "Subject"
+            canvas.fig.savefig(buf, format=fmt, metadata={key: DIGEST_PREFIX + digest})
+            payload = buf.getvalue()
+        written.append(atomic_write(out_dir / f"{stem}.{fmt}", lambda fh, b=payload: fh.write(b)))
     return written
 
 

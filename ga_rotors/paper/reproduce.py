@@ -27,6 +27,10 @@ _SHARES = (
 )  # fmt: skip
 
 
+#: Figure formats ``reproduce`` writes: PNG (default), or vector SVG/PDF.
+FORMATS = ("png", "svg", "pdf")
+
+
 class _Drawer:
     """One forked figure process: it receives the figure data through a pipe, draws its
     share of the figures and sends back the paths (or the error) through another.
@@ -59,8 +63,8 @@ class _Drawer:
             if job is None:
                 result = ("skipped", [])
             else:
-                data, out, digest = job
-                result = ("ok", figures.draw_all(data, out, digest, self.stems))
+                data, out, digest, fmt = job
+                result = ("ok", figures.draw_all(data, out, digest, self.stems, fmt=fmt))
         except BaseException as exc:  # reported to the parent, which raises it
             result = ("error", f"{type(exc).__name__}: {exc}")
         try:
@@ -129,6 +133,7 @@ def reproduce(
     figures: bool = True,
     data: bool = True,
     parallel: bool = False,
+    fmt: str = "png",
 ):
     """Run the paper's scenes and write summary, CSV data and figures into ``out_dir``.
 
@@ -145,6 +150,8 @@ def reproduce(
         Draw the figures in forked processes (POSIX), and first compile the loops not
         cached yet with a progress line on stderr (:mod:`ga_rotors.warmup`); the command
         line does this.
+    fmt : {"png", "svg", "pdf"}
+        The figures' format: PNG at 150 dpi (default), or vector SVG/PDF for print.
 
     Returns
     -------
@@ -163,13 +170,17 @@ def reproduce(
     """
     from ..files import output_set
 
+    if fmt not in FORMATS:
+        from ..errors import InputError
+
+        raise InputError(f"--format: expected one of {', '.join(FORMATS)}, got {fmt!r}")
     out = Path(out_dir)
     with output_set(out, "--out") as stage:  # the whole set or the previous one
-        written = _write_all(stage, figures, data, parallel)
+        written = _write_all(stage, figures, data, parallel, fmt)
     return written[0], [out / p.name for p in written[1]]
 
 
-def _write_all(stage: Path, figures: bool, data: bool, parallel: bool):
+def _write_all(stage: Path, figures: bool, data: bool, parallel: bool, fmt: str = "png"):
     if parallel:  # the first run after an install or upgrade compiles, and says so
         from ..warmup import paper_tasks, warm
 
@@ -187,7 +198,7 @@ def _write_all(stage: Path, figures: bool, data: bool, parallel: bool):
         runs = run_all()
         job = None
         if figures:
-            job = (paper_figures.figure_data(runs), stage, data_digest(runs))
+            job = (paper_figures.figure_data(runs), stage, data_digest(runs), fmt)
         for drawer in drawers:
             drawer.send(job)
             sent += 1
@@ -197,7 +208,7 @@ def _write_all(stage: Path, figures: bool, data: bool, parallel: bool):
             written.append(write_text(stage / "summary.txt", text))
             written += [s.trajectory.to_csv(stage / f"{s.key}.csv") for s in runs]
         if figures and not drawers:
-            written += paper_figures.draw_all(*job)
+            written += paper_figures.draw_all(*job[:3], fmt=fmt)
     finally:
         for drawer in drawers[sent:]:  # failed before the figures were handed over
             try:
