@@ -46,6 +46,14 @@ def test_every_docs_page_is_in_the_site(site):
         assert built.is_file(), f"docs/{page}.md was not built"
 
 
+def test_every_docs_page_is_in_the_navigation():
+    import re
+
+    nav = set(re.findall(r"([\w/.-]+\.md)\s*$", (ROOT / "mkdocs.yml").read_text(), re.M))
+    pages = {p.relative_to(ROOT / "docs").as_posix() for p in (ROOT / "docs").rglob("*.md")}
+    assert pages == nav, f"add to mkdocs.yml's nav: {sorted(pages - nav)}"
+
+
 def test_api_reference_is_generated_from_the_docstrings(site):
     html = (site / "api" / "rotations" / "index.html").read_text(encoding="utf-8")
     assert 'id="ga_rotors.rotor.from_axis_angle"' in html
