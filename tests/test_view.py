@@ -169,11 +169,20 @@ def test_view_command_on_a_saved_result(tmp_path):
         ("lonely_npz", ["{tmp}/x.npz"], "no x.scene.toml beside it"),
         ("empty_dir", ["{tmp}", "--duration", "1"], "--duration: applies to a scene"),
         (None, ["spinning_disk", "--duration", "-1"], "time.duration"),
+        ("nan_w", ["{tmp}/x.npz"], "x.npz: w: expected finite numbers"),
+        ("bad_q", ["{tmp}/x.npz"], "x.npz: q: expected shape (n, 4), got (3, 3)"),
+        ("bad_rotor", ["{tmp}/x.npz"], "x.npz: rotor_blades: expected shape (n, 4), got (2, 4, 2)"),
     ],
 )
 def test_view_command_errors_are_one_line(tmp_path, make, argv, message):
     if make == "lonely_npz":
         np.savez(tmp_path / "x.npz", t=np.zeros(2))
+    if make in ("nan_w", "bad_q", "bad_rotor"):
+        (tmp_path / "x.scene.toml").write_text(load_scene("spinning_disk").to_toml())
+        good = {"t": np.arange(3.0), "w": np.zeros((3, 3)), "q": np.tile([1.0, 0, 0, 0], (3, 1))}
+        bad = {"nan_w": {"w": np.full((3, 3), np.nan)}, "bad_q": {"q": np.zeros((3, 3))},
+               "bad_rotor": {"rotor_blades": np.ones((2, 4, 2))}}[make]  # fmt: skip
+        np.savez(tmp_path / "x.npz", **(good | bad))
     status, _, err = _cli("view", *[a.format(tmp=tmp_path) for a in argv])
     assert status == 2
     assert err.count("\n") == 1 and message in err, err

@@ -74,9 +74,22 @@ def load_result(path: Path):
             arrays = {k: npz[k] for k in npz.files if not k.endswith("__components")}
     except (OSError, ValueError) as exc:
         raise InputError(f"{path}: not a readable .npz result ({exc})") from None
+    from .. import paths as _paths
+
     for name in ("t", "w"):
         if name not in arrays:
             raise InputError(f"{path}: the result has no {name!r} array")
+    expected = {"t": 1, "w": 3} | {s.array: s.dim for s in _paths.PATHS.values()}
+    for name, dim in expected.items():
+        a = arrays.get(name)
+        if a is not None and (
+            a.ndim != (1 if name == "t" else 2) or (name != "t" and a.shape[1] != dim)
+        ):
+            shape = "(n,)" if name == "t" else f"(n, {dim})"
+            raise InputError(f"{path}: {name}: expected shape {shape}, got {a.shape}")
+    for name, a in arrays.items():
+        if not np.issubdtype(a.dtype, np.number) or not np.isfinite(a).all():
+            raise InputError(f"{path}: {name}: expected finite numbers")
     return scene, Trajectory(arrays, meta={"moments": scene.body.moments})
 
 

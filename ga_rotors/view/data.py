@@ -88,6 +88,10 @@ class ViewData:
         self.w = np.asarray(self.w, dtype=np.float64)
         if self.w.ndim != 2 or self.w.shape[1] != 3 or self.w.shape[0] > n:
             raise InputError(f"w: expected shape (<= {n}, 3), got {self.w.shape}")
+        if not (np.isfinite(self.w).all() and np.isfinite(self.t).all()):
+            # A NaN would also be invalid JSON on the page, which would then stay blank.
+            raise InputError("w: contains non-finite values" if np.isfinite(self.t).all()
+                             else "t: contains non-finite values")  # fmt: skip
         if self.moments is not None:
             self.moments = tuple(float(x) for x in self.moments)
 
