@@ -91,7 +91,7 @@ def figure_data(runs) -> list[FigureData]:
     >>> data = figure_data(run_all(steps=10))
     >>> [(d.model, d.theta0_deg) for d in data]
     [('paper', 15.0), ('paper', 0.001), ('disk', 15.0), ('disk', 0.001)]
-    >>> sorted(data[0].arrays) == sorted(_ARRAYS)
+    >>> sorted(data[0].arrays) == sorted([*_ARRAYS, "path_gap"])
     True
     """
     from ..quaternion import distance
