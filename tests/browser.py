@@ -56,3 +56,106 @@ def load(page: Path, query: str, workdir: Path, size=(1300, 900)) -> tuple[str, 
     )
     assert done.returncode == 0, done.stderr[-2000:]
     return done.stdout, shot
+
+
+class DevTools:
+    """Headless Chromium driven through its DevTools protocol over a pipe (standard library).
+
+    ``--remote-debugging-pipe`` makes Chromium read JSON commands on fd 3 and write replies
+    on fd 4, each message ending in a NUL byte. One page is opened; :meth:`evaluate` runs
+    JavaScript in it and :meth:`send` sends any protocol command to it (``Input.*`` to
+    click or drag as a user would).
+    """
+
+    def __init__(self, url: str, workdir: Path, size=(1300, 900)):
+        import json
+        import os
+
+        exe = require_chromium()
+        self._json = json
+        to_chrome_r, self._to_chrome = os.pipe()
+        self._from_chrome, from_chrome_w = os.pipe()
+
+        def wire():  # in the child: its fd 3 reads our commands, fd 4 writes replies
+            os.dup2(to_chrome_r, 3)
+            os.dup2(from_chrome_w, 4)
+
+        profile = workdir / "devtools-profile"
+        profile.mkdir()
+        self.process = subprocess.Popen(
+            [exe, *FLAGS, f"--user-data-dir={profile}", f"--window-size={size[0]},{size[1]}",
+             "--remote-debugging-pipe", "about:blank"],
+            preexec_fn=wire, pass_fds=(3, 4),  # kept open: set by wire() before the close
+            stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
+        )  # fmt: skip
+        os.close(to_chrome_r)
+        os.close(from_chrome_w)
+        self._reader = os.fdopen(self._from_chrome, "rb")
+        self._next = 0
+        self._buffer = b""
+        target = self._call("Target.createTarget", {"url": url})["targetId"]
+        self.session = self._call("Target.attachToTarget", {"targetId": target, "flatten": True})[
+            "sessionId"
+        ]
+
+    def _message(self) -> dict:
+        while b"\0" not in self._buffer:
+            chunk = self._reader.read1(65536)
+            if not chunk:
+                raise RuntimeError("Chromium closed the DevTools pipe")
+            self._buffer += chunk
+        raw, self._buffer = self._buffer.split(b"\0", 1)
+        return self._json.loads(raw)
+
+    def _call(self, method: str, params: dict, session: str | None = None) -> dict:
+        import os
+
+        self._next += 1
+        message = {"id": self._next, "method": method, "params": params}
+        if session:
+            message["sessionId"] = session
+        os.write(self._to_chrome, self._json.dumps(message).encode() + b"\0")
+        while True:
+            reply = self._message()
+            if reply.get("id") == self._next:
+                if "error" in reply:
+                    raise RuntimeError(f"{method}: {reply['error']}")
+                return reply["result"]
+
+    def send(self, method: str, params: dict) -> dict:
+        """A protocol command to the page (e.g. ``Input.dispatchMouseEvent``)."""
+        return self._call(method, params, self.session)
+
+    def evaluate(self, expression: str):
+        """The value of a JavaScript expression in the page (awaited if a promise)."""
+        result = self.send(
+            "Runtime.evaluate",
+            {"expression": expression, "returnByValue": True, "awaitPromise": True},
+        )
+        if "exceptionDetails" in result:
+            raise RuntimeError(result["exceptionDetails"].get("text", "script error"))
+        return result["result"].get("value")
+
+    def wait_for(self, expression: str, timeout: float = 60.0):
+        import time
+
+        end = time.monotonic() + timeout
+        while time.monotonic() < end:
+            try:
+                value = self.evaluate(expression)
+            except RuntimeError:  # the page is still loading: its names are not there yet
+                value = None
+            if value:
+                return value
+            time.sleep(0.1)
+        raise TimeoutError(f"never true in the page: {expression}")
+
+    def close(self) -> None:
+        import os
+
+        try:
+            os.close(self._to_chrome)
+            self._reader.close()
+        finally:
+            self.process.kill()
+            self.process.wait(timeout=30)

@@ -15,7 +15,7 @@ import pytest
 
 pytest.importorskip("plotly")
 
-from browser import load
+from browser import DevTools, load
 from scipy.spatial.transform import Rotation
 
 from ga_rotors import simulate
@@ -93,3 +93,56 @@ def test_gimbal_lock_is_flagged_on_the_page(tmp_path):
     # Half a radian about z (RK4 at h|ω| = 0.01: error ~1e-12) and exactly the run's sample.
     assert q == pytest.approx([np.cos(0.25), 0.0, 0.0, np.sin(0.25)], abs=1e-10)
     assert q == pytest.approx(tr.q[50].tolist(), abs=1e-14)
+
+
+_STATE = """JSON.stringify({
+    i: +document.getElementById("readouts").dataset.index,
+    t: +document.getElementById("readouts").dataset.time,
+    q: JSON.parse(document.querySelector('tr[data-path="quaternion"] .q').dataset.q),
+    button: document.getElementById("play").textContent,
+})"""
+
+
+def test_a_user_drags_the_slider_and_presses_play(run, tmp_path):
+    """Through Chromium's DevTools protocol: mouse events on the slider and the button."""
+    import time
+
+    page = View.from_trajectory(run).save(tmp_path / "view.html")
+    chrome = DevTools(page.resolve().as_uri(), tmp_path)
+    try:
+        chrome.wait_for("document.body.dataset.ready === 'true'")
+        frames = chrome.evaluate("+document.getElementById('slider').max") + 1
+        left, top, width, height = chrome.evaluate(
+            "(() => { const r = document.getElementById('slider').getBoundingClientRect();"
+            " return [r.left, r.top, r.width, r.height]; })()"
+        )
+
+        def click(x, y):
+            for kind in ("mousePressed", "mouseReleased"):
+                event = {"type": kind, "x": x, "y": y, "button": "left", "clickCount": 1}
+                chrome.send("Input.dispatchMouseEvent", event)
+
+        click(left + 0.7 * width, top + height / 2)
+        state = json.loads(chrome.evaluate(_STATE))
+        # The thumb lands near 70% of the track (the thumb's own width shifts it a little).
+        assert abs(state["i"] / (frames - 1) - 0.7) < 0.03
+        j = int(np.argmin(np.abs(run.t - state["t"])))
+        assert run.t[j] == pytest.approx(state["t"], abs=1e-12)
+        assert state["q"] == pytest.approx(run.q[j].tolist(), abs=1e-14)
+
+        play = chrome.evaluate(
+            "(() => { const r = document.getElementById('play').getBoundingClientRect();"
+            " return [r.left + r.width / 2, r.top + r.height / 2]; })()"
+        )
+        click(*play)
+        assert json.loads(chrome.evaluate(_STATE))["button"] == "pause"
+        chrome.wait_for(f"+document.getElementById('readouts').dataset.index > {state['i'] + 5}")
+        click(*play)  # pause
+        paused = json.loads(chrome.evaluate(_STATE))
+        time.sleep(0.5)
+        still = json.loads(chrome.evaluate(_STATE))
+        assert paused["button"] == still["button"] == "play" and still["i"] == paused["i"]
+        j = int(np.argmin(np.abs(run.t - still["t"])))
+        assert still["q"] == pytest.approx(run.q[j].tolist(), abs=1e-14)
+    finally:
+        chrome.close()
