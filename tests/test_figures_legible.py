@@ -66,7 +66,7 @@ def test_a_hidden_path_says_where_it_is():
     fig = draw(scene, run_scene(scene))
     labels = [line.get_label() for line in fig.axes[-1].get_lines()]
     assert labels[0] == "rotor"
-    assert labels[1].startswith("quaternion (dashed, on the rotor line: ≤ ")
+    assert labels[1].startswith("quaternion (dashed): on the\nrotor line, ≤ ")
 
 
 @pytest.mark.parametrize(

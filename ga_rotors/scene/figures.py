@@ -21,7 +21,7 @@ __all__ = ["DIGEST_PREFIX", "PANELS", "data_digest", "draw", "energy_balance", "
 
 DIGEST_PREFIX = "ga_rotors scene data "
 
-_WIDTH = 7.0
+_WIDTH = 9.0  # the right quarter holds the legends, beside the data, never over it
 _ROW = 1.55
 _DPI = 150  # 7 pt tick labels are 15 px
 
@@ -89,12 +89,16 @@ class _Context:
         return self.scene.exact_solution
 
 
+#: Legends to the right of their panel.
+_BESIDE = dict(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0), frameon=False)
+
+
 def _omega(axes, ctx: _Context) -> None:
     (ax,) = axes
     for k in range(3):
         ax.plot(ctx.t, ctx.tr.w[:, k], lw=0.8, label=f"ω{k + 1}")
     ax.set_ylabel("body ω (rad/s)", fontsize=8)
-    ax.legend(fontsize=7, loc="upper right", ncols=3)
+    ax.legend(**_BESIDE)
 
 
 def _angles(axes, ctx: _Context) -> None:
@@ -113,7 +117,7 @@ def _momentum(axes, ctx: _Context) -> None:
     for k, name in enumerate("xyz"):
         ax.plot(ctx.t, L[:, k], lw=0.8, label=f"L{name}")
     ax.set_ylabel("space L (kg·m²/s)", fontsize=8)
-    ax.legend(fontsize=7, loc="upper right", ncols=3)
+    ax.legend(**_BESIDE)
 
 
 def _invariants(axes, ctx: _Context) -> None:
@@ -126,7 +130,7 @@ def _invariants(axes, ctx: _Context) -> None:
         for _, label, deviation, _ in rows:
             ax.semilogy(ctx.t, np.maximum(deviation, floor), lw=0.8, label=label)
         ax.set_ylabel("relative drift", fontsize=8)
-        ax.legend(fontsize=7, loc="lower right", ncols=len(rows))
+        ax.legend(**_BESIDE)
     elif ctx.scene.exact == "damped_symmetric_top":
         exact = ctx.get("exact")
         L = np.linalg.norm(ctx.scene.body.momentum(ctx.tr.w), axis=-1)
@@ -134,7 +138,7 @@ def _invariants(axes, ctx: _Context) -> None:
         ax.semilogy(ctx.t, exact.model.momentum_norm(ctx.t - ctx.t[0]), "--", lw=0.8,
                     label="|L| exact")  # fmt: skip
         ax.set_ylabel("|L| (kg·m²/s)", fontsize=8)
-        ax.legend(fontsize=7, loc="upper right")
+        ax.legend(**_BESIDE)
     else:
         _energy_balance(ax, ctx)
 
@@ -178,7 +182,7 @@ def _energy_balance(ax, ctx: _Context) -> None:
     ax.plot(ctx.t, gain, lw=1.0, label="kinetic energy gained E − E₀")
     ax.plot(ctx.t, work, lw=1.2, ls=(0, (4, 3)), label="work done by the torques ∫τ·ω dt")
     ax.set_ylabel("energy (J)", fontsize=8)
-    ax.legend(fontsize=7, loc="best")
+    ax.legend(**_BESIDE)
 
 
 def _error(axes, ctx: _Context) -> None:
@@ -197,11 +201,11 @@ def _error(axes, ctx: _Context) -> None:
             m = min(e.shape[0], first[1].shape[0])
             gap = float(np.abs(e[:m] - first[1][:m]).max()) / max(float(first[1].max()), 1e-300)
             if gap < 1e-2:
-                label = f"{path} (dashed, on the {first[0]} line: ≤ {gap:.0e} apart)"
+                label = f"{path} (dashed): on the\n{first[0]} line, ≤ {gap:.0e} apart"
         ax.semilogy(ctx.tr.t[: q.shape[0]], np.maximum(e, 1e-17), lw=0.8 if k == 0 else 1.2,
                     ls="-" if k == 0 else (0, (4, 3)), label=label)  # fmt: skip
     ax.set_ylabel("error (rad)", fontsize=8)
-    ax.legend(fontsize=7, loc="lower right")
+    ax.legend(**_BESIDE)
 
 
 #: plot name -> (rows, drawing function); the names are :data:`ga_rotors.scene.schema.PLOTS`.
@@ -233,7 +237,7 @@ def draw(scene: Scene, trajectory: Trajectory):
     rows = sum(PANELS[p][0] for p in plots)
     height = _ROW * rows + 0.8
     fig = Figure(figsize=(_WIDTH, height))
-    fig.subplots_adjust(left=0.12, right=0.98, top=1 - 0.45 / height, bottom=0.45 / height,
+    fig.subplots_adjust(left=0.1, right=0.76, top=1 - 0.45 / height, bottom=0.45 / height,
                         hspace=0.12)  # fmt: skip
     axes = fig.subplots(rows, 1, sharex=True, squeeze=False)[:, 0]
     ctx = _Context(scene, trajectory)
