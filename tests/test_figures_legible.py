@@ -109,3 +109,29 @@ def test_paper_figures_in_vector_formats_on_request(tmp_path, fmt):
     assert written == sorted(paper_figures.FIGURES)
     head = (tmp_path / f"errors.{fmt}").read_bytes()[:200]
     assert head.startswith(b"%PDF") if fmt == "pdf" else b"<svg" in head or b"<?xml" in head
+
+
+def test_a_user_torque_is_not_run_again_to_draw_its_figure(tmp_path, monkeypatch):
+    import sys
+
+    from ga_rotors.trust import allow_user_code
+
+    name = f"push_{tmp_path.name}"
+    (tmp_path / f"{name}.py").write_text(
+        "import numba\n\n@numba.njit(cache=False)\ndef push(t, q, w, p):\n"
+        "    return (0.0, 0.0, p[0])\n"
+    )
+    (tmp_path / "pushed.toml").write_text(
+        '[body]\nshape = "sphere"\nmass = 1.0\nradius = 1.0\n'
+        '[time]\nduration = 0.1\n[integrator]\nstep = 0.01\npaths = ["quaternion"]\n'
+        f'[[effects]]\ntype = "user"\nfunction = "{name}:push"\nparams = [0.5]\n'
+        '[output]\nplots = ["invariants"]\n'
+    )
+    monkeypatch.setattr(sys, "path", list(sys.path))
+    scene = load_scene(tmp_path / "pushed.toml")
+    with allow_user_code(tmp_path):
+        tr = run_scene(scene)
+    sys.modules.pop(name, None)
+    (ax,) = draw(scene, tr).axes  # outside the opt-in: nothing is imported or run
+    assert ax.texts[0].get_text().startswith("energy balance not drawn")
+    assert name not in sys.modules

@@ -139,6 +139,10 @@ def _invariants(axes, ctx: _Context) -> None:
                     label="|L| exact")  # fmt: skip
         ax.set_ylabel("|L| (kg·m²/s)", fontsize=8)
         ax.legend(**_BESIDE)
+    elif any(e["type"] == "user" for e in ctx.scene.data["effects"]):
+        # The balance would call the user's torque again, outside the run's opt-in.
+        ax.text(0.5, 0.5, "energy balance not drawn: it would run the user torque again",
+                ha="center", transform=ax.transAxes, fontsize=8)  # fmt: skip
     else:
         _energy_balance(ax, ctx)
 
