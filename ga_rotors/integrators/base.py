@@ -400,11 +400,15 @@ class Integrator(ABC):
         w = np.asarray(w, dtype=np.float64)
         inertia = np.asarray(problem.inertia, dtype=np.float64)
         candidates = np.zeros(len(w), dtype=bool)
-        with np.errstate(divide="ignore"):  # |ω| = 0: log is -inf, never a new high
-            for size in (np.linalg.norm(w, axis=1), np.linalg.norm(w * inertia, axis=1)):
-                level = np.floor(np.log(size) / np.log(WATCH_GROWTH))
-                before = np.maximum.accumulate(np.concatenate([[-np.inf], level[:-1]]))
-                candidates |= level > before  # a new high, by a factor WATCH_GROWTH
+        for size in (np.einsum("ij,ij->i", w, w), np.einsum("ij,ij->i", w * inertia, w * inertia)):
+            # the samples setting a new high (|ω|², |L|²), then those of them a factor
+            # WATCH_GROWTH past the high they beat: logs of the few highs only
+            high = np.maximum.accumulate(size)
+            records = np.concatenate([[0], 1 + np.flatnonzero(size[1:] > high[:-1])])
+            with np.errstate(divide="ignore"):  # |ω| = 0: log is -inf, never a new level
+                level = np.floor(np.log(size[records]) * (0.5 / np.log(WATCH_GROWTH)))
+            new = np.concatenate([[np.isfinite(level[0])], level[1:] > level[:-1]])
+            candidates[records[new]] = True
         candidates = np.flatnonzero(candidates)
         for k in candidates:
             limit = self.step_limit(problem.inertia, w[k], h, nsteps)
