@@ -34,7 +34,7 @@ from numba import njit
 from .cases import Case
 from .measuring import SAMPLES, Point, point, round_steps, sample_times, timed
 
-__all__ = ["ADAPTIVE", "FIXED", "available", "field", "run_peer", "runner"]
+__all__ = ["ADAPTIVE", "FIXED", "available", "run_peer", "runner"]
 
 #: Fixed-step compiled peers (setting: the number of steps) and their evaluations per step.
 FIXED = {"njit_rk4": 4, "njit_dop853": 12}

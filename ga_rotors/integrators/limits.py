@@ -29,8 +29,6 @@ __all__ = [
     "PHASE_LIMIT",
     "StepLimit",
     "fixed_point_sweep",
-    "largest_root",
-    "linear_rate",
     "moser_veselov",
     "principal_rotation_angle",
     "stability_polynomial",
