@@ -1,9 +1,10 @@
 """The exact solution that applies to a scene, in the scene's own time and space frame.
 
-:func:`build` chooses nothing: the scene has already decided which solution applies
-(``Scene.exact``, with its reason when none does). It builds the reference model from the
-scene's derived values; :class:`Exact` then answers in the scene's absolute times and
-space frame. ``Scene.exact_solution`` calls it at most once per scene.
+:func:`applicable` decides which solution applies to a body and its effects (``Scene.exact``,
+with its reason when none does); :func:`build` builds the reference model from the scene's
+derived values, and :class:`Exact` then answers in the scene's absolute times and space
+frame. ``Scene.exact_solution`` calls it at most once per scene; a reference that refuses
+the state becomes one scene error (:func:`refusal`).
 """
 
 from __future__ import annotations
@@ -13,8 +14,9 @@ from dataclasses import dataclass
 import numpy as np
 
 from .. import quaternion as Q
+from ..errors import SceneError
 
-__all__ = ["Exact", "build"]
+__all__ = ["Exact", "applicable", "build", "refusal"]
 
 
 @dataclass
@@ -112,3 +114,70 @@ def build(name: str | None, body, q0, w0, t0: float, gravity=None, damping=None)
         model = DampedSymmetricTop(body, damping, q0, w0)
         return Exact(name, model, t0, has_orientation=model.spherical)
     return None
+
+
+def applicable(body, effects, gravity=None) -> tuple[str | None, str]:
+    """(name of the exact solution that applies, or None; and why, or why not).
+
+    Parameters
+    ----------
+    body : RigidBody
+        Principal moments of the integration frame.
+    effects : list of dict
+        The scene's resolved effects.
+    gravity : (weight, r), optional
+        The gravity effect's weight and pivot -> centre of mass (principal frame).
+
+    Examples
+    --------
+    >>> from ga_rotors.body import RigidBody
+    >>> applicable(RigidBody((1.0, 2.0, 3.0)), [])
+    ('asymmetric_top', 'torque-free, three distinct moments: Jacobi functions')
+    >>> applicable(RigidBody((1.0, 2.0, 3.0)), [{"type": "damping", "coefficient": 0.1}])
+    (None, 'isotropic damping has an exact solution only for a symmetric top')
+    """
+    i1, i2, _ = body.moments
+    if not effects:
+        if body.is_symmetric:
+            return "symmetric_top", "torque-free, two equal moments: closed form"
+        return "asymmetric_top", "torque-free, three distinct moments: Jacobi functions"
+    types = [e["type"] for e in effects]
+    if types == ["damping"] and not isinstance(effects[0]["coefficient"], list):
+        if body.is_symmetric:
+            return "damped_symmetric_top", "isotropic damping of a symmetric top"
+        return None, "isotropic damping has an exact solution only for a symmetric top"
+    if types == ["gravity"]:
+        r = gravity[1]
+        if i1 == i2 and r[0] == r[1] == 0.0 and r[2] > 0.0:
+            return "heavy_top", "gravity on a symmetric top, centre of mass on its axis"
+        return None, (
+            "gravity has an exact (Lagrange) solution only for I1 = I2 about the pivot "
+            "with the centre of mass on the body +z axis"
+        )
+    return None, f"no exact solution is known to ga_rotors for effects {types}"
+
+
+#: The scene key an exact reference's refused argument comes from (the state otherwise).
+_REFERENCE_KEYS = {
+    "moments": "body",
+    "body": "body",
+    "orientation": "initial.orientation",
+    "q": "initial.orientation",
+    "angular_velocity": "initial.angular_velocity",
+}
+
+
+def refusal(file: str, name: str, exc: Exception) -> SceneError:
+    """The scene error for a reference that refuses the scene's body or state (outside its
+    domain or its accuracy): one line naming the file and the key the refused value came
+    from, with the reference's reason.
+
+    Examples
+    --------
+    >>> from ga_rotors.errors import InputError
+    >>> print(refusal("top.toml", "heavy_top", InputError("axis vertical", key="orientation")))
+    top.toml: initial.orientation: no exact heavy_top solution: axis vertical
+    """
+    key = _REFERENCE_KEYS.get(getattr(exc, "key", None), "initial")
+    detail = getattr(exc, "detail", None) or str(exc)
+    return SceneError(file, key, f"no exact {name} solution: {detail}")

@@ -59,6 +59,7 @@ from .. import effects as _effects
 from ..body import RigidBody
 from ..errors import InputError, SceneError
 from ..shapes import SHAPES
+from . import exact as _exact
 from .reader import Reader, join
 from .schema import (
     ANGLE_UNITS,
@@ -90,16 +91,6 @@ def _whole(reader: Reader, span: float, step: float, key: str, message: str) -> 
         return whole_steps(span, step)
     except InputError:
         raise reader.error(key, message) from None
-
-
-#: The scene key an exact reference's refused argument comes from (the state otherwise).
-_REFERENCE_KEYS = {
-    "moments": "body",
-    "body": "body",
-    "orientation": "initial.orientation",
-    "q": "initial.orientation",
-    "angular_velocity": "initial.angular_velocity",
-}
 
 
 class Scene:
@@ -263,7 +254,7 @@ class Scene:
         self.gravity = self._gravity()
         self.method = self._method()
         self._check_integrator(reader)
-        self.exact, self.exact_reason = self._exact()
+        self.exact, self.exact_reason = _exact.applicable(self.body, d["effects"], self.gravity)
         self._check_outputs(reader)
 
     def _check_magnitudes(self, reader: Reader) -> None:
@@ -441,29 +432,6 @@ class Scene:
                 key = "integrator.paths" if exc.key == "paths" else "integrator.method"
                 raise reader.error(key, exc.detail) from None
 
-    def _exact(self) -> tuple[str | None, str]:
-        """(name of the exact solution that applies, or None; and why not)."""
-        i1, i2, _ = self.body.moments
-        effects = self.data["effects"]
-        if not effects:
-            if self.body.is_symmetric:
-                return "symmetric_top", "torque-free, two equal moments: closed form"
-            return "asymmetric_top", "torque-free, three distinct moments: Jacobi functions"
-        types = [e["type"] for e in effects]
-        if types == ["damping"] and not isinstance(effects[0]["coefficient"], list):
-            if self.body.is_symmetric:
-                return "damped_symmetric_top", "isotropic damping of a symmetric top"
-            return None, "isotropic damping has an exact solution only for a symmetric top"
-        if types == ["gravity"]:
-            r = self.gravity[1]
-            if i1 == i2 and r[0] == r[1] == 0.0 and r[2] > 0.0:
-                return "heavy_top", "gravity on a symmetric top, centre of mass on its axis"
-            return None, (
-                "gravity has an exact (Lagrange) solution only for I1 = I2 about the pivot "
-                "with the centre of mass on the body +z axis"
-            )
-        return None, f"no exact solution is known to ga_rotors for effects {types}"
-
     def _check_outputs(self, reader: Reader) -> None:
         out = self.data["output"]
         needs = {
@@ -496,12 +464,11 @@ class Scene:
         ('symmetric_top', True)
         """
         from ..errors import PrecisionError
-        from . import exact
 
         effects = self.data["effects"]
         damping = effects[0]["coefficient"] if self.exact == "damped_symmetric_top" else None
         try:
-            return exact.build(
+            return _exact.build(
                 self.exact,
                 self.body,
                 self.orientation,
@@ -511,11 +478,7 @@ class Scene:
                 damping=damping,
             )
         except (InputError, PrecisionError) as exc:
-            # The reference refuses this body or state (outside its domain or its
-            # accuracy): one line naming the scene file and the key it came from.
-            key = _REFERENCE_KEYS.get(getattr(exc, "key", None), "initial")
-            detail = getattr(exc, "detail", None) or str(exc)
-            raise SceneError(self.file, key, f"no exact {self.exact} solution: {detail}") from None
+            raise _exact.refusal(self.file, self.exact, exc) from None
 
     @property
     def exact_has_orientation(self) -> bool:
