@@ -26,3 +26,19 @@ def tests_code(monkeypatch):
     """Opt in to user torques from this folder (tests/_torques_for_tests.py), as a user
     would with GA_ROTORS_ALLOW_USER_CODE (ga_rotors.trust)."""
     monkeypatch.setenv("GA_ROTORS_ALLOW_USER_CODE", str(Path(__file__).resolve().parent))
+
+
+@pytest.fixture
+def cache(tmp_path, monkeypatch):
+    """An empty compiled-loop cache for one test (tests/test_cache.py, test_warmup.py):
+    generated modules and warm-up markers start from nothing. It stands in for pytest's own
+    ``cache`` fixture, which the suite does not use."""
+    from ga_rotors.integrators import _codegen
+
+    directory = tmp_path / "generated"
+    monkeypatch.setattr(_codegen, "_candidates", lambda: [directory])
+    monkeypatch.setattr(_codegen, "_MEMO", {})
+    monkeypatch.setattr(_codegen, "_PRUNED", False)
+    _codegen.cache_location.cache_clear()
+    yield directory
+    _codegen.cache_location.cache_clear()

@@ -18,17 +18,6 @@ from ga_rotors.integrators import PrescribedOmega, Problem, _codegen, get
 DAY = 86400.0
 
 
-@pytest.fixture
-def cache(tmp_path, monkeypatch):
-    directory = tmp_path / "generated"
-    monkeypatch.setattr(_codegen, "_candidates", lambda: [directory])
-    monkeypatch.setattr(_codegen, "_MEMO", {})
-    monkeypatch.setattr(_codegen, "_PRUNED", False)
-    _codegen.cache_location.cache_clear()
-    yield directory
-    _codegen.cache_location.cache_clear()
-
-
 def _fake(directory, version, age_days, now):
     """A generated module of ``version`` written ``age_days`` ago, with numba cache files."""
     stem = f"gen_rk4_free_quaternion_{version}_0123456789abcdef0123"

@@ -4,24 +4,9 @@ from __future__ import annotations
 
 import io
 
-import pytest
-
 from ga_rotors import warmup
 from ga_rotors.cli import main
-from ga_rotors.integrators import _codegen
 from ga_rotors.scene import bundled, load_scene
-
-
-@pytest.fixture
-def cache(tmp_path, monkeypatch):
-    """An empty cache directory: generated modules and markers start from nothing."""
-    directory = tmp_path / "generated"
-    monkeypatch.setattr(_codegen, "_candidates", lambda: [directory])
-    monkeypatch.setattr(_codegen, "_MEMO", {})
-    monkeypatch.setattr(_codegen, "_PRUNED", False)
-    _codegen.cache_location.cache_clear()
-    yield directory
-    _codegen.cache_location.cache_clear()
 
 
 def test_scene_tasks_are_the_scene_on_each_path_for_two_samples():
