@@ -69,3 +69,76 @@ def test_the_site_loads_nothing_from_other_hosts(site):
     for page in site.rglob("*.html"):
         text = page.read_text(encoding="utf-8")
         assert "fonts.googleapis.com" not in text, page
+
+
+ROLE_TEXT = ("`:func:", ":func:`", ":mod:`", ":class:`", ":data:`", ":meth:`", ":attr:`")
+
+
+def test_sphinx_roles_in_docstrings_become_links_or_code(site):
+    # ga_rotors.scene.run's docstring: :func:`ga_rotors.simulation.simulate`, rendered on
+    # the dynamics page, and :data:`ga_rotors.scene.budget.DEFAULT`, rendered nowhere.
+    html = (site / "api" / "scenes" / "index.html").read_text(encoding="utf-8")
+    assert (
+        'href="../dynamics/#ga_rotors.simulation.simulate"><code>ga_rotors.simulation.simulate()'
+        in html
+    )
+    assert (
+        '<span title="ga_rotors.scene.budget.DEFAULT"><code>ga_rotors.scene.budget.DEFAULT</code>'
+        in html
+    )
+    for page in site.rglob("*.html"):
+        text = page.read_text(encoding="utf-8")
+        assert not any(role in text for role in ROLE_TEXT), page
+
+
+@pytest.fixture(scope="module")
+def roles():
+    """The griffe extension (docs/hooks/sphinx_roles.py) and a loader holding ga_rotors."""
+    import importlib.util
+
+    import griffe
+
+    path = ROOT / "docs" / "hooks" / "sphinx_roles.py"
+    spec = importlib.util.spec_from_file_location("sphinx_roles", path)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    loader = griffe.GriffeLoader(search_paths=[str(ROOT)])
+    loader.load("ga_rotors")
+    return module, loader
+
+
+@pytest.mark.parametrize(
+    ("role", "shown", "identifier"),
+    [
+        (":func:`run_scene`", "run_scene()", "ga_rotors.scene.run.run_scene"),
+        (":class:`~ga_rotors.scene.Scene`", "Scene", "ga_rotors.scene.model.Scene"),
+        (":mod:`ga_rotors.view`", "ga_rotors.view", "ga_rotors.view"),
+        (
+            ":attr:`Scene.exact_reason`",
+            "Scene.exact_reason",
+            "ga_rotors.scene.model.Scene.exact_reason",
+        ),
+        (
+            ":meth:`the replace method <ga_rotors.scene.Scene.replace>`",
+            "the replace method",
+            "ga_rotors.scene.model.Scene.replace",
+        ),
+        (":class:`numpy.ndarray`", "numpy.ndarray", None),
+        (":func:`ga_rotors.scene.no_such_function`", "ga_rotors.scene.no_such_function()", None),
+    ],
+)
+def test_a_role_is_resolved_where_sphinx_would_look(roles, role, shown, identifier, caplog):
+    import logging
+
+    extension, loader = roles
+    module = loader.modules_collection.get_member("ga_rotors.scene.run")  # where the role sits
+    with caplog.at_level(logging.INFO):
+        out = extension._reference(extension.ROLE.search(role), module, loader)
+    code = f"<code>{shown}</code>"
+    if identifier is None:
+        assert out == code
+    else:
+        assert out == f'<autoref identifier="{identifier}" optional>{code}</autoref>'
+    # A ga_rotors name that does not exist is a warning: the strict build fails on it.
+    warned = [r for r in caplog.records if r.levelno >= logging.WARNING]
+    assert bool(warned) == ("no_such" in role)
