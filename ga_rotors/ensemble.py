@@ -196,7 +196,8 @@ def benchmark(bodies: int = 10_000, steps: int = 1000, repeats: int = 5) -> str:
 # compiled with ``step`` bound to an inline copy of the generated module's step — the very
 # function a single run's loop calls (ga_rotors.integrators._codegen.specialise), so a
 # sample follows the single run of the same scene bit for bit. Per-sample inertia, state
-# and torque parameters are read per body; the inner loop runs over the bodies of one
+# and torque parameters are stored one row per component (structure of arrays, params
+# of shape (P, n)) and read per body; the inner loop runs over the bodies of one
 # L1-sized chunk, as in rk4_free above.
 
 
@@ -209,9 +210,9 @@ def _scene_chunk(q, w, inertia, params, lo, hi, t0, h, marks, out_q, out_w):
         for k in range(done, marks[m]):
             t = t0 + k * h
             for i in range(hi - lo):
-                x, v = step(  # noqa: F821 (bound when the template is compiled)
+                x, v = step(  # noqa: F821 (step, body_params: bound when compiled)
                     t, (q0[i], q1[i], q2[i], q3[i]), (w0[i], w1[i], w2[i]), h,
-                    (i0[i], i1[i], i2[i]), params[lo + i],
+                    (i0[i], i1[i], i2[i]), body_params(params, lo + i),  # noqa: F821
                 )  # fmt: skip
                 q0[i] = x[0]
                 q1[i] = x[1]
@@ -261,6 +262,7 @@ def _compiled_scene_loop(integrator, problem, path: str, parallel: bool = True):
 
     spec = specialise(integrator, problem, path)
     gen = spec.module.__name__
+    body_params = _body_params_source(problem)
     # gen_batch-<the single-run module's stem without gen_>: the cache's own naming
     # (version and digest last), so `ga-rotors cache` lists, prunes and clears it too.
     stem = gen.removeprefix("_ga_rotors_gen_")
@@ -275,6 +277,7 @@ def _compiled_scene_loop(integrator, problem, path: str, parallel: bool = True):
             "import sys\n\nfrom numba import prange\n\nfrom ga_rotors._jit import jit\n"
             "from ga_rotors.ensemble import inline_copy\n\n"
             f"step = inline_copy(sys.modules[{gen!r}].step)\n\n\n"
+            f"@jit(cache={cache}, inline='always')\n{body_params}\n\n"
             f"@jit(cache={cache})\n{inspect.getsource(_scene_chunk)}\n\n"
             "chunk_loop = _scene_chunk\n\n\n"
             f"@jit(cache={cache}, parallel={parallel})\n{inspect.getsource(_scene_soa)}\n\n"
@@ -299,6 +302,33 @@ def _compiled_scene_loop(integrator, problem, path: str, parallel: bool = True):
         exec(compile(text(False), f"<{name}>", "exec"), module.__dict__)
     _SCENE_LOOPS[name] = module.loop
     return module.loop
+
+
+#: The built-in torque kernels: each reads its parameters p[j] one by one, so it runs the
+#: same on a tuple as on an array. A registered or user kernel may use array operations.
+_INDEXING_KERNELS = ("body_torque", "damping", "gravity", "isotropic_damping", "space_torque")
+
+
+def _body_params_source(problem) -> str:
+    """``body_params(params, i)``: sample i's torque parameters, from params of shape (P, n).
+
+    A tuple of the P numbers when every declared torque is a built-in kernel: a tuple
+    lives in registers, so the loop over bodies vectorises (an array view per body
+    would be an object LLVM cannot keep in SIMD lanes: the gravity loop ran 5-7x slower
+    per body-step than the free one). A kernel that may use array operations gets
+    sample i's column as an array. Either way the values, and so the arithmetic, are
+    the single run's.
+    """
+    size = int(problem.params().size)
+    tuples = all(
+        term.location[0] == "ga_rotors.effects" and term.location[1] in _INDEXING_KERNELS
+        for term in problem.torques
+    )
+    if tuples:
+        value = "(" + "".join(f"params[{j}, i], " for j in range(size)).rstrip(" ") + ")"
+    else:
+        value = "params[:, i]"
+    return f"def body_params(params, i):\n    return {value}\n"
 
 
 @dataclass
@@ -545,7 +575,7 @@ def run_samples(
     x = np.ascontiguousarray(module.initial_state(samples.orientation).T)
     w = np.ascontiguousarray(samples.angular_velocity.T)
     inertia = np.ascontiguousarray(samples.inertia.T)
-    params = np.ascontiguousarray(samples.params)
+    params = np.ascontiguousarray(samples.params.T)
     out_x, out_w = np.empty((marks.size, 4, n)), np.empty((marks.size, 3, n))
     loop = _compiled_scene_loop(method, problem, path, parallel)
     loop(x, w, inertia, params, float(t0), float(h), marks, out_x, out_w, int(chunk))
