@@ -8,14 +8,23 @@ high-accuracy end of the work-precision study: order 8 reaches 1e-12 rad in a fe
 steps, so far less rounding accumulates than in the tens of thousands of steps an
 order-4 method needs there. Conserves nothing exactly.
 
+How the step is written, and why. Each stage and the update form their weighted sum of
+stage rates first and add it to the state once, x + h·(Σ b_j k_j), as Hairer's DOP853
+does: adding the eight increments to the state one at a time rounded the state eight
+times per step, and on the fast spinner (1000 rad/s) that floored the error at ~2.5e-12
+rad; summed first, the floor is ~3e-13 against a 30-digit integration (``tests/test_integrator_orders.py``). The
+stages are written out one by one, the coefficients indexed by constants, so the
+compiled step keeps every stage rate in registers instead of allocating stage arrays
+each step and looping over the tableau's zeros (118 against 165 ns per step on the far
+asymmetric top, measured under load). A sum starts from −0.0, the one constant LLVM may
+drop exactly (−0.0 + y = y for every y), so starting it costs nothing.
+
 Step limit (warn), as for RK4: a step scales the linearised wobble by R(ihν), R the
 tableau's own stability polynomial 1 + z bᵀ(I − zA)⁻¹𝟙 (degree 12; |R(iy)| < 1 for small
 y); N·|ln |R(ihν)|²| ≥ 1 warns (ν with |ω|/2, q being stepped by the same tableau).
 """
 
 from __future__ import annotations
-
-import numpy as np
 
 from ._arith import axpy3
 from .base import FREE, TORQUED, register
@@ -96,32 +105,108 @@ C = (
 )
 # fmt: on
 
+#: The start of every stage sum, as a path state (o_load reads as many entries as the
+#: path's state has).
+NEG_ZERO = (-0.0,) * 8
+
 
 def dp8_step(t, x, w, h, inertia, params):
-    """One step of the 12-stage, order-8 Dormand–Prince method."""
-    kx = np.empty((STAGES, len(x)))
-    kw = np.empty((STAGES, 3))
-    for i in range(STAGES):
-        xs = x
-        ws = w
-        for j in range(i):
-            a = A[i * STAGES + j]
-            if a != 0.0:
-                xs = o_axpy(xs, h * a, o_load(kx[j]))
-                ws = axpy3(ws, h * a, (kw[j, 0], kw[j, 1], kw[j, 2]))
-        dx = o_rate(xs, ws)
-        dw = accel(t + C[i] * h, xs, ws, inertia, params)
-        for m in range(len(x)):
-            kx[i, m] = dx[m]
-        kw[i, 0] = dw[0]
-        kw[i, 1] = dw[1]
-        kw[i, 2] = dw[2]
-    for i in range(STAGES):
-        b = B[i]
-        if b != 0.0:
-            x = o_axpy(x, h * b, o_load(kx[i]))
-            w = axpy3(w, h * b, (kw[i, 0], kw[i, 1], kw[i, 2]))
-    return x, w
+    """One step of the 12-stage, order-8 Dormand–Prince method (see the module notes)."""
+    zx, zw = o_load(NEG_ZERO), (-0.0, -0.0, -0.0)
+    k1x, k1w = o_rate(x, w), accel(t + C[0] * h, x, w, inertia, params)
+    # stage 2
+    sx, sw = o_axpy(zx, A[1 * 12 + 0], k1x), axpy3(zw, A[1 * 12 + 0], k1w)
+    xs, ws = o_axpy(x, h, sx), axpy3(w, h, sw)
+    k2x, k2w = o_rate(xs, ws), accel(t + C[1] * h, xs, ws, inertia, params)
+    # stage 3
+    sx, sw = o_axpy(zx, A[2 * 12 + 0], k1x), axpy3(zw, A[2 * 12 + 0], k1w)
+    sx, sw = o_axpy(sx, A[2 * 12 + 1], k2x), axpy3(sw, A[2 * 12 + 1], k2w)
+    xs, ws = o_axpy(x, h, sx), axpy3(w, h, sw)
+    k3x, k3w = o_rate(xs, ws), accel(t + C[2] * h, xs, ws, inertia, params)
+    # stage 4
+    sx, sw = o_axpy(zx, A[3 * 12 + 0], k1x), axpy3(zw, A[3 * 12 + 0], k1w)
+    sx, sw = o_axpy(sx, A[3 * 12 + 2], k3x), axpy3(sw, A[3 * 12 + 2], k3w)
+    xs, ws = o_axpy(x, h, sx), axpy3(w, h, sw)
+    k4x, k4w = o_rate(xs, ws), accel(t + C[3] * h, xs, ws, inertia, params)
+    # stage 5
+    sx, sw = o_axpy(zx, A[4 * 12 + 0], k1x), axpy3(zw, A[4 * 12 + 0], k1w)
+    sx, sw = o_axpy(sx, A[4 * 12 + 2], k3x), axpy3(sw, A[4 * 12 + 2], k3w)
+    sx, sw = o_axpy(sx, A[4 * 12 + 3], k4x), axpy3(sw, A[4 * 12 + 3], k4w)
+    xs, ws = o_axpy(x, h, sx), axpy3(w, h, sw)
+    k5x, k5w = o_rate(xs, ws), accel(t + C[4] * h, xs, ws, inertia, params)
+    # stage 6
+    sx, sw = o_axpy(zx, A[5 * 12 + 0], k1x), axpy3(zw, A[5 * 12 + 0], k1w)
+    sx, sw = o_axpy(sx, A[5 * 12 + 3], k4x), axpy3(sw, A[5 * 12 + 3], k4w)
+    sx, sw = o_axpy(sx, A[5 * 12 + 4], k5x), axpy3(sw, A[5 * 12 + 4], k5w)
+    xs, ws = o_axpy(x, h, sx), axpy3(w, h, sw)
+    k6x, k6w = o_rate(xs, ws), accel(t + C[5] * h, xs, ws, inertia, params)
+    # stage 7
+    sx, sw = o_axpy(zx, A[6 * 12 + 0], k1x), axpy3(zw, A[6 * 12 + 0], k1w)
+    sx, sw = o_axpy(sx, A[6 * 12 + 3], k4x), axpy3(sw, A[6 * 12 + 3], k4w)
+    sx, sw = o_axpy(sx, A[6 * 12 + 4], k5x), axpy3(sw, A[6 * 12 + 4], k5w)
+    sx, sw = o_axpy(sx, A[6 * 12 + 5], k6x), axpy3(sw, A[6 * 12 + 5], k6w)
+    xs, ws = o_axpy(x, h, sx), axpy3(w, h, sw)
+    k7x, k7w = o_rate(xs, ws), accel(t + C[6] * h, xs, ws, inertia, params)
+    # stage 8
+    sx, sw = o_axpy(zx, A[7 * 12 + 0], k1x), axpy3(zw, A[7 * 12 + 0], k1w)
+    sx, sw = o_axpy(sx, A[7 * 12 + 3], k4x), axpy3(sw, A[7 * 12 + 3], k4w)
+    sx, sw = o_axpy(sx, A[7 * 12 + 4], k5x), axpy3(sw, A[7 * 12 + 4], k5w)
+    sx, sw = o_axpy(sx, A[7 * 12 + 5], k6x), axpy3(sw, A[7 * 12 + 5], k6w)
+    sx, sw = o_axpy(sx, A[7 * 12 + 6], k7x), axpy3(sw, A[7 * 12 + 6], k7w)
+    xs, ws = o_axpy(x, h, sx), axpy3(w, h, sw)
+    k8x, k8w = o_rate(xs, ws), accel(t + C[7] * h, xs, ws, inertia, params)
+    # stage 9
+    sx, sw = o_axpy(zx, A[8 * 12 + 0], k1x), axpy3(zw, A[8 * 12 + 0], k1w)
+    sx, sw = o_axpy(sx, A[8 * 12 + 3], k4x), axpy3(sw, A[8 * 12 + 3], k4w)
+    sx, sw = o_axpy(sx, A[8 * 12 + 4], k5x), axpy3(sw, A[8 * 12 + 4], k5w)
+    sx, sw = o_axpy(sx, A[8 * 12 + 5], k6x), axpy3(sw, A[8 * 12 + 5], k6w)
+    sx, sw = o_axpy(sx, A[8 * 12 + 6], k7x), axpy3(sw, A[8 * 12 + 6], k7w)
+    sx, sw = o_axpy(sx, A[8 * 12 + 7], k8x), axpy3(sw, A[8 * 12 + 7], k8w)
+    xs, ws = o_axpy(x, h, sx), axpy3(w, h, sw)
+    k9x, k9w = o_rate(xs, ws), accel(t + C[8] * h, xs, ws, inertia, params)
+    # stage 10
+    sx, sw = o_axpy(zx, A[9 * 12 + 0], k1x), axpy3(zw, A[9 * 12 + 0], k1w)
+    sx, sw = o_axpy(sx, A[9 * 12 + 3], k4x), axpy3(sw, A[9 * 12 + 3], k4w)
+    sx, sw = o_axpy(sx, A[9 * 12 + 4], k5x), axpy3(sw, A[9 * 12 + 4], k5w)
+    sx, sw = o_axpy(sx, A[9 * 12 + 5], k6x), axpy3(sw, A[9 * 12 + 5], k6w)
+    sx, sw = o_axpy(sx, A[9 * 12 + 6], k7x), axpy3(sw, A[9 * 12 + 6], k7w)
+    sx, sw = o_axpy(sx, A[9 * 12 + 7], k8x), axpy3(sw, A[9 * 12 + 7], k8w)
+    sx, sw = o_axpy(sx, A[9 * 12 + 8], k9x), axpy3(sw, A[9 * 12 + 8], k9w)
+    xs, ws = o_axpy(x, h, sx), axpy3(w, h, sw)
+    k10x, k10w = o_rate(xs, ws), accel(t + C[9] * h, xs, ws, inertia, params)
+    # stage 11
+    sx, sw = o_axpy(zx, A[10 * 12 + 0], k1x), axpy3(zw, A[10 * 12 + 0], k1w)
+    sx, sw = o_axpy(sx, A[10 * 12 + 3], k4x), axpy3(sw, A[10 * 12 + 3], k4w)
+    sx, sw = o_axpy(sx, A[10 * 12 + 4], k5x), axpy3(sw, A[10 * 12 + 4], k5w)
+    sx, sw = o_axpy(sx, A[10 * 12 + 5], k6x), axpy3(sw, A[10 * 12 + 5], k6w)
+    sx, sw = o_axpy(sx, A[10 * 12 + 6], k7x), axpy3(sw, A[10 * 12 + 6], k7w)
+    sx, sw = o_axpy(sx, A[10 * 12 + 7], k8x), axpy3(sw, A[10 * 12 + 7], k8w)
+    sx, sw = o_axpy(sx, A[10 * 12 + 8], k9x), axpy3(sw, A[10 * 12 + 8], k9w)
+    sx, sw = o_axpy(sx, A[10 * 12 + 9], k10x), axpy3(sw, A[10 * 12 + 9], k10w)
+    xs, ws = o_axpy(x, h, sx), axpy3(w, h, sw)
+    k11x, k11w = o_rate(xs, ws), accel(t + C[10] * h, xs, ws, inertia, params)
+    # stage 12
+    sx, sw = o_axpy(zx, A[11 * 12 + 0], k1x), axpy3(zw, A[11 * 12 + 0], k1w)
+    sx, sw = o_axpy(sx, A[11 * 12 + 3], k4x), axpy3(sw, A[11 * 12 + 3], k4w)
+    sx, sw = o_axpy(sx, A[11 * 12 + 4], k5x), axpy3(sw, A[11 * 12 + 4], k5w)
+    sx, sw = o_axpy(sx, A[11 * 12 + 5], k6x), axpy3(sw, A[11 * 12 + 5], k6w)
+    sx, sw = o_axpy(sx, A[11 * 12 + 6], k7x), axpy3(sw, A[11 * 12 + 6], k7w)
+    sx, sw = o_axpy(sx, A[11 * 12 + 7], k8x), axpy3(sw, A[11 * 12 + 7], k8w)
+    sx, sw = o_axpy(sx, A[11 * 12 + 8], k9x), axpy3(sw, A[11 * 12 + 8], k9w)
+    sx, sw = o_axpy(sx, A[11 * 12 + 9], k10x), axpy3(sw, A[11 * 12 + 9], k10w)
+    sx, sw = o_axpy(sx, A[11 * 12 + 10], k11x), axpy3(sw, A[11 * 12 + 10], k11w)
+    xs, ws = o_axpy(x, h, sx), axpy3(w, h, sw)
+    k12x, k12w = o_rate(xs, ws), accel(t + C[11] * h, xs, ws, inertia, params)
+    # the update, its sum formed before it is added to the state
+    sx, sw = o_axpy(zx, B[0], k1x), axpy3(zw, B[0], k1w)
+    sx, sw = o_axpy(sx, B[5], k6x), axpy3(sw, B[5], k6w)
+    sx, sw = o_axpy(sx, B[6], k7x), axpy3(sw, B[6], k7w)
+    sx, sw = o_axpy(sx, B[7], k8x), axpy3(sw, B[7], k8w)
+    sx, sw = o_axpy(sx, B[8], k9x), axpy3(sw, B[8], k9w)
+    sx, sw = o_axpy(sx, B[9], k10x), axpy3(sw, B[9], k10w)
+    sx, sw = o_axpy(sx, B[10], k11x), axpy3(sw, B[10], k11w)
+    sx, sw = o_axpy(sx, B[11], k12x), axpy3(sw, B[11], k12w)
+    return o_axpy(x, h, sx), axpy3(w, h, sw)
 
 
 DP8 = register(
