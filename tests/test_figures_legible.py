@@ -135,3 +135,100 @@ def test_a_user_torque_is_not_run_again_to_draw_its_figure(tmp_path, monkeypatch
     (ax,) = draw(scene, tr).axes  # outside the opt-in: nothing is imported or run
     assert ax.texts[0].get_text().startswith("energy balance not drawn")
     assert name not in sys.modules
+
+
+RUN = """
+[scene]
+name = "wobble"
+description = "a short wobbling disk"
+
+[body]
+shape = "disk"
+mass = 2.0
+radius = 0.075
+
+[initial.angular_velocity]
+body = [0.2, 0.0, 15.0]
+units = "rad/s"
+
+[time]
+duration = 0.2
+output_step = 0.01
+
+[integrator]
+step = 0.001
+paths = ["rotor", "quaternion"]
+
+[output]
+plots = ["omega", "error"]
+figure_format = "pdf"
+"""
+
+
+def test_a_scene_figure_in_the_format_the_scene_or_the_command_asks(tmp_path, capsys):
+    from ga_rotors.cli import main
+    from ga_rotors.scene.figures import DIGEST_PREFIX, data_digest
+
+    path = tmp_path / "wobble.toml"
+    path.write_text(RUN)
+    out = tmp_path / "out"
+    assert main(["run", str(path), "--out", str(out), "--no-progress"]) == 0
+    pdf = (out / "wobble.pdf").read_bytes()
+    scene = load_scene(path)
+    digest = DIGEST_PREFIX + data_digest(scene, run_scene(scene))
+    assert pdf.startswith(b"%PDF-") and digest.encode() in pdf
+    assert not (out / "wobble.png").exists()
+    # --format overrides the scene's key, and the resolved scene written back says so.
+    assert main(["run", str(path), "--out", str(out), "--no-progress", "--format", "svg"]) == 0
+    svg = (out / "wobble.svg").read_text(encoding="utf-8")
+    scene = scene.replace({"output.figure_format": "svg"})  # part of what the digest covers
+    digest = DIGEST_PREFIX + data_digest(scene, run_scene(scene))
+    assert "<svg" in svg and f"<dc:description>{digest}</dc:description>" in svg
+    assert 'figure_format = "svg"' in (out / "wobble.scene.toml").read_text(encoding="utf-8")
+    capsys.readouterr()
+
+
+def test_a_bad_figure_format_is_one_line_naming_the_file_and_key(tmp_path, capsys):
+    from ga_rotors.cli import main
+
+    path = tmp_path / "wobble.toml"
+    path.write_text(RUN.replace('figure_format = "pdf"', 'figure_format = "jpg"'))
+    assert main(["run", str(path), "--out", str(tmp_path / "out")]) == 2
+    err = capsys.readouterr().err
+    assert err == (
+        f"ga-rotors: error: {path}: output.figure_format: unknown value 'jpg' "
+        "(did you mean 'png'?); expected one of png, svg, pdf\n"
+    )
+    assert not (tmp_path / "out").exists()
+    with pytest.raises(SystemExit) as stop:  # argparse: usage and one error line
+        main(["run", str(path), "--format", "jpg"])
+    assert stop.value.code == 2
+    assert "argument --format: invalid choice: 'jpg'" in capsys.readouterr().err
+
+
+def test_paper_and_scene_figures_offer_the_same_formats():
+    from ga_rotors.paper.reproduce import FORMATS
+
+    assert FORMATS == tuple(paper_figures.FIGURE_FORMATS)
+
+
+def test_near_zero_rates_under_another_line_are_dashed_and_said_so():
+    # The spinning disk: ω1 and ω2 stay within a few hundredths of a rad/s of 0 while
+    # ω3 is 15.7 rad/s, so at the panel's scale ω2 is drawn on ω1.
+    scene = load_scene("spinning_disk").replace({"time.duration": 1.0})
+    fig = draw(scene, run_scene(scene))
+    omega = fig.axes[2]
+    labels = [line.get_label() for line in omega.get_lines()]
+    assert labels[0] == "ω1" and labels[2] == "ω3"
+    assert labels[1].startswith("ω2 (dashed): on the\nω1 line, ≤ ")
+    assert omega.get_lines()[1].get_linestyle() == "--"
+
+
+def test_a_long_description_is_a_title_of_two_lines_cut_at_a_word():
+    scene = load_scene("heavy_top").replace({"time.duration": 0.1})
+    title = draw(scene, run_scene(scene))._suptitle.get_text()
+    lines = title.split("\n")
+    assert len(lines) == 2 and lines[0].startswith("heavy_top: A heavy symmetric top")
+    assert all(len(line) <= 110 for line in lines) and lines[1].endswith("…")
+    words = {w.strip(".,;:") for w in scene.description.split()}
+    assert lines[1][:-1].split()[-1].strip(".,;:") in words  # the last word shown is whole

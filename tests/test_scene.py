@@ -48,7 +48,13 @@ def test_minimal_scene_resolves_every_default():
     assert d["time"] == {"start": 0.0, "duration": 1.0, "output_step": 0.01}
     assert d["integrator"] == {"method": "rk4", "step": 0.01, "paths": ["rotor"]}
     assert d["effects"] == []
-    assert d["output"] == {"quantities": [], "plots": [], "data": [], "summary": True}
+    assert d["output"] == {
+        "quantities": [],
+        "plots": [],
+        "figure_format": "png",
+        "data": [],
+        "summary": True,
+    }
     assert (s.steps, s.sample_every, s.kind) == (100, 1, "free")
 
 

@@ -92,12 +92,12 @@ def test_a_failed_run_leaves_no_half_written_files(short, tmp_path, monkeypatch,
         written.append(path)
         return real_csv(self, path)
 
-    def broken_png(scene, trajectory):
+    def broken_figure(scene, trajectory, fmt=None):
         assert written and Path(written[0]).exists()  # half the files exist (staged)
         raise RuntimeError("injected failure while drawing")
 
     monkeypatch.setattr(scene_output.Trajectory, "to_csv", spy_csv)
-    monkeypatch.setattr(scene_output, "figure_png", broken_png)
+    monkeypatch.setattr(scene_output, "render", broken_figure)
     with pytest.raises(RuntimeError, match="injected failure"):
         main(["run", str(short), "--out", str(out), "--no-progress"])
     if existing:

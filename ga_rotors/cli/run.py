@@ -18,6 +18,8 @@ import sys
 import time
 import warnings
 
+from ..paper.reproduce import FORMATS  # as ga-rotors paper --format
+
 __all__ = ["ProgressBar", "add_arguments", "run"]
 
 DEFAULT_OUT = "results"
@@ -55,6 +57,13 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         type=float,
         default=None,
         help="refuse a scene whose samples need more memory (default 2 GiB)",
+    )
+    parser.add_argument(
+        "--format",
+        choices=FORMATS,
+        default=None,
+        help="figure format: PNG at 150 dpi, or vector SVG or PDF for print (default: the "
+        "scene's output.figure_format, png)",
     )
     bar = parser.add_mutually_exclusive_group()
     bar.add_argument(
@@ -169,6 +178,8 @@ def run(args: argparse.Namespace) -> int:
 
     start = time.perf_counter()
     scene = load_scene(args.scene)
+    if args.format is not None:
+        scene = scene.replace({"output.figure_format": args.format})
     budget = _budget(args)
     if not any(e["type"] == "user" for e in scene.data["effects"]):
         # A scene's first run compiles, and says so where the progress bar shows; user

@@ -24,14 +24,24 @@ import numpy as np
 __all__ = [
     "DIGEST_PREFIX",
     "FIGURES",
+    "FIGURE_FORMATS",
     "FigureData",
     "draw_all",
+    "encode_figure",
     "figure_data",
     "palette_png",
     "read_digest",
 ]
 
 DIGEST_PREFIX = "ga_rotors paper data "
+
+#: Figure file formats (``ga-rotors paper --format``, ``ga-rotors run --format``, a
+#: scene's ``output.figure_format``) -> what each is for.
+FIGURE_FORMATS = {
+    "png": "150-dpi palette PNG (the default): small, sharp on screen",
+    "svg": "vector SVG: any zoom, for the web and for editing",
+    "pdf": "vector PDF: for print and LaTeX",
+}
 
 #: file stem -> title; the order is the paper's.
 FIGURES = {
@@ -199,10 +209,6 @@ class _Canvas:
                 ax.set_title(f"({letter})", loc="left", fontsize=8, fontweight="bold")
         self.fig.suptitle(title, fontsize=10)
 
-    def png(self, digest: str) -> bytes:
-        """The figure as a palette PNG with the data digest (:func:`palette_png`)."""
-        return palette_png(self.fig, DIGEST_PREFIX + digest)
-
 
 def _readable(ylabel: str, curves, log: bool) -> tuple[float, float, str]:
     """(shift, scale, label) so that ticks need no offset text such as ``1e−8+1.572e1``.
@@ -256,6 +262,33 @@ def palette_png(fig, description: str, dpi: int = _DPI) -> bytes:
     info.add_text("Description", description)
     buf = io.BytesIO()
     image.save(buf, format="png", pnginfo=info, dpi=(dpi, dpi))
+    return buf.getvalue()
+
+
+def encode_figure(fig, fmt: str, description: str, dpi: int = _DPI) -> bytes:
+    """A matplotlib Figure as the bytes of a ``fmt`` file (a key of :data:`FIGURE_FORMATS`),
+    with ``description`` in its metadata: the PNG's ``Description`` (:func:`palette_png`),
+    the SVG's ``<dc:description>``, the PDF's ``Subject``.
+
+    Examples
+    --------
+    >>> from matplotlib.figure import Figure
+    >>> fig = Figure(figsize=(2, 1))
+    >>> _ = fig.add_subplot().plot([0, 1], [0, 1])
+    >>> encode_figure(fig, "pdf", "made by a doctest")[:5]
+    b'%PDF-'
+    >>> b"made by a doctest" in encode_figure(fig, "svg", "made by a doctest")
+    True
+    """
+    if fmt not in FIGURE_FORMATS:
+        from ..errors import InputError
+
+        raise InputError(f"expected one of {', '.join(FIGURE_FORMATS)}, got {fmt!r}", key="format")
+    if fmt == "png":
+        return palette_png(fig, description, dpi=dpi)
+    buf = io.BytesIO()
+    key = "Description" if fmt == "svg" else "Subject"
+    fig.savefig(buf, format=fmt, metadata={key: description})
     return buf.getvalue()
 
 
@@ -338,13 +371,7 @@ def draw_all(
             if pair_labels:
                 canvas.axes[0, 0].legend(canvas.lines[0], pair_labels, fontsize=7,
                                          loc="upper right")  # fmt: skip
-        if fmt == "png":
-            payload = canvas.png(digest)
-        else:
-            buf = io.BytesIO()
-            key = "Description" if fmt == "svg" else "Subject"
-            canvas.fig.savefig(buf, format=fmt, metadata={key: DIGEST_PREFIX + digest})
-            payload = buf.getvalue()
+        payload = encode_figure(canvas.fig, fmt, DIGEST_PREFIX + digest)
         written.append(atomic_write(out_dir / f"{stem}.{fmt}", lambda fh, b=payload: fh.write(b)))
     return written
 

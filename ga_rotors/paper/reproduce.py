@@ -28,7 +28,7 @@ _SHARES = (
 
 
 #: Figure formats ``reproduce`` writes: PNG (default), or vector SVG/PDF.
-FORMATS = ("png", "svg", "pdf")
+FORMATS = ("png", "svg", "pdf")  # the keys of ga_rotors.paper.figures.FIGURE_FORMATS
 
 
 class _Drawer:

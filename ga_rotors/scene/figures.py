@@ -2,14 +2,16 @@
 
 :func:`draw` builds a matplotlib Figure (panels in :data:`PANELS`: ω, the ZYZ angles,
 space-frame momentum, invariant drift, error against the exact solution);
-:func:`figure_png` renders it as a palette PNG whose metadata carries
-:func:`data_digest`, a digest of what the figure shows that is robust to round-off, so a
-test can tell whether a committed figure still matches the code.
+:func:`render` writes it in the scene's ``output.figure_format`` (a 150-dpi palette PNG,
+or vector SVG or PDF) with :func:`data_digest` in its metadata, a digest of what the
+figure shows that is robust to round-off, so a test can tell whether a committed figure
+still matches the code (:func:`figure_png`: the PNG).
 """
 
 from __future__ import annotations
 
 import hashlib
+import textwrap
 import warnings
 
 import numpy as np
@@ -17,7 +19,15 @@ import numpy as np
 from ..trajectory import Trajectory
 from .model import Scene
 
-__all__ = ["DIGEST_PREFIX", "PANELS", "data_digest", "draw", "energy_balance", "figure_png"]
+__all__ = [
+    "DIGEST_PREFIX",
+    "PANELS",
+    "data_digest",
+    "draw",
+    "energy_balance",
+    "figure_png",
+    "render",
+]
 
 DIGEST_PREFIX = "ga_rotors scene data "
 
@@ -91,12 +101,35 @@ class _Context:
 
 #: Legends to the right of their panel.
 _BESIDE = dict(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0), frameon=False)
+#: A curve closer than this fraction of its panel's height to one drawn before it is
+#: hidden under it at the figure's resolution.
+_HIDDEN = 0.01
+
+
+def _state_overlaps(ax, unit: str) -> None:
+    """Draw dashed each curve that lies on an earlier one of a linear panel, and say so
+    in its legend label ("ω2 (dashed): on the ω1 line, ≤ 0.05 rad/s apart")."""
+    lines = ax.get_lines()
+    ys = [np.asarray(line.get_ydata(), dtype=np.float64) for line in lines]
+    span = max((float(np.ptp(np.concatenate(ys))) if ys else 0.0), 1e-300)
+    for k in range(1, len(lines)):
+        for j in range(k):
+            if ys[j].shape != ys[k].shape:
+                continue
+            gap = float(np.abs(ys[k] - ys[j]).max())
+            if gap <= _HIDDEN * span:
+                lines[k].set_linestyle((0, (4, 3)))
+                lines[k].set_linewidth(1.2)
+                label = f"{lines[k].get_label()} (dashed): on the\n{lines[j].get_label()} line"
+                lines[k].set_label(f"{label}, ≤ {gap:.2g} {unit} apart".rstrip())
+                break
 
 
 def _omega(axes, ctx: _Context) -> None:
     (ax,) = axes
     for k in range(3):
         ax.plot(ctx.t, ctx.tr.w[:, k], lw=0.8, label=f"ω{k + 1}")
+    _state_overlaps(ax, "rad/s")
     ax.set_ylabel("body ω (rad/s)", fontsize=8)
     ax.legend(**_BESIDE)
 
@@ -116,6 +149,7 @@ def _momentum(axes, ctx: _Context) -> None:
     L = Q.rotate(ctx.get("q"), ctx.scene.body.momentum(ctx.tr.w))
     for k, name in enumerate("xyz"):
         ax.plot(ctx.t, L[:, k], lw=0.8, label=f"L{name}")
+    _state_overlaps(ax, "kg·m²/s")
     ax.set_ylabel("space L (kg·m²/s)", fontsize=8)
     ax.legend(**_BESIDE)
 
@@ -128,15 +162,19 @@ def _invariants(axes, ctx: _Context) -> None:
     if rows:
         floor = 1e-17  # exact zeros have no place on a log axis
         for _, label, deviation, _ in rows:
+            if not deviation.any():  # conserved exactly: a line at the floor says so
+                label = f"{label}: exactly 0\n(drawn at {floor:.0e})"
             ax.semilogy(ctx.t, np.maximum(deviation, floor), lw=0.8, label=label)
         ax.set_ylabel("relative drift", fontsize=8)
         ax.legend(**_BESIDE)
     elif ctx.scene.exact == "damped_symmetric_top":
         exact = ctx.get("exact")
         L = np.linalg.norm(ctx.scene.body.momentum(ctx.tr.w), axis=-1)
+        L_exact = exact.model.momentum_norm(ctx.t - ctx.t[0])
+        gap = float(np.abs(L - L_exact).max() / np.abs(L_exact).max())
+        label = f"|L| exact (dashed): on the\nsimulated line, ≤ {gap:.0e}\nof |L₀| apart"
         ax.semilogy(ctx.t, L, lw=0.8, label="|L| simulated")
-        ax.semilogy(ctx.t, exact.model.momentum_norm(ctx.t - ctx.t[0]), "--", lw=0.8,
-                    label="|L| exact")  # fmt: skip
+        ax.semilogy(ctx.t, L_exact, ls=(0, (4, 3)), lw=1.2, label=label)
         ax.set_ylabel("|L| (kg·m²/s)", fontsize=8)
         ax.legend(**_BESIDE)
     elif any(e["type"] == "user" for e in ctx.scene.data["effects"]):
@@ -239,9 +277,9 @@ def draw(scene: Scene, trajectory: Trajectory):
 
     plots = scene.data["output"]["plots"]
     rows = sum(PANELS[p][0] for p in plots)
-    height = _ROW * rows + 0.8
+    height = _ROW * rows + 0.95
     fig = Figure(figsize=(_WIDTH, height))
-    fig.subplots_adjust(left=0.1, right=0.76, top=1 - 0.45 / height, bottom=0.45 / height,
+    fig.subplots_adjust(left=0.1, right=0.76, top=1 - 0.6 / height, bottom=0.45 / height,
                         hspace=0.12)  # fmt: skip
     axes = fig.subplots(rows, 1, sharex=True, squeeze=False)[:, 0]
     ctx = _Context(scene, trajectory)
@@ -251,14 +289,38 @@ def draw(scene: Scene, trajectory: Trajectory):
         func(axes[row : row + n], ctx)
         row += n
     for letter, ax in zip("abcdefghij", axes, strict=False):
-        ax.tick_params(labelsize=7)
+        ax.tick_params(which="both", labelsize=7)  # a log axis labels minor ticks too
         if ax.get_yscale() == "linear":  # no "1e−8+1.572e1" offset text
             ax.ticklabel_format(axis="y", useOffset=False)
         ax.set_title(f"({letter})", loc="left", fontsize=8, fontweight="bold", pad=2)
     axes[-1].set_xlabel("t (s)", fontsize=8)
     title = scene.name + (f": {scene.description}" if scene.description else "")
-    fig.suptitle(title if len(title) <= 90 else title[:89] + "…", fontsize=9)
+    lines = textwrap.wrap(title, 110)  # two lines at most, cut at a word
+    if len(lines) > 2:
+        lines[1] = textwrap.shorten(lines[1] + " " + lines[2], 109, placeholder="…")
+        lines[1] = lines[1].replace(".…", "…")
+    fig.suptitle("\n".join(lines[:2]), fontsize=9)
     return fig
+
+
+def render(scene: Scene, trajectory: Trajectory, fmt: str | None = None) -> bytes:
+    """The scene's figure as the bytes of a ``fmt`` file (default: the scene's
+    ``output.figure_format``), carrying :func:`data_digest` in its metadata.
+
+    Examples
+    --------
+    >>> from ga_rotors.scene import load_scene
+    >>> from ga_rotors.scene import run_scene
+    >>> scene = load_scene("damped_top").replace({"time.duration": 0.1,
+    ...                                           "output.figure_format": "pdf"})
+    >>> render(scene, run_scene(scene))[:5]
+    b'%PDF-'
+    """
+    from ..paper.figures import encode_figure
+
+    fmt = scene.data["output"]["figure_format"] if fmt is None else fmt
+    description = DIGEST_PREFIX + data_digest(scene, trajectory)
+    return encode_figure(draw(scene, trajectory), fmt, description, dpi=_DPI)
 
 
 def figure_png(scene: Scene, trajectory: Trajectory) -> bytes:
@@ -272,7 +334,4 @@ def figure_png(scene: Scene, trajectory: Trajectory) -> bytes:
     >>> figure_png(scene, run_scene(scene))[1:4]
     b'PNG'
     """
-    from ..paper.figures import palette_png
-
-    return palette_png(draw(scene, trajectory), DIGEST_PREFIX + data_digest(scene, trajectory),
-                       dpi=_DPI)  # fmt: skip
+    return render(scene, trajectory, "png")

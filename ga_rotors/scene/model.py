@@ -11,7 +11,7 @@ every key with its type, default and units, is in ``docs/scenes.md``; in short::
     [time]                      duration, start, output_step (s)
     [integrator]                method, step (s), paths
     [[effects]]                 type = gravity | damping | body_torque | space_torque | user
-    [output]                    quantities, plots, data, summary
+    [output]                    quantities, plots, figure_format, data, summary
 
 Lengths, masses, times, torques and inertia are SI (m, kg, s, N·m, kg·m²). Angles and
 angular rates are ambiguous, so they carry explicit ``units``; a missing ``units`` is an

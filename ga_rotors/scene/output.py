@@ -3,8 +3,8 @@
 :func:`write_outputs` writes, into one directory, exactly what ``output`` declares:
 
 * ``<name>.csv`` / ``<name>.npz`` (or any registered format) for ``output.data``;
-* ``<name>.png``, one panel per entry of ``output.plots`` (drawn with matplotlib, a
-  palette PNG carrying a digest of the data it shows);
+* ``<name>.png`` (or ``.svg``, ``.pdf``: ``output.figure_format``), one panel per entry
+  of ``output.plots`` (drawn with matplotlib, carrying a digest of the data it shows);
 * ``<name>.summary.txt`` when ``output.summary`` is on, and ``<name>.scene.toml``, the
   resolved scene, whenever anything is written (what made these files).
 
@@ -18,7 +18,7 @@ changes nothing it had not finished.
 from __future__ import annotations
 
 from ..trajectory import Trajectory
-from .figures import figure_png
+from .figures import render
 from .formats import FORMATS
 from .model import Scene
 
@@ -33,7 +33,8 @@ def _plan(scene: Scene, tr: Trajectory, summary: str | None) -> list[tuple[str, 
         write = FORMATS[fmt].write
         plan.append((f"{name}{FORMATS[fmt].suffix}", lambda p, write=write: write(tr, p)))
     if out["plots"]:
-        plan.append((f"{name}.png", lambda p: p.write_bytes(figure_png(scene, tr))))
+        figure = f"{name}.{out['figure_format']}"
+        plan.append((figure, lambda p: p.write_bytes(render(scene, tr))))
     if not plan:
         return []
     if summary is not None:

@@ -15,6 +15,7 @@ from collections.abc import Mapping
 
 from .. import effects as _effects
 from .. import paths as _paths
+from ..paper.figures import FIGURE_FORMATS
 from ..shapes import SHAPES
 from .formats import FORMATS
 from .reader import Reader, join
@@ -321,10 +322,13 @@ def _resolve_effects(reader: Reader, value) -> list[dict]:
 
 def _resolve_output(reader: Reader, value) -> dict:
     t = reader.table(value if value is not None else {}, "output",
-                     ("quantities", "plots", "data", "summary"))  # fmt: skip
+                     ("quantities", "plots", "figure_format", "data", "summary"))  # fmt: skip
     return {
         "quantities": reader.names(t.get("quantities", []), "output.quantities", QUANTITIES),
         "plots": reader.names(t.get("plots", []), "output.plots", PLOTS),
+        "figure_format": reader.string(
+            t.get("figure_format", "png"), "output.figure_format", FIGURE_FORMATS
+        ),
         "data": reader.names(t.get("data", []), "output.data", FORMATS),
         "summary": reader.boolean(t.get("summary", True), "output.summary"),
     }
