@@ -60,6 +60,38 @@ def test_api_reference_is_generated_from_the_docstrings(site):
     assert "cos(α/2) − I u sin(α/2)" in html  # the module docstring, rendered
 
 
+def test_every_public_module_is_in_the_api_reference():
+    """Every module a user can import by a public name (no ``_`` in its path) has its
+    section in docs/api/, except the command-line modules (``--help`` and the guides)."""
+    import pkgutil
+    import re
+
+    import ga_rotors
+
+    shown = set()
+    for page in (ROOT / "docs" / "api").glob("*.md"):
+        shown |= set(re.findall(r"^::: ([\w.]+)", page.read_text(encoding="utf-8"), re.M))
+    public = {"ga_rotors"}
+    for info in pkgutil.walk_packages(ga_rotors.__path__, "ga_rotors."):
+        parts = info.name.split(".")
+        if not any(p.startswith("_") for p in parts) and parts[1] != "cli":
+            public.add(info.name)
+    assert public - shown == set(), "add to a page of docs/api/"
+    assert shown - public == set(), "docs/api/ names a module that is gone"
+
+
+def test_learning_path_solutions_are_folded_and_checked(site):
+    # A student reads the exercise first; the worked solution (code the suite runs, with
+    # its output) opens on request.
+    pages = sorted(p for p in (ROOT / "docs" / "learn").glob("*.md") if p.name != "index.md")
+    assert len(pages) == 9
+    for page in pages:
+        html = (site / "learn" / page.stem / "index.html").read_text(encoding="utf-8")
+        solution = html.split("<summary>Worked solution", 1)[1].split("</details>", 1)[0]
+        assert '<div class="highlight"><pre>' in solution, page.name  # the code, shown
+        assert html.count("<details") == 1, page.name
+
+
 def test_examples_are_shown_with_their_output(site):
     html = (site / "view" / "index.html").read_text(encoding="utf-8")
     assert "View('a wobbling disk', paths=rotor, quaternion, 2001 samples)" in html

@@ -82,8 +82,11 @@ def build(name: str | None, body, q0, w0, t0: float, gravity=None, damping=None)
     damping : float, optional
         The damped top's isotropic coefficient c.
 
-    Raises InputError (from the reference) when the state is outside its domain, e.g. a
-    heavy top whose symmetry axis starts vertical.
+    Raises
+    ------
+    InputError
+        From the reference, when the state is outside its domain, e.g. a heavy top whose
+        symmetry axis starts vertical.
 
     Examples
     --------

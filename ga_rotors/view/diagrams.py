@@ -199,12 +199,14 @@ def double_cover():
     ax.plot(turns, scalar, lw=2, label="rotor: scalar part cos(α/2)")
     ax.plot(turns, e12, lw=2, label="rotor: e12 part −sin(α/2)")
     ax.plot(turns, cos_entry, "k:", lw=2, label="rotation matrix: entry cos α")
-    for x, text in ((1, "R = −1\nsame rotation as 1"), (2, "R = +1 again")):
-        ax.axvline(x, color="#aaa", lw=0.8)
-        ax.text(x + 0.03, -0.95, text, fontsize=9)
+    ax.axvline(1, color="#aaa", lw=0.8)
+    # The notes sit above the curves (all within ±1) and the legend below the axes.
+    ax.text(1, 1.14, "one turn: R = −1 (the same rotation as +1)", ha="center", fontsize=9)
+    ax.text(1.97, 1.14, "two turns: R = +1", ha="right", fontsize=9)
     ax.set_xlabel("turns α / 2π")
     ax.set_xlim(0, 2)
-    ax.legend(loc="upper right", fontsize=8, frameon=False)
+    ax.set_ylim(-1.1, 1.35)
+    ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.2), ncol=3, fontsize=8, frameon=False)
     return fig
 
 
@@ -356,16 +358,17 @@ def draw_all(out_dir, fmt: str = "png", dpi: int = 150, names=None) -> list[Path
 
     from ..errors import InputError
     from ..files import atomic_write
+    from ..paper.figures import FIGURE_FORMATS, encode_figure
 
-    if fmt not in ("png", "svg", "pdf"):
-        raise InputError(f"fmt: expected png, svg or pdf, got {fmt!r}")
+    if fmt not in FIGURE_FORMATS:
+        raise InputError(f"fmt: expected {', '.join(FIGURE_FORMATS)}, got {fmt!r}")
     out = Path(out_dir)
     written = []
     for name in names or PICTURES:
         fig = PICTURES[name]()
         fig.tight_layout()
-        save = lambda fh, f=fig: f.savefig(fh, format=fmt, dpi=dpi)  # noqa: E731
-        written.append(atomic_write(out / f"{name}.{fmt}", save))
+        data = encode_figure(fig, fmt, f"ga_rotors learning path: {name}", dpi=dpi)
+        written.append(atomic_write(out / f"{name}.{fmt}", lambda fh, b=data: fh.write(b)))
         plt.close(fig)
     return written
 
