@@ -3,21 +3,24 @@
 Usage (from the repository root)::
 
     python benchmarks/bench_ensemble.py [--bodies 100000] [--steps 200] [--repeats 5]
-                                        [--sweep-samples 1000000] [--sweep-steps 100]
+        [--sweep-samples 1000000] [--sweep-steps 100 1000] [--sweep-repeats 3]
 
 1. Kernel throughput in million body-steps per second, RK4, rows interleaved in each
    repeat (median, min–max): ``rk4_free`` (torque-free, one inertia shared by every body:
-   the old ensemble), ``run_samples`` on a torque-free scene with per-sample inertia and
-   initial rate, and ``run_samples`` on the heavy top (gravity, per-sample torque
-   parameters). Threads: numba's default (every core).
-2. Sweep overhead: one Monte-Carlo sweep of ``--sweep-samples`` samples run end to end
-   with ``run_sweep`` on a LocalCluster (one worker process per core) into a zarr store,
-   against the raw batched kernel on the same samples (``run_samples`` on every core, the
-   draws made beforehand). Cluster start-up and imports (xarray, zarr, Dask: a fixed cost
-   per process) are reported apart; the store's creation and every chunk's integration,
-   reduction and write are in the sweep's time. The same sweep run in this process
-   (``client="sync"``) against the serial kernel separates the sweep's own work from
-   Dask's scheduling.
+   the old ensemble, what ``ga-rotors bench ensemble`` times), ``run_samples`` on a
+   torque-free scene with per-sample inertia and initial rate, and ``run_samples`` on the
+   heavy top (gravity, per-sample torque parameters). Threads: numba's default (every core).
+2. Sweep overhead, for each ``--sweep-steps``: one Monte-Carlo sweep of
+   ``--sweep-samples`` samples run end to end with ``run_sweep`` on a LocalCluster (one
+   worker process per core, started once and reported apart with the imports on its
+   workers) into a zarr store, against the raw batched kernel on the same samples
+   (``run_samples`` on every core, the draws made beforehand); and the same sweep in this
+   process (``client="sync"``) against the serial kernel, which separates the sweep's own
+   work from Dask's. The four rows are interleaved in each repeat; the overhead is taken
+   per repeat (each sweep against the kernel run just before it), median and range. The
+   sweep's time holds the store's creation, every chunk's draws, inputs, integration,
+   reduction and write, and waiting for the last write; its first repeat also each
+   worker's first use (reading the sweep, loading the compiled loop).
 """
 
 from __future__ import annotations
@@ -98,14 +101,9 @@ def _warm() -> None:
     import ga_rotors.sweep.run  # noqa: F401
 
 
-def sweep_overhead(samples: int, steps: int) -> None:
-    import distributed
-
-    from ga_rotors.sweep import load_sweep, run_sweep
-
-    _warm()
+def _sweep_text(samples: int, steps: int) -> str:
     h = 0.01
-    text = f"""
+    return f"""
 [sweep]
 scene = "spinning_disk"
 samples = {samples}
@@ -128,58 +126,90 @@ normal = [900.0, 9.0]
 key = "initial.angular_velocity.body[2]"
 normal = [0.5236, 0.005]
 """
+
+
+def _timed(f) -> float:
+    t0 = time.perf_counter()
+    f()
+    return time.perf_counter() - t0
+
+
+def sweep_overhead(samples: int, steps: int, repeats: int, client) -> None:
+    from ga_rotors.sweep import load_sweep, run_sweep
+
+    text = _sweep_text(samples, steps)
     sweep = load_sweep(text)
     t0 = time.perf_counter()
-    values = sweep.values(0, sweep.size)
-    s = scene_samples(sweep.scene, values)
+    s = scene_samples(sweep.scene, sweep.values(0, sweep.size))
     t_inputs = time.perf_counter() - t0
     run_samples(scene_samples(sweep.scene, n=8))  # compiled / cached
-    t0 = time.perf_counter()
-    run_samples(s)
-    t_kernel = time.perf_counter() - t0
-    t0 = time.perf_counter()
-    run_samples(s, parallel=False)
-    t_serial = time.perf_counter() - t0
-    del s
-    with tempfile.TemporaryDirectory() as tmp:
-        t0 = time.perf_counter()
-        run_sweep(text, Path(tmp) / "s.zarr", client="sync")
-        t_here = time.perf_counter() - t0
+    run_samples(scene_samples(sweep.scene, n=8), parallel=False)
+
+    def swept(where):
+        with tempfile.TemporaryDirectory() as tmp:
+            return _timed(lambda: run_sweep(text, Path(tmp) / "s.zarr", client=where))
+
+    rows = {
+        "raw kernel, every core (run_samples)": lambda: _timed(lambda: run_samples(s)),
+        "sweep on the local Dask cluster (run_sweep)": lambda: swept(client),
+        "raw kernel, one thread (run_samples, parallel=False)": lambda: _timed(
+            lambda: run_samples(s, parallel=False)
+        ),
+        "sweep in this process (run_sweep, client='sync')": lambda: swept("sync"),
+    }
+    times: dict[str, list[float]] = {k: [] for k in rows}
+    for _ in range(repeats):
+        for name, f in rows.items():
+            times[name].append(f())
+    print(
+        f"sweep: {samples} samples x {steps} RK4 steps, chunks of 65536, "
+        f"{len(client.scheduler_info()['workers'])} Dask workers, {repeats} interleaved repeats "
+        f"(+ {t_inputs:.2f} s drawing the values and building the raw kernel's inputs)"
+    )
+    for name, t in times.items():
+        print(f"  {name:56s} {statistics.median(t):7.2f} s ({min(t):.2f}-{max(t):.2f})")
+    names = list(rows)
+    for label, sweep_row, kernel_row in (
+        ("Dask", names[1], names[0]),
+        ("in this process", names[3], names[2]),
+    ):
+        over = [100 * (a / b - 1) for a, b in zip(times[sweep_row], times[kernel_row], strict=True)]
+        print(
+            f"  overhead over the raw kernel, {label + ':':16s} {statistics.median(over):6.1f} % "
+            f"({min(over):.1f} to {max(over):.1f}, each repeat against its own kernel run)"
+        )
+
+
+def main() -> None:
+    import distributed
+
+    p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    p.add_argument("--bodies", type=int, default=100_000)
+    p.add_argument("--steps", type=int, default=200)
+    p.add_argument("--repeats", type=int, default=5)
+    p.add_argument("--sweep-samples", type=int, default=1_000_000)
+    p.add_argument("--sweep-steps", type=int, nargs="+", default=[100, 1000])
+    p.add_argument("--sweep-repeats", type=int, default=3)
+    a = p.parse_args()
+    print(f"load average before: {os.getloadavg()[0]:.1f}")
+    kernels(a.bodies, a.steps, a.repeats)
+    _warm()
     t0 = time.perf_counter()
     cluster = distributed.LocalCluster(
         n_workers=os.cpu_count(), threads_per_worker=1, processes=True, dashboard_address=None
     )
     client = distributed.Client(cluster)
     client.run(_warm)
-    t_start = time.perf_counter() - t0
-    with tempfile.TemporaryDirectory() as tmp:
-        t0 = time.perf_counter()
-        run_sweep(text, Path(tmp) / "s.zarr", client=client)
-        t_sweep = time.perf_counter() - t0
-    client.close()
-    cluster.close()
     print(
-        f"sweep: {samples} samples x {steps} RK4 steps, chunks of 65536, {os.cpu_count()} workers"
+        f"starting the local cluster and importing on its workers: {time.perf_counter() - t0:.2f} s"
     )
-    print(f"  raw kernel (run_samples, every core):   {t_kernel:7.2f} s "
-          f"(+ {t_inputs:.2f} s drawing the values and building the inputs)")  # fmt: skip
-    print(f"  sweep end to end (run_sweep, Dask):     {t_sweep:7.2f} s "
-          f"(+ {t_start:.2f} s starting the local cluster)")  # fmt: skip
-    print(f"  overhead over the raw kernel:           {100 * (t_sweep / t_kernel - 1):6.1f} %")
-    print(f"  one thread: raw kernel {t_serial:.2f} s, sweep in this process (client='sync') "
-          f"{t_here:.2f} s: overhead {100 * (t_here / t_serial - 1):.1f} %")  # fmt: skip
-
-
-def main() -> None:
-    p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    p.add_argument("--bodies", type=int, default=100_000)
-    p.add_argument("--steps", type=int, default=200)
-    p.add_argument("--repeats", type=int, default=5)
-    p.add_argument("--sweep-samples", type=int, default=1_000_000)
-    p.add_argument("--sweep-steps", type=int, default=100)
-    a = p.parse_args()
-    kernels(a.bodies, a.steps, a.repeats)
-    sweep_overhead(a.sweep_samples, a.sweep_steps)
+    try:
+        for steps in a.sweep_steps:
+            sweep_overhead(a.sweep_samples, steps, a.sweep_repeats, client)
+    finally:
+        client.close()
+        cluster.close()
+    print(f"load average after: {os.getloadavg()[0]:.1f}")
 
 
 if __name__ == "__main__":

@@ -196,3 +196,30 @@ def test_the_command_names_the_extra_when_dask_is_missing(tmp_path, monkeypatch)
     assert not (tmp_path / "d.zarr").exists()  # refused before anything was written
     with pytest.raises(MissingExtraError, match="distributed"):
         run_sweep(SWEEP, tmp_path / "d.zarr")
+
+
+def test_chunks_go_through_zarr_when_a_store_is_not_laid_out_raw(tmp_path, reference, monkeypatch):
+    # Chunks are written as raw bytes into the store's files (the layout the sweep creates:
+    # uncompressed, unfiltered, C order); any other layout is left to zarr's own writes.
+    from ga_rotors.sweep import run as sweep_run
+
+    monkeypatch.setattr(sweep_run, "_layout", lambda store, name: None)
+    out = run_sweep(SWEEP, tmp_path / "s.zarr", client="sync")
+    xr.testing.assert_identical(open_sweep(out).load(), reference)
+
+
+def test_a_failed_background_write_is_raised_not_lost(tmp_path, monkeypatch):
+    from ga_rotors.sweep import run as sweep_run
+
+    def disk_full(store, name, block, *, c, lo):
+        if name == "w" and c == 1:
+            raise OSError(28, "No space left on device")
+        return real(store, name, block, c=c, lo=lo)
+
+    real = sweep_run._write_block
+    monkeypatch.setattr(sweep_run, "_write_block", disk_full)
+    out = tmp_path / "s.zarr"
+    with pytest.raises(OSError, match="No space left"):
+        run_sweep(SWEEP, out, client="sync")
+    with pytest.raises(InputError, match="2 of 3 chunks are not written yet"):
+        open_sweep(out)  # chunk 1 lost its flag; chunk 2 stopped on chunk 1's failed write
