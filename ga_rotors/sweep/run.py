@@ -66,7 +66,8 @@ def _nominal(sweep: Sweep) -> np.ndarray:
     """The base scene's own orientations at the output times (k, 4)."""
     from ..ensemble import run_samples, scene_samples
 
-    return run_samples(scene_samples(sweep.scene, n=1), sweep.times).q[:, 0]
+    # one sample: no threads to start, and the serial loop the chunks load as well
+    return run_samples(scene_samples(sweep.scene, n=1), sweep.times, parallel=False).q[:, 0]
 
 
 def run_chunk(task: _Task, c: int, wait: bool = True) -> int:
