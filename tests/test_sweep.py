@@ -223,3 +223,20 @@ def test_a_failed_background_write_is_raised_not_lost(tmp_path, monkeypatch):
         run_sweep(SWEEP, out, client="sync")
     with pytest.raises(InputError, match="2 of 3 chunks are not written yet"):
         open_sweep(out)  # chunk 1 lost its flag; chunk 2 stopped on chunk 1's failed write
+
+
+def test_a_sample_that_blows_up_is_nan_and_the_others_are_kept(tmp_path):
+    # 900 rad per RK4 step overflows within the run; 0.3 rad per step keeps a finite state
+    # whose norm has drifted past the unit tolerance of quaternion.distance.
+    text = SWEEP.replace("samples = 5", "samples = 1").replace(
+        '"initial.angular_velocity.body[1]" = [9.0, 10.0]',
+        '"initial.angular_velocity.body[1]" = [9.0, 900000.0, 300.0]',
+    )
+    text = text.replace('"time.duration" = 0.02', '"time.duration" = 0.1')
+    text = text.replace("times = [0.01, 0.02]", "times = [0.05, 0.1]")
+    ds = open_sweep(run_sweep(text, tmp_path / "s.zarr", client="sync")).load()
+    angle = ds["angle_from_nominal"].values
+    assert np.all(np.isnan(ds["q"].values[1, -1])) and np.isnan(angle[1, -1])
+    drifted = np.linalg.norm(ds["q"].values[2, -1])
+    assert abs(drifted - 1) > 1e-6 and 0 < angle[2, -1] <= np.pi
+    assert np.all(np.isfinite(angle[0])) and np.all(np.isfinite(angle[2]))

@@ -88,8 +88,6 @@ def run_chunk(task: _Task, c: int, wait: bool = True) -> int:
     >>> open_sweep(run_sweep(text, out, client="sync")).sizes["sample"]
     4
     """
-    from ..quaternion import distance
-
     sweep = _sweep(task)
     lo, hi = c * sweep.chunk, min(sweep.size, (c + 1) * sweep.chunk)
     values, run = _run(sweep, lo, hi, parallel=False)
@@ -97,7 +95,7 @@ def run_chunk(task: _Task, c: int, wait: bool = True) -> int:
     blocks = {
         "q": q,
         "w": run.w.transpose(1, 0, 2),
-        "angle_from_nominal": distance(q, task.nominal[None]),
+        "angle_from_nominal": _angle_from_nominal(q, task.nominal),
         **{f"value_{j}": v for j, v in enumerate(values.values())},
     }
     job = functools.partial(_write_chunk, task.store, c, lo, blocks)
@@ -106,6 +104,31 @@ def run_chunk(task: _Task, c: int, wait: bool = True) -> int:
     else:
         _write_behind(job)
     return c
+
+
+def _angle_from_nominal(q: np.ndarray, nominal: np.ndarray) -> np.ndarray:
+    """Geodesic angle of each sample (n, k, 4) from the nominal (k, 4); NaN where the
+    sample's state stopped being finite.
+
+    The angle does not depend on the quaternions' norms, so each is normalised first: an
+    integrator that lets the norm drift (RK4 over a long or fast run) still has its
+    angle, where :func:`ga_rotors.quaternion.distance` would refuse the whole chunk.
+    """
+    from ..quaternion import distance
+
+    squares = np.einsum("...i,...i->...", q, q)
+    if np.all(np.abs(squares - 1.0) <= 1e-6):  # the usual case: finite, unit to 5e-7
+        return distance(q, nominal[None])
+
+    def unit(a):  # the same expression for both: a sample equal to the nominal is at 0
+        return a / np.linalg.norm(a, axis=-1, keepdims=True)
+
+    out = np.full(q.shape[:-1], np.nan)
+    norm = np.linalg.norm(q, axis=-1)
+    ok = np.isfinite(norm) & (norm > 0)
+    if ok.any():
+        out[ok] = distance(unit(q[ok]), np.broadcast_to(unit(nominal), q.shape)[ok])
+    return out
 
 
 def _write_chunk(store: str, c: int, lo: int, blocks: dict) -> None:
