@@ -3,6 +3,14 @@
 from __future__ import annotations
 
 import io
+import os
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import pytest
 
 from ga_rotors import warmup
 from ga_rotors.cli import main
@@ -111,3 +119,98 @@ def test_paper_warms_itself_after_checking_its_output_directory(cache, tmp_path,
     err = capsys.readouterr().err
     assert "ga-rotors: compiling 4 loop set(s) in 1 process(es)" in err
     assert "paper: its other computations" in err and "paper_15deg: euler path" in err
+
+
+# ------------------------------------------------------------------ stopping a warm-up
+
+_WARM = """
+import signal, sys, time
+signal.signal(signal.SIGINT, signal.default_int_handler)  # as in a terminal
+from ga_rotors import warmup
+from ga_rotors.cli import main
+
+class Name:
+    def __init__(self, text):
+        self.text = text
+
+    def to_toml(self):
+        return self.text
+
+class Quick(warmup.Task):
+    def run(self):
+        pass
+
+class Slow(warmup.Task):
+    def run(self):
+        time.sleep(120)
+
+real = warmup.scene_tasks("spinning_disk")
+tasks = {
+    "two waiting": [Quick("quick", Name("q")), Slow("s1", Name("s1")), Slow("s2", Name("s2"))],
+    "compiling": [real[0], Slow("slow", Name("s"))],
+    "again": real,
+}[sys.argv[1]]
+warmup.all_tasks = lambda: tasks
+sys.exit(main(["cache", "--warm"]))
+"""
+
+
+def _children(pid: int) -> list[int]:
+    path = Path(f"/proc/{pid}/task/{pid}/children")
+    return [int(p) for p in path.read_text().split()] if path.exists() else []
+
+
+def _start_warm(which: str, env: dict, workers: int) -> tuple[subprocess.Popen, list[int]]:
+    """``cache --warm`` in a subprocess, once ``workers`` of its workers run."""
+    proc = subprocess.Popen(
+        [sys.executable, "-c", _WARM, which], env=env, text=True,
+        stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+    )  # fmt: skip
+    assert "compiling" in proc.stdout.readline()
+    deadline = time.monotonic() + 60
+    while len(kids := _children(proc.pid)) < workers and time.monotonic() < deadline:
+        time.sleep(0.05)
+    assert len(kids) == workers, proc.stdout.read()
+    return proc, kids
+
+
+needs_proc = pytest.mark.skipif(
+    not Path(f"/proc/{os.getpid()}/task/{os.getpid()}/children").exists(),
+    reason="lists a process's children through Linux's /proc",
+)
+
+
+@needs_proc
+@pytest.mark.parametrize(
+    ("signum", "status", "line"),
+    [(signal.SIGINT, 130, "ga-rotors: interrupted"), (signal.SIGTERM, 143, "terminated")],
+)
+def test_stopping_a_warm_up_stops_its_workers(tmp_path, signum, status, line):
+    env = {**os.environ, "GA_ROTORS_CACHE_DIR": str(tmp_path)}
+    proc, workers = _start_warm("two waiting", env, workers=2)
+    proc.send_signal(signum)
+    assert proc.wait(timeout=30) == status
+    assert line in proc.stdout.read()
+    assert not [pid for pid in workers if Path(f"/proc/{pid}").exists()]
+
+
+@needs_proc
+def test_a_warm_up_killed_while_compiling_leaves_a_usable_cache(tmp_path):
+    env = {**os.environ, "GA_ROTORS_CACHE_DIR": str(tmp_path)}
+    proc, workers = _start_warm("compiling", env, workers=1)
+    time.sleep(0.3)  # into the compilation
+    proc.terminate()
+    assert proc.wait(timeout=30) == 143
+    assert not Path(f"/proc/{workers[0]}").exists()
+    again = subprocess.run(
+        [sys.executable, "-c", _WARM, "again"], env=env, capture_output=True, text=True
+    )
+    n = len(warmup.scene_tasks("spinning_disk"))
+    assert again.returncode == 0 and f"{n} of {n} loop sets compiled" in again.stdout
+    run = subprocess.run(
+        [sys.executable, "-m", "ga_rotors", "run", "spinning_disk", "--out", str(tmp_path / "o"),
+         "--no-progress"],
+        env=env, capture_output=True, text=True,
+    )  # fmt: skip
+    assert run.returncode == 0, run.stderr
+    assert "compiling" not in run.stderr
