@@ -6,6 +6,11 @@ One decorator, so the whole package shares one policy:
   later processes, so users pay the JIT cost once per installation, not per start.
 * ``error_model="numpy"``: division by zero gives inf/nan instead of raising inside the
   loop; the Python wrappers check results and raise a clear error instead.
+* ``no_cfunc_wrapper=True``: numba otherwise compiles, for every function, a C-callable
+  wrapper that only serves passing the function as a first-class value into another
+  compiled function, which ga_rotors never does (kernels reach a loop by import, see
+  ``integrators._codegen``); without it a cold ``ga-rotors paper`` compiles in about
+  10 % less CPU (7.7 s -> 6.95 s, three pairs of runs, a loaded machine).
 * no ``fastmath``: it would let LLVM assume no NaN/inf, which breaks the finiteness
   checks the wrappers rely on, and reorders the sums the error analysis assumes.
 
@@ -21,7 +26,7 @@ import types
 
 import numba
 
-_OPTIONS = {"cache": True, "nogil": True, "error_model": "numpy"}
+_OPTIONS = {"cache": True, "nogil": True, "error_model": "numpy", "no_cfunc_wrapper": True}
 
 
 def jit(func=None, **options):
