@@ -3,26 +3,35 @@ API's first product in a fresh process.
 
 Run from the repository root::
 
-    python benchmarks/bench_first_run.py                 # 3 repeats of everything
+    python benchmarks/bench_first_run.py                 # 3 repeats: rotor, paper, run
+    python benchmarks/bench_first_run.py --repeats 2 --only workers
     python benchmarks/bench_first_run.py --repeats 1 --only rotor
 
 Every measurement is a fresh process. "First run after install" is simulated with empty
 caches: ``GA_ROTORS_CACHE_DIR`` (generated loops) and ``NUMBA_CACHE_DIR`` (numba's
 machine code, also of the package's own kernels) point to new empty directories, so
-everything a real first run compiles is compiled. Per command, one repeat runs, in order,
-on one pair of empty caches, interleaved with the other commands' repeats:
+everything a real first run compiles is compiled. The ``paper`` command is the README's
+(``ga-rotors paper``, figures and data); ``run`` is ``ga-rotors run heavy_top``. Per
+command, one repeat runs, in order, on fresh caches, interleaved with the other commands'
+repeats:
 
-* ``inline``: the work through the Python API (no warm-up): what the command cost before
-  it warmed itself, compiling each loop when first called, one after the other;
-* ``first``: the command on empty caches: it compiles what it needs first
-  (ga_rotors.warmup, a progress line per job), then runs;
-* ``after cache --warm``: ``ga-rotors cache --warm`` on empty caches (timed separately),
-  then the command: the first run when the install step warms the cache;
-* ``warm``: the command again, everything cached.
+* ``first run (warms itself)``: the command on empty caches, as without the install
+  line's warm-up: it compiles what it needs first (ga_rotors.warmup, a progress line per
+  job, in its own process), then runs;
+* ``ga-rotors cache --warm``: the README's install step on empty caches (parallel
+  workers, a line per job), timed on its own;
+* ``first run after cache --warm``: then the command: the first run after the README's
+  install line (the claim: within 1.5x of a warm run);
+* ``warm run``: the command again, everything cached.
 
 Wall time is what a user waits; CPU time (the process and its children, user + system)
 is what the machine spends and is less disturbed by other jobs. Reported: median and
-min–max over the repeats.
+min–max over the repeats, and the ratios of the medians.
+
+The ``workers`` rows (``--only workers``) time the warm-up of every job
+(``ga_rotors.warmup.all_tasks``) on fresh caches in one process and in one worker per CPU
+(the first job alone, then the others side by side): what parallel workers cost in CPU
+and gain in wall time on this machine.
 
 The rotor rows time, inside a fresh process with numba's cache warm, the first call of
 ``rotor.from_axis_angle`` + ``rotor.compose`` (ga_rotors' rotor API) and the first ``R * R``
@@ -48,12 +57,8 @@ ROOT = Path(__file__).resolve().parent.parent
 BIN = Path(sys.executable).parent
 GA = str(BIN / "ga-rotors") if (BIN / "ga-rotors").exists() else None
 
-INLINE = {
-    "paper": "from ga_rotors.paper.reproduce import reproduce; reproduce({out!r}, figures=False)",
-    "run": "from ga_rotors.scene import run_scene; run_scene('heavy_top')",
-}
 COMMAND = {
-    "paper": ["paper", "--no-figures", "--out", "{out}"],
+    "paper": ["paper", "--out", "{out}"],
     "run": ["run", "heavy_top", "--out", "{out}", "--no-progress"],
 }
 
@@ -92,7 +97,7 @@ def _fill(template, out):
 
 
 def one_repeat(name: str, results: dict) -> None:
-    """inline, first, after cache --warm, warm for one command, each on fresh caches."""
+    """first, cache --warm, first after it, warm: one command on fresh caches."""
     scratch = Path(tempfile.mkdtemp(prefix="bench_first_run-"))
     try:
         out = str(scratch / "out")
@@ -104,13 +109,11 @@ def one_repeat(name: str, results: dict) -> None:
             return env
 
         cmd = [GA, *_fill(COMMAND[name], out)]
-        inline = [sys.executable, "-c", INLINE[name].format(out=out)]
         rows = [
-            ("inline (no warm-up)", env_for("a"), inline),
-            ("first run (warms itself)", env_for("b"), cmd),
-            ("ga-rotors cache --warm", env_for("c"), [GA, "cache", "--warm"]),
-            ("first run after cache --warm", env_for("c"), cmd),
-            ("warm run", env_for("c"), cmd),
+            ("first run (warms itself)", env_for("a"), cmd),
+            ("ga-rotors cache --warm", env_for("b"), [GA, "cache", "--warm"]),
+            ("first run after cache --warm", env_for("b"), cmd),
+            ("warm run", env_for("b"), cmd),
         ]
         for label, env, argv in rows:
             wall, cpu = _timed(argv, env)
@@ -118,6 +121,24 @@ def one_repeat(name: str, results: dict) -> None:
             print(f"  {name}: {label}: wall {wall:.2f} s, CPU {cpu:.2f} s", flush=True)
     finally:
         shutil.rmtree(scratch, ignore_errors=True)
+
+
+WARM_UP = "import sys; from ga_rotors import warmup; warmup.warm(warmup.all_tasks(), processes={n})"
+
+
+def workers_repeat(results: dict) -> None:
+    """Every warm-up job in one process, then in one worker per CPU, on fresh caches."""
+    for n in (1, os.cpu_count() or 1):
+        scratch = Path(tempfile.mkdtemp(prefix="bench_first_run-"))
+        try:
+            env = {**os.environ, "GA_ROTORS_CACHE_DIR": str(scratch / "ga"),
+                   "NUMBA_CACHE_DIR": str(scratch / "numba")}  # fmt: skip
+            wall, cpu = _timed([sys.executable, "-c", WARM_UP.format(n=n)], env)
+        finally:
+            shutil.rmtree(scratch, ignore_errors=True)
+        label = f"every job, {n} process{'es' if n > 1 else ''}"
+        results.setdefault(("warm-up", label), []).append((wall, cpu))
+        print(f"  warm-up: {label}: wall {wall:.2f} s, CPU {cpu:.2f} s", flush=True)
 
 
 def rotor_repeat(results: dict) -> None:
@@ -135,7 +156,7 @@ def _fmt(values) -> str:
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--repeats", type=int, default=3)
-    parser.add_argument("--only", choices=["paper", "run", "rotor"], action="append")
+    parser.add_argument("--only", choices=["paper", "run", "rotor", "workers"], action="append")
     args = parser.parse_args(argv)
     if GA is None:
         raise SystemExit("the ga-rotors command is not installed next to this Python")
@@ -143,7 +164,10 @@ def main(argv=None) -> int:
     results: dict = {}
     for _ in range(args.repeats):
         for name in which:  # interleaved: each repeat of each command in turn
-            rotor_repeat(results) if name == "rotor" else one_repeat(name, results)
+            if name in ("rotor", "workers"):
+                (rotor_repeat if name == "rotor" else workers_repeat)(results)
+            else:
+                one_repeat(name, results)
     load = os.getloadavg()[0] if hasattr(os, "getloadavg") else float("nan")
     print(f"{args.repeats} repeats, median (min–max), seconds; load average {load:.1f} "
           f"on {os.cpu_count()} CPUs at the end")  # fmt: skip
@@ -154,14 +178,18 @@ def main(argv=None) -> int:
         cpu = _fmt(cpus) if all(c == c for c in cpus) else ""
         print(f"{name + ': ' + label:<44} {_fmt(walls):>22} {cpu:>22}")
     for name in which:
-        if name == "rotor":
+        if name in ("rotor", "workers"):
             continue
-        first = statistics.median(w for w, _ in results[(name, "first run (warms itself)")])
-        after = statistics.median(w for w, _ in results[(name, "first run after cache --warm")])
-        warm = statistics.median(w for w, _ in results[(name, "warm run")])
-        inline = statistics.median(w for w, _ in results[(name, "inline (no warm-up)")])
-        print(f"{name}: first/warm {first / warm:.2f}x, inline/warm {inline / warm:.2f}x, "
-              f"after cache --warm/warm {after / warm:.2f}x (wall medians)")  # fmt: skip
+
+        def med(label, k, name=name):
+            return statistics.median(run[k] for run in results[(name, label)])
+
+        for k, what in ((0, "wall"), (1, "CPU")):
+            warm = med("warm run", k)
+            first = med("first run (warms itself)", k) / warm
+            after = med("first run after cache --warm", k) / warm
+            print(f"{name} ({what} medians): first run {first:.2f}x a warm run; "
+                  f"first run after cache --warm {after:.2f}x")  # fmt: skip
     return 0
 
 

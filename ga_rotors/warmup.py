@@ -17,10 +17,9 @@ each cache file whole before renaming it into place, so an interrupted warm-up l
 usable cache that the next run completes. ``ga-rotors paper`` and ``ga-rotors run`` warm
 what they need in their own process, one progress line per task, when their tasks have
 not been done yet: that keeps the compiled code in memory for the run that follows, and
-costs the least CPU. Measured (benchmarks/bench_first_run.py, a loaded 2-core machine),
-parallel workers cost 30 % (first task alone, then the rest) to 70 % (all at once) more CPU
-than one process, since each worker compiles again the kernels every loop shares; they
-shorten the wall time only where cores are idle.
+costs the least CPU: parallel workers each compile again the kernels every loop shares,
+and shorten the wall time only where cores are idle (``benchmarks/bench_first_run.py
+--only workers``; docs/cache.md).
 """
 
 from __future__ import annotations
@@ -265,8 +264,8 @@ def _in_workers(todo: list[Task], n: int, done) -> None:
         while waiting or running:
             # the first task alone: it compiles what every task shares (the kernels, the
             # references, the conversions), which the workers after it then load from the
-            # disk instead of each compiling it again (measured: +30 % CPU over one
-            # process instead of +70 % with all at once)
+            # disk instead of each compiling it again (measured once under load: the whole
+            # warm-up 12.5 s CPU instead of 16.4 s with all at once; 9.7 s in one process)
             while waiting and len(running) < (1 if len(waiting) == len(todo) - 1 else n):
                 task = waiting.pop(0)
                 pid, read = _start(task)

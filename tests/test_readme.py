@@ -1,4 +1,5 @@
-"""The README's quick start is what CI runs: two commands, the second one in .ci/run."""
+"""The README's quick start is what CI runs: two commands, the second one in .ci/run; the
+first installs, compiles the loops ahead (``cache --warm``) and runs the paper."""
 
 from __future__ import annotations
 
@@ -18,6 +19,11 @@ def test_quick_start_is_two_commands_main_job_then_tests():
     main_job, tests = _quick_start_commands()
     assert "\n" not in main_job and "\n" not in tests
     assert main_job.endswith("ga-rotors paper")
+    # the install step compiles the loops ahead, so the first paper run loads them
+    assert main_job.split(" && ")[-2:] == [
+        ".venv/bin/ga-rotors cache --warm",
+        ".venv/bin/ga-rotors paper",
+    ]
     assert tests.endswith("python -m pytest") and re.search(r'"\.\[test(,\w+)*\]"', tests)
 
 

@@ -10,7 +10,9 @@ recompiles then, once); --clear says what it removes and deletes this version's 
 (the next runs compile them again), --clear --all every version's. The folder is private
 (mode 0700); one writable by others or owned by someone else is refused. --warm compiles,
 in parallel processes, every loop the paper and the bundled scenes use, so that their first
-run loads them (ga-rotors paper and run do this for what they need themselves).
+run loads them (the README's install line runs it; without it ga-rotors paper and run
+compile what they need themselves); Ctrl-C stops it and its workers, and leaves a cache
+the next run completes.
 """
 
 from __future__ import annotations
