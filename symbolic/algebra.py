@@ -46,7 +46,7 @@ from itertools import combinations
 
 import sympy
 
-__all__ = ["Blade", "CliffordAlgebra", "Multivector", "blade_name", "blade_product"]
+__all__ = ["Blade", "CliffordAlgebra", "Multivector", "blade_name", "blade_product", "latex_sum"]
 
 
 Blade = tuple[int, ...]
@@ -78,6 +78,34 @@ def blade_product(a: Blade, b: Blade, signature: tuple[int, ...]) -> tuple[int, 
         else:
             insort(indices, j)
     return sign, tuple(indices)
+
+
+def latex_sum(terms: Iterable[tuple[object, str]]) -> str:
+    """The LaTeX of a multivector Σ c e_B, from (coefficient, blade name) pairs in order.
+
+    ``blade name`` is as :func:`blade_name` writes it ('1' for the scalar, 'e12', ...);
+    a sum as coefficient is put in parentheses.
+
+    Examples
+    --------
+    >>> x = sympy.Symbol("x")
+    >>> print(latex_sum([(sympy.Rational(1, 2), "1"), (x + 1, "e12"), (-3 * x, "e1_10")]))
+    \\frac{1}{2} + \\left(x + 1\\right) e_{12} - 3 x e_{1,10}
+    """
+    out = []
+    for c, name in terms:
+        expr = c.as_expr() if hasattr(c, "as_expr") else sympy.sympify(c)
+        tex = sympy.latex(expr)
+        if isinstance(expr, sympy.Add):
+            tex = rf"\left({tex}\right)"
+        sign = "+"
+        if tex.startswith("-"):
+            sign, tex = "-", tex[1:].lstrip()
+        if name != "1":
+            blade = "e_{" + name[1:].replace("_", ",") + "}"
+            tex = blade if tex == "1" else f"{tex} {blade}"
+        out.append(("-" if sign == "-" else "") + tex if not out else f" {sign} {tex}")
+    return "".join(out) or "0"
 
 
 def blade_name(blade: Blade) -> str:
@@ -500,6 +528,30 @@ class Multivector:
         return Multivector(self.algebra, {b: f(c) for b, c in self.terms.items()})
 
     # -- display -----------------------------------------------------------------------
+    def latex(self) -> str:
+        """The LaTeX of the multivector (no dollar signs).
+
+        Examples
+        --------
+        >>> cl = CliffordAlgebra(3, 0)
+        >>> theta = sympy.Symbol("theta")
+        >>> print((sympy.cos(theta / 2) - cl.blade(1, 2) * sympy.sin(theta / 2)).latex())
+        \\cos{\\left(\\frac{\\theta}{2} \\right)} - \\sin{\\left(\\frac{\\theta}{2} \\right)} e_{12}
+        """
+        ordered = [b for b in self.algebra.blades if b in self.terms]
+        return latex_sum((self.terms[b], blade_name(b)) for b in ordered)
+
+    def _repr_latex_(self) -> str:
+        """The multivector as LaTeX (Jupyter calls this).
+
+        Examples
+        --------
+        >>> cl = CliffordAlgebra(0, 2)
+        >>> (cl.blade(1) * cl.blade(2) + 1)._repr_latex_()
+        '$1 + e_{12}$'
+        """
+        return f"${self.latex()}$"
+
     def __repr__(self) -> str:
         if not self.terms:
             return "0"

@@ -1,4 +1,5 @@
-"""Notebook display: scenes and trajectories show summary tables, a trajectory its viewer."""
+"""Notebook display: scenes and trajectories show summary tables, a trajectory its viewer,
+symbolic multivectors their LaTeX."""
 
 from __future__ import annotations
 
@@ -53,3 +54,22 @@ def test_a_trajectory_plays_in_the_viewer():
     view = tr.view(title="disk")
     assert view._repr_html_().startswith("<iframe srcdoc=")
     assert view.data.paths["rotor"].shape == (6, 4)
+
+
+def test_a_symbolic_multivector_shows_its_latex():
+    import sympy
+
+    from ga_rotors.symbolic.algebra import CliffordAlgebra
+
+    # Cl(0,2): i = e1, j = e2, k = e12; a rotor-like element with symbolic coefficients.
+    cl = CliffordAlgebra(0, 2)
+    i, j = cl.blade(1), cl.blade(2)
+    assert (i * j)._repr_latex_() == "$e_{12}$"
+    assert (i * i)._repr_latex_() == "$-1$"
+    a = sympy.Symbol("alpha")
+    x = sympy.cos(a / 2) - (i * j) * sympy.sin(a / 2) + (a + 1) * i
+    assert x._repr_latex_() == (
+        r"$\cos{\left(\frac{\alpha}{2} \right)} + \left(\alpha + 1\right) e_{1}"
+        r" - \sin{\left(\frac{\alpha}{2} \right)} e_{12}$"
+    )
+    assert cl.scalar(0)._repr_latex_() == "$0$"

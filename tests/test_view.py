@@ -112,11 +112,12 @@ def test_a_tensor_body_is_drawn_in_its_principal_frame():
 def test_untrusted_titles_cannot_leave_their_element():
     evil = "</script><script>alert(1)</script><!--"
     d = ViewData(np.array([0.0]), {"rotor": np.array([[1.0, 0, 0, 0]])}, np.zeros((1, 3)),
-                 (1.0, 1.0, 2.0), title=evil)  # fmt: skip
+                 (1.0, 1.0, 2.0), title=evil, description=evil)  # fmt: skip
     text = page_html(d)
     assert "<script>alert(1)" not in text
     assert _embedded(text, "view-data")["title"] == evil
-    assert html.escape(evil) in text
+    assert f"<h1>{html.escape(evil)}</h1>" in text
+    assert f'<p id="description">{html.escape(evil)}</p>' in text
 
 
 def test_the_page_loads_nothing_from_elsewhere():
@@ -141,6 +142,8 @@ def test_view_command_on_a_scene(tmp_path):
     assert f"wrote {out}" in text
     data = _embedded(out.read_text(encoding="utf-8"), "view-data")
     assert data["title"] == "spinning_disk" and data["t"][-1] == pytest.approx(0.2)
+    about = html.escape(load_scene("spinning_disk").description)  # what the run is about
+    assert f'<p id="description">{about}</p>' in out.read_text(encoding="utf-8")
     assert next(p["name"] for p in data["paths"]) == load_scene("spinning_disk").paths[0]
 
 

@@ -66,15 +66,17 @@ class View:
         --------
         >>> from ga_rotors.scene import load_scene
         >>> s = load_scene("spinning_disk").replace({"time.duration": 0.1})
-        >>> View.from_scene(s).data.title
-        'spinning_disk'
+        >>> v = View.from_scene(s)
+        >>> v.data.title, v.data.description[:32]
+        ('spinning_disk', 'The physically consistent spinni')
         """
         if trajectory is None:
             from ..scene import run_scene
 
             trajectory = run_scene(scene)
         # A scene's trajectory holds the principal frame's orientation (ga_rotors.scene).
-        return cls.from_trajectory(trajectory, moments=scene.body.moments, title=scene.name)
+        return cls.from_trajectory(trajectory, moments=scene.body.moments, title=scene.name,
+                                   description=scene.description)  # fmt: skip
 
     def html(self) -> str:
         """The page, self-contained (plotly.js inlined)."""

@@ -61,6 +61,8 @@ class ViewData:
         Principal moments (kg·m²); None for a prescribed ω(t) (no body, no L).
     title : str
         Shown as the page's heading.
+    description : str
+        Shown under the heading (a scene's description: what the run is about).
 
     Examples
     --------
@@ -75,6 +77,7 @@ class ViewData:
     w: np.ndarray
     moments: tuple | None = None
     title: str = "ga_rotors"
+    description: str = ""
     notes: list = field(default_factory=list)
 
     def __post_init__(self):
@@ -120,7 +123,9 @@ def _unit(q, name: str, n: int) -> np.ndarray:
     return Q.normalize(q)
 
 
-def from_trajectory(trajectory, moments=None, title: str = "ga_rotors", principal=None):
+def from_trajectory(
+    trajectory, moments=None, title: str = "ga_rotors", principal=None, description: str = ""
+):
     """The viewer's data for a :class:`~ga_rotors.trajectory.Trajectory`.
 
     Parameters
@@ -135,6 +140,8 @@ def from_trajectory(trajectory, moments=None, title: str = "ga_rotors", principa
         P taking principal axes to the trajectory's body axes, when they differ (a body
         given by a full tensor to :func:`ga_rotors.simulation.simulate`): the page draws
         the principal frame, q ⊗ P and P* ω P.
+    description : str
+        Shown under the heading.
 
     Examples
     --------
@@ -155,4 +162,4 @@ def from_trajectory(trajectory, moments=None, title: str = "ga_rotors", principa
         p = Q.normalize(np.asarray(principal, dtype=np.float64))
         paths = {k: Q.multiply(v, p) for k, v in paths.items()}
         w = Q.rotate(Q.conjugate(p), w)
-    return ViewData(trajectory.t, paths, w, moments, title)
+    return ViewData(trajectory.t, paths, w, moments, title, description)

@@ -240,6 +240,7 @@ def page_html(data: ViewData) -> str:
     script = here.joinpath("viewer.js").read_text(encoding="utf-8")
     style = here.joinpath("viewer.css").read_text(encoding="utf-8")
     title = html.escape(data.title)
+    about = f'<p id="description">{html.escape(data.description)}</p>\n' if data.description else ""
     figure_json = fig.to_json().replace("<", "\\u003c")
     rows = "".join(
         f'<tr data-path="{html.escape(p)}"><th>{html.escape(p)}</th>'
@@ -254,7 +255,7 @@ def page_html(data: ViewData) -> str:
 <script>{get_plotlyjs()}</script>
 </head><body>
 <h1>{title}</h1>
-<div id="controls">
+{about}<div id="controls">
   <button id="play" type="button">play</button>
   <input id="slider" type="range" min="0" max="0" value="0" step="1" aria-label="time">
   <span id="time"></span>

@@ -372,27 +372,7 @@ class Element:
         >>> Element(Basis(3), {1: 3, 0b110: 1}).latex()
         '3 e_{1} + e_{23}'
         """
-        import sympy
+        from ..algebra import latex_sum  # sympy only when LaTeX is asked for
 
-        if not self.terms:
-            return "0"
-        out = []
-        for blade in self.basis.blades:
-            if blade not in self.terms:
-                continue
-            c = self.terms[blade]
-            expr = c.as_expr() if hasattr(c, "as_expr") else sympy.sympify(c)
-            tex = sympy.latex(expr)
-            if isinstance(expr, sympy.Add):
-                tex = rf"\left({tex}\right)"
-            if not blade:
-                out.append(tex)
-                continue
-            name = "e_{" + self.basis.name(blade)[1:] + "}"
-            if expr == 1:
-                out.append(name)
-            elif expr == -1:
-                out.append("-" + name)
-            else:
-                out.append(f"{tex} {name}")
-        return " + ".join(out).replace("+ -", "- ")
+        ordered = [b for b in self.basis.blades if b in self.terms]
+        return latex_sum((self.terms[b], self.basis.name(b)) for b in ordered)
