@@ -1,7 +1,9 @@
 """The documentation site builds strictly: a broken link, a missing page or a failing example fails.
 
 ``mkdocs build --strict`` on mkdocs.yml (mkdocs-material, mkdocstrings for the API
-reference from the docstrings, docs/hooks/examples.py showing the examples' outputs).
+reference from the docstrings, docs/hooks/examples.py showing the examples' outputs,
+docs/hooks/sphinx_roles.py linking the docstrings' Sphinx roles, docs/hooks/viewer.py
+putting the viewer's page on the site).
 Needs the ``docs`` extra, which CI installs.
 """
 
@@ -95,6 +97,14 @@ def test_learning_path_solutions_are_folded_and_checked(site):
 def test_examples_are_shown_with_their_output(site):
     html = (site / "view" / "index.html").read_text(encoding="utf-8")
     assert "View('a wobbling disk', paths=rotor, quaternion, 2001 samples)" in html
+
+
+def test_the_viewer_plays_on_the_site(site):
+    # docs/view.md frames the page ga-rotors view writes, written into the site by its hook.
+    html = (site / "view" / "index.html").read_text(encoding="utf-8")
+    assert '<iframe class="viewer" src="heavy_top.view.html"' in html
+    page = (site / "view" / "heavy_top.view.html").read_text(encoding="utf-8")
+    assert "<h1>heavy_top</h1>" in page and 'id="view-data"' in page and "Plotly.newPlot" in page
 
 
 def test_the_site_loads_nothing_from_other_hosts(site):
