@@ -342,7 +342,7 @@ def main(argv: list[str] | None = None) -> int:
         params, stats = np.zeros(0), np.zeros(0)
 
         def loop_only(loop=loop, x0=x0, out=out, params=params, stats=stats):
-            loop(x0, W0, 0.0, H, N, 1, MOMENTS, params, *out, stats)
+            loop(x0, W0, 0.0, H, 0, N, 1, MOMENTS, params, *out, stats)
 
         contenders[f"ga_rotors rk4, {path} path (run)"] = end_to_end
         notes[f"ga_rotors rk4, {path} path (run)"] = "Integrator.run, fresh output arrays"

@@ -14,7 +14,8 @@ from __future__ import annotations
 
 import math
 import warnings
-from collections.abc import Sequence
+from collections.abc import Iterator, Sequence
+from typing import NamedTuple
 
 import numpy as np
 
@@ -26,7 +27,7 @@ from .errors import InputError, IntegrationStoppedWarning
 from .integrators import base
 from .trajectory import Trajectory
 
-__all__ = ["OUTPUTS", "simulate", "whole_steps"]
+__all__ = ["OUTPUTS", "simulate", "simulate_chunks", "whole_steps"]
 
 #: Derived outputs :func:`simulate` computes on request, from the primary path.
 OUTPUTS = ("energy", "L", "L_space", "angles")
@@ -198,6 +199,84 @@ def simulate(
     >>> tr.meta["paths"]["rotor"]["complete"]
     True
     """
+    plan = _plan(body, orientation, angular_velocity, duration, step, paths, integrator,
+                 torques, accept_lower_order, euler_angles, outputs, sample_every, t0,
+                 step_limit_key)  # fmt: skip
+    return next(_pieces(plan, None, progress))
+
+
+def simulate_chunks(
+    body,
+    orientation,
+    angular_velocity,
+    *,
+    duration: float,
+    step: float,
+    chunk_steps: int = 2**17,
+    progress=None,
+    **options,
+) -> Iterator[Trajectory]:
+    """:func:`simulate`, handed out as Trajectories of consecutive samples, each about
+    ``chunk_steps`` steps long, so memory holds one piece whatever the number of steps.
+
+    The arguments are :func:`simulate`'s. The first piece holds sample 0, each next one
+    the samples after the previous piece's last; joined, they are :func:`simulate`'s
+    samples and outputs bit for bit: every path continues from its exact state at its
+    step number, with what its integrator carries (the watch statistics, an adaptive
+    method's step size). Each piece's ``meta`` is the run's so far (``meta["paths"]``:
+    complete, samples, ended_at up to that piece). A path that stopped has no rows in the
+    pieces after it stopped. Arguments are checked before the first piece.
+
+    Examples
+    --------
+    >>> from ga_rotors import shapes
+    >>> args = (shapes.disk(2.0, 0.075), [1.0, 0.0, 0.0, 0.0], [0.1, 0.0, 2.0])
+    >>> pieces = list(simulate_chunks(*args, duration=1.0, step=1e-3, chunk_steps=400,
+    ...                               paths=("rotor", "quaternion"), sample_every=100))
+    >>> [len(piece) for piece in pieces]
+    [5, 4, 2]
+    >>> whole = simulate(*args, duration=1.0, step=1e-3, paths=("rotor", "quaternion"),
+    ...                  sample_every=100)
+    >>> bool((np.concatenate([piece.q for piece in pieces]) == whole.q).all())
+    True
+    """
+    if isinstance(chunk_steps, bool) or not isinstance(chunk_steps, int) or chunk_steps < 1:
+        raise InputError(f"chunk_steps: expected a positive integer, got {chunk_steps!r}")
+    defaults = dict(paths=("rotor",), integrator="rk4", torques=(), accept_lower_order=False,
+                    euler_angles=None, outputs=(), sample_every=1, t0=0.0,
+                    step_limit_key="step")  # fmt: skip
+    unknown = sorted(set(options) - set(defaults))
+    if unknown:
+        raise InputError(f"{unknown[0]}: not an argument of simulate")
+    o = {**defaults, **options}
+    plan = _plan(body, orientation, angular_velocity, duration, step, o["paths"],
+                 o["integrator"], o["torques"], o["accept_lower_order"], o["euler_angles"],
+                 o["outputs"], o["sample_every"], o["t0"], o["step_limit_key"])  # fmt: skip
+    return _pieces(plan, chunk_steps, progress)
+
+
+class _Plan(NamedTuple):
+    """What :func:`simulate` validated and derived before integrating."""
+
+    method: base.Integrator
+    problem: base.Problem
+    requested: list
+    starts: dict
+    w0: np.ndarray | None
+    rigid: RigidBody | None
+    principal: np.ndarray | None
+    t0: float
+    h: float
+    nsteps: int
+    sample_every: int
+    outputs: tuple
+    initial_limit: object
+    step_limit_key: str
+
+
+def _plan(body, orientation, angular_velocity, duration, step, paths, integrator, torques,
+          accept_lower_order, euler_angles, outputs, sample_every, t0,
+          step_limit_key) -> _Plan:  # fmt: skip
     method = integrator if isinstance(integrator, base.Integrator) else base.get(integrator)
     requested = _requested(paths)
     nsteps = whole_steps(duration, step)
@@ -262,53 +341,100 @@ def simulate(
         else:
             starts[p] = module.initial_state(q0)
 
-    h = float(step)
-    grid = t0 + h * np.concatenate(
-        [np.arange(0, nsteps + 1, sample_every), [nsteps] if nsteps % sample_every else []]
-    )
-    arrays: dict[str, np.ndarray] = {"t": grid}
-    components: dict[str, tuple[str, ...]] = {"w": ("1", "2", "3")}
-    status: dict[str, dict] = {}
-    primary_w = None
+    return _Plan(method, problem, requested, starts, w0, rigid, principal, float(t0),
+                 float(step), nsteps, sample_every, tuple(outputs), initial_limit,
+                 step_limit_key)  # fmt: skip
+
+
+def _pieces(plan: _Plan, chunk: int | None, progress):
+    """The run of ``plan`` as Trajectories of consecutive samples (see
+    :func:`simulate_chunks`); ``chunk=None``: one piece, each path's loop called once."""
+    method, problem, requested, nsteps = plan.method, plan.problem, plan.requested, plan.nsteps
+    every, h, t0 = plan.sample_every, plan.h, plan.t0
     total = nsteps * len(requested)
-    for n, p in enumerate(requested):
-        spec = _paths.get(p)
+    done = dict.fromkeys(requested, 0)
+    sources = {}
+    for p in requested:
         report = None
         if progress is not None:
 
-            def report(done, n=n):
-                progress(n * nsteps + done, total)
+            def report(steps, p=p):
+                done[p] = steps
+                progress(sum(done.values()), total)
 
-        result = method.integrate(problem, p, starts[p], w0, float(t0), h, nsteps, sample_every,
-                                  report)  # fmt: skip
-        if not result.complete:
-            warnings.warn(
-                f"paths: the {p} path of {method.name} stopped at t = {float(result.t[-1]):g} s "
-                f"of {float(t0) + nsteps * h:g} s: its state stopped being finite (a singular "
-                "path, a blow-up, or an implicit step with no solution at this step size); "
-                "the trajectory holds the samples up to then",
-                IntegrationStoppedWarning,
-                stacklevel=2,
+        if chunk is None:
+            whole = method.integrate(
+                problem, p, plan.starts[p], plan.w0, t0, h, nsteps, every, report
             )
-        if primary_w is None:
-            primary_w = result.w
-            arrays["w"] = result.w
-        arrays[spec.array] = result.x
-        components[spec.array] = spec.components
-        info = {
-            "complete": result.complete,
-            "samples": int(result.t.shape[0]),
-            "ended_at": float(result.t[-1]),
-            "generated_module": str(result.source) if result.source else None,
-        }
-        module = spec.load()
-        if hasattr(module, "report") and len(result.stats) == module.NSTATS:
-            info["watch"] = module.report(result.stats)  # (scipy's dop853 keeps no watch)
-        status[p] = info
+            sources[p] = iter([whole])
+        else:
+            sources[p] = method.segments(
+                problem, p, plan.starts[p], plan.w0, t0, h, nsteps, every, chunk, report
+            )
+    span = nsteps if chunk is None else max(1, int(chunk) // every) * every
+    status = {p: {"complete": True, "samples": 0, "ended_at": t0} for p in requested}
+    live = dict(sources)
+    watching = plan.initial_limit is not None and not plan.initial_limit.exceeded
+    for lo in range(0, nsteps, span):
+        hi = min(nsteps, lo + span)
+        marks = np.arange(lo if lo == 0 else lo + every, hi + 1, every)
+        if hi == nsteps and nsteps % every:
+            marks = np.concatenate([marks, [nsteps]])
+        grid = t0 + h * marks
+        results = {}
+        for p in requested:
+            result = next(live[p], None) if p in live else None
+            if result is None:  # stopped earlier: no samples in this piece
+                live.pop(p, None)
+                continue
+            results[p] = result
+            info = status[p]
+            info["samples"] += int(result.t.shape[0])
+            if result.t.shape[0]:
+                info["ended_at"] = float(result.t[-1])
+            info["generated_module"] = str(result.source) if result.source else None
+            module = _paths.get(p).load()
+            if hasattr(module, "report") and len(result.stats) == module.NSTATS:
+                info["watch"] = module.report(result.stats)  # (scipy's dop853 keeps no watch)
+            if not result.complete:
+                info["complete"] = False
+                live.pop(p)
+                warnings.warn(
+                    f"paths: the {p} path of {method.name} stopped at t = "
+                    f"{info['ended_at']:g} s of {t0 + nsteps * h:g} s: its state stopped being "
+                    "finite (a singular path, a blow-up, or an implicit step with no solution "
+                    "at this step size); the trajectory holds the samples up to then",
+                    IntegrationStoppedWarning,
+                    stacklevel=3,
+                )
+        piece = _derive(plan, grid, results, status)
+        if watching:
+            # a torque may carry ω past the limit the start was within: judged on the samples
+            found = method.watch_step(
+                problem, grid, piece.meta.pop("_w"), h, nsteps, where=plan.step_limit_key
+            )
+            watching = found is None
+        else:
+            piece.meta.pop("_w")
+        yield piece
 
-    if initial_limit is not None and not initial_limit.exceeded:
-        # a torque may carry ω past the limit the start was within: judged on the samples
-        method.watch_step(problem, grid, primary_w, h, nsteps, where=step_limit_key)
+
+def _derive(plan: _Plan, grid, results: dict, status: dict) -> Trajectory:
+    """One piece's Trajectory: the paths' samples, the outputs asked for, in the user's frame."""
+    requested, outputs, principal, rigid = plan.requested, plan.outputs, plan.principal, plan.rigid
+    arrays: dict[str, np.ndarray] = {"t": grid}
+    components: dict[str, tuple[str, ...]] = {"w": ("1", "2", "3")}
+    primary_w = None
+    for p in requested:
+        spec = _paths.get(p)
+        result = results.get(p)
+        x = result.x if result is not None else np.empty((0, spec.dim))
+        w = result.w if result is not None else np.empty((0, 3))
+        if primary_w is None:
+            primary_w = w
+            arrays["w"] = w
+        arrays[spec.array] = x
+        components[spec.array] = spec.components
 
     # The loops return principal-frame states: the outputs are read from them on the
     # principal body (L is carried back to the user's frame below).
@@ -331,7 +457,7 @@ def simulate(
             from . import euler
 
             q_user = q if principal is None else _q.multiply(q, _q.conjugate(principal))
-            arrays["angles"] = euler.from_quaternion(q_user, "ZYZ")
+            arrays["angles"] = euler.from_quaternion(q_user, "ZYZ") if n else np.empty((0, 3))
             components["angles"] = ("psi", "theta", "phi")
     if principal is not None:
         back = _q.conjugate(principal)
@@ -345,16 +471,17 @@ def simulate(
             arrays[spec.array] = module.initial_state(q_user)
 
     meta = {
-        "integrator": method.name,
-        "order": method.order,
-        "step": h,
-        "steps": nsteps,
-        "sample_every": sample_every,
-        "problem": problem.kind,
+        "integrator": plan.method.name,
+        "order": plan.method.order,
+        "step": plan.h,
+        "steps": plan.nsteps,
+        "sample_every": plan.sample_every,
+        "problem": plan.problem.kind,
         "moments": None if rigid is None else rigid.moments,
-        "torques": [t.name for t in problem.torques],
-        "paths": status,
+        "torques": [t.name for t in plan.problem.torques],
+        "paths": {p: dict(info) for p, info in status.items()},
         "primary": requested[0],
+        "_w": primary_w,  # principal frame, for the step-limit watch; removed by _pieces
     }
     return Trajectory(arrays, components, meta)
 

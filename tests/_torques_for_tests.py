@@ -42,3 +42,9 @@ def wobble(t, p):
 def constant_omega(t, p):
     """ω(t) = (p0, p1, p2)."""
     return (p[0], p[1], p[2])
+
+
+@jit
+def turning_torque(t, q, w, p):
+    """A body torque of time alone, turning about axis 3: p[0] (cos p[1]t, sin p[1]t, 0)."""
+    return (p[0] * cos(p[1] * t), p[0] * sin(p[1] * t), 0.0)

@@ -89,7 +89,7 @@ def test_declared_torque_runs_exactly_once_per_stage():
     n = 250
     out_t, out_x, out_w = np.empty(n + 1), np.empty((n + 1, 4)), np.empty((n + 1, 3))
     rows = spec.loop(
-        IDENTITY, np.array([0.1, 0.2, 3.0]), 0.0, 1e-3, n, 1, DISK, params,
+        IDENTITY, np.array([0.1, 0.2, 3.0]), 0.0, 1e-3, 0, n, 1, DISK, params,
         out_t, out_x, out_w, np.zeros(0),
     )  # fmt: skip
     assert rows == n + 1
@@ -112,10 +112,10 @@ def test_undeclared_torque_is_never_evaluated_uncompiled(tmp_path):
         spec = _codegen.specialise(get("rk4"), problem, "rotor")
         params = np.zeros(4)
         out = np.empty(6), np.empty((6, 4)), np.empty((6, 3))
-        rows = spec.loop(np.array([1.0, 0, 0, 0]), np.array([0.1, 0.2, 0.3]), 0.0, 0.01, 5,
-                         1, (1.0, 2.0, 3.0), params, *out, np.zeros(0))
+        rows = spec.loop(np.array([1.0, 0, 0, 0]), np.array([0.1, 0.2, 0.3]), 0.0, 0.01, 0,
+                         5, 1, (1.0, 2.0, 3.0), params, *out, np.zeros(0))
         free = _codegen.specialise(get("rk4"), Problem((1.0, 2.0, 3.0)), "rotor")
-        free.loop(np.array([1.0, 0, 0, 0]), np.array([0.1, 0.2, 0.3]), 0.0, 0.01, 5,
+        free.loop(np.array([1.0, 0, 0, 0]), np.array([0.1, 0.2, 0.3]), 0.0, 0.01, 0, 5,
                   1, (1.0, 2.0, 3.0), np.zeros(0), *out, np.zeros(0))
         print(rows, int(params[0]), hasattr(free.module, "torque"))
         """

@@ -68,6 +68,7 @@ __all__ = [
     "cache_location",
     "clear_cache",
     "run_loop",
+    "run_segments",
     "source",
     "specialise",
     "vector_field",
@@ -601,10 +602,9 @@ def run_loop(
     With ``progress``, the loop runs in chunks of about :data:`CHUNK_STEPS` steps (whole
     multiples of ``every``) and ``progress(steps_done)`` is called after each. Each chunk
     starts from the last stored sample, which is the exact state (samples store the
-    state itself), and the watch statistics carry over, so the samples are the same as
-    one call's, bit for bit. Only the time a step sees, (t0 + k·chunk·h) + i·h instead of
-    t0 + (k·chunk + i)·h, can differ in its last bits: a torque that depends on t, or a
-    time the watch records, may differ by rounding.
+    state itself), at its step number (a step's time is t0 + k·h, whichever chunk takes
+    it), and the watch statistics carry over, so the samples are the same as one call's,
+    bit for bit (:func:`run_segments`).
     """
     prep = problem.derived(
         ("loop", id(integrator), path), lambda: _prepare(integrator, problem, path)
@@ -625,7 +625,7 @@ def run_loop(
     t0, h = float(t0), float(h)
     if progress is None:  # the common case: one call of the compiled loop
         written = prep.loop(
-            x, w, t0, h, nsteps, every, prep.inertia, prep.params, out_t, out_x, out_w, stats
+            x, w, t0, h, 0, nsteps, every, prep.inertia, prep.params, out_t, out_x, out_w, stats
         )
     else:
         written = _chunked(prep, x, w, t0, h, nsteps, every, out_t, out_x, out_w, stats, progress)
@@ -646,7 +646,7 @@ def _chunked(prep, x, w, t0, h, nsteps, every, out_t, out_x, out_w, stats, progr
     while True:
         n = min(chunk, nsteps - done)
         got = prep.loop(
-            x, w, t0 + done * h, h, n, every, prep.inertia, prep.params,
+            x, w, t0, h, done, n, every, prep.inertia, prep.params,
             out_t[row:], out_x[row:], out_w[row:], stats,
         )  # fmt: skip
         done += n
@@ -656,6 +656,65 @@ def _chunked(prep, x, w, t0, h, nsteps, every, out_t, out_x, out_w, stats, progr
             return row + got
         row += got - 1  # the next chunk's first sample is this chunk's last
         x, w = out_x[row].copy(), out_w[row].copy()
+
+
+def run_segments(
+    integrator: Integrator, problem: Problem, path: str, x0, w0, t0: float, h: float,
+    nsteps: int, every: int, chunk: int, progress=None,
+):  # fmt: skip
+    """The run of :func:`run_loop` as consecutive pieces of about ``chunk`` steps each.
+
+    A generator of :class:`LoopResult`: the first holds sample 0 and the samples of the
+    first ``chunk`` steps (rounded up to whole multiples of ``every``), each next one the
+    samples after the previous piece's last. Each piece continues from the previous one's
+    last sample (the exact state) at its step number, with the watch statistics carried
+    over, so the pieces joined are the samples of one call, bit for bit, and memory holds
+    one piece at a time. A piece whose state stopped being finite is the last one
+    (``complete`` False); ``stats`` of the last piece are the run's.
+
+    Examples
+    --------
+    >>> from ga_rotors.integrators import get
+    >>> rk4, problem = get("rk4"), Problem((1.0, 2.0, 3.0))
+    >>> args = (problem, "quaternion", (1.0, 0, 0, 0), (0.1, 0.0, 2.0), 0.0, 0.01, 100, 10)
+    >>> pieces = list(run_segments(rk4, *args, chunk=30))
+    >>> [len(p.t) for p in pieces]
+    [4, 3, 3, 1]
+    >>> whole = run_loop(rk4, *args)
+    >>> bool((np.concatenate([p.x for p in pieces]) == whole.x).all())
+    True
+    """
+    prep = problem.derived(
+        ("loop", id(integrator), path), lambda: _prepare(integrator, problem, path)
+    )
+    for name, value in (("nsteps", nsteps), ("every", every), ("chunk", chunk)):
+        if isinstance(value, bool) or not isinstance(value, int | np.integer) or value < 1:
+            raise InputError(f"{name}: expected a positive integer, got {value!r}")
+    nsteps, every = int(nsteps), int(every)
+    span = max(1, int(chunk) // every) * every
+    stats = prep.stats.copy() if prep.stats.size else prep.stats
+    x = np.ascontiguousarray(x0, dtype=np.float64)
+    w = np.ascontiguousarray(w0 if w0 is not None else (0.0, 0.0, 0.0), dtype=np.float64)
+    t0, h = float(t0), float(h)
+    done = 0
+    while done < nsteps:
+        n = min(span, nsteps - done)
+        rows = n // every + 1 + (1 if n % every else 0)
+        out_t, out_x, out_w = np.empty(rows), np.empty((rows, prep.dim)), np.empty((rows, 3))
+        got = prep.loop(
+            x, w, t0, h, done, n, every, prep.inertia, prep.params, out_t, out_x, out_w, stats
+        )
+        first = 0 if done == 0 else 1  # a later piece's sample 0 is the previous one's last
+        done += n
+        if progress is not None:
+            progress(done)
+        yield LoopResult(
+            t=out_t[first:got], x=out_x[first:got], w=out_w[first:got],
+            complete=got == rows, stats=stats, source=prep.source,
+        )  # fmt: skip
+        if got < rows:
+            return
+        x, w = out_x[-1].copy(), out_w[-1].copy()
 
 
 def vector_field(problem: Problem, path: str):
@@ -713,6 +772,6 @@ def bare_loop(integrator: Integrator, problem: Problem, path: str, x0, w0, t0, h
     t0, h = float(t0), float(h)
 
     def call():
-        return loop(x, w, t0, h, nsteps, every, inertia, params, out_t, out_x, out_w, stats)
+        return loop(x, w, t0, h, 0, nsteps, every, inertia, params, out_t, out_x, out_w, stats)
 
     return call

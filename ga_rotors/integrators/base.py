@@ -263,6 +263,29 @@ class Integrator(ABC):
         every ``every``-th sample, with no checks (see :meth:`run`); ``progress(done)`` is
         called as steps complete (at least once, at the end)."""
 
+    def segments(
+        self, problem: Problem, path: str, x0, w0, t0: float, h: float, nsteps: int,
+        every: int, chunk: int, progress: Callable[[int], None] | None = None,
+    ):  # fmt: skip
+        """:meth:`integrate`'s samples as consecutive pieces of about ``chunk`` steps, so a
+        long run holds one piece at a time (a generator of :class:`LoopResult`; the first
+        holds sample 0, each next one the samples after the previous piece's last).
+
+        Joined, the pieces are :meth:`integrate`'s samples bit for bit: each continues
+        from the exact state, step number and carried state (watch statistics; an
+        adaptive method's step size) where the previous one ended. The compiled methods
+        and ``dop853`` do this; this default, for an integrator that cannot continue,
+        yields one piece holding the whole run.
+
+        Examples
+        --------
+        >>> r = get("rk4").segments(Problem((1.0, 2.0, 3.0)), "rotor", (1.0, 0, 0, 0),
+        ...                         (0.0, 0.0, 2.0), 0.0, 0.01, 100, 10, chunk=50)
+        >>> [piece.t.tolist()[-1] for piece in r]
+        [0.5, 1.0]
+        """
+        yield self.integrate(problem, path, x0, w0, t0, h, nsteps, every, progress)
+
     def run(
         self, problem: Problem, path: str, x0, w0, t0: float, h: float, nsteps: int,
         every: int, progress: Callable[[int], None] | None = None,

@@ -96,5 +96,83 @@ class Dop853(Integrator):
             stats=np.array([float(sol.nfev)]),
         )
 
+    def segments(self, problem, path, x0, w0, t0, h, nsteps, every, chunk, progress=None):
+        """See :meth:`Integrator.segments`: scipy's DOP853 stepper kept alive between
+        pieces (its step size, error history and dense output carry over), each piece the
+        samples of about ``chunk`` steps read off its dense output exactly as
+        ``solve_ivp(t_eval=...)`` reads them, so the pieces joined are :meth:`integrate`'s
+        samples bit for bit.
+
+        Examples
+        --------
+        >>> from ga_rotors.integrators import Problem
+        >>> args = (Problem((1.0, 2.0, 3.0)), "quaternion", (1.0, 0, 0, 0), (0.1, 0, 2.0),
+        ...         0.0, 0.01, 100, 10)
+        >>> pieces = list(DOP853.segments(*args, chunk=40))
+        >>> [len(p.t) for p in pieces]
+        [5, 4, 2]
+        >>> bool((np.concatenate([p.x for p in pieces]) == DOP853.integrate(*args).x).all())
+        True
+        """
+        from scipy.integrate import DOP853 as Stepper
+
+        from ._codegen import vector_field
+
+        rhs = vector_field(problem, path)
+        x0 = np.asarray(x0, dtype=np.float64)
+        dim = x0.shape[0]
+        kinematic = problem.kind == KINEMATIC
+        y0 = x0 if kinematic else np.concatenate([x0, np.asarray(w0, dtype=np.float64)])
+        per_piece = max(1, int(chunk) // every)
+        t0, h, nsteps, every = float(t0), float(h), int(nsteps), int(every)
+        count = nsteps // every + 1 + (1 if nsteps % every else 0)  # samples in the run
+
+        def times(i, j):  # samples i..j-1 at the times solve_ivp(t_eval=...) is given
+            return t0 + h * np.minimum(np.arange(i, j) * every, nsteps).astype(np.float64)
+
+        with np.errstate(invalid="ignore", over="ignore"):
+            solver = Stepper(rhs, t0, y0, float(times(count - 1, count)[0]), rtol=self.rtol,
+                             atol=self.atol)  # fmt: skip
+        params = np.asarray(problem.params()) if kinematic else None
+        ts: list = []  # samples read off the dense output, not yet handed out
+        ys: list = []
+        read = 0  # samples read off so far
+        handed = 0  # samples handed out so far
+        while handed < count:
+            size = per_piece + (0 if handed else 1)  # sample 0, then ``chunk`` steps' worth
+            while read < min(count, handed + size) and solver.status == "running":
+                with np.errstate(invalid="ignore", over="ignore"):
+                    solver.step()
+                if solver.status == "failed":
+                    break
+                # every sample this step covers, in one evaluation, as solve_ivp reads them
+                ahead = min(count, int((solver.t - t0) / (h * every)) + 2)
+                window = times(read, max(ahead, read))
+                new = read + int(np.searchsorted(window, solver.t, side="right"))
+                if new > read:
+                    ts.append(window[: new - read])
+                    ys.append(solver.dense_output()(window[: new - read]).T)
+                    read = new
+            t = np.concatenate(ts) if ts else times(0, 0)
+            y = np.concatenate(ys) if ys else np.empty((0, y0.shape[0]))
+            if handed == 0 and read == 0:  # failed before the first output time: y0 alone
+                t, y = times(0, 1), y0[None, :]
+            take = min(size, t.shape[0])
+            ts, ys = [t[take:]], [y[take:]]
+            t, y = t[:take], y[:take]
+            handed += take
+            complete = take == size or handed == count
+            if progress is not None:
+                progress(min(nsteps, (handed - 1) * every) if handed else 0)
+            if kinematic:
+                w = np.array([problem.omega.kernel(v, params) for v in t]).reshape(-1, 3)
+            else:
+                w = y[:, dim:]
+            yield LoopResult(
+                t=t, x=y[:, :dim], w=w, complete=complete, stats=np.array([float(solver.nfev)])
+            )
+            if not complete:
+                return
+
 
 DOP853 = register(Dop853())

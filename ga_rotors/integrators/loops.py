@@ -4,11 +4,14 @@ Templates are plain Python (see :mod:`ga_rotors.integrators.base`); the code gen
 pastes them into a module next to the integrator's step template and the path's kernels,
 and compiles them there. Both loops share one calling convention::
 
-    rows = loop(x0, w0, t0, h, nsteps, every, inertia, params, out_t, out_x, out_w, stats)
+    rows = loop(x0, w0, t0, h, first, nsteps, every, inertia, params, out_t, out_x, out_w,
+                stats)
 
-* ``x0`` (dim,) path state, ``w0`` (3,) body ω (ignored by the kinematic loop);
+* ``x0`` (dim,) path state at step ``first``, ``w0`` (3,) body ω (ignored by the
+  kinematic loop); the loop takes steps ``first`` to ``first + nsteps``;
 * sample 0 is the initial state; then every ``every`` steps and always the last step;
-* ``t = t0 + i·h`` is computed, not accumulated, so times carry no drift;
+* ``t = t0 + (first + i)·h`` is computed, not accumulated, so times carry no drift, and a
+  run continued from step ``first`` sees exactly the times a single run sees;
 * ``rows`` is the number of samples written; it is smaller than the arrays when the state
   stopped being finite (the samples before are valid, nothing after is written).
 
@@ -27,23 +30,25 @@ from .slots import accel, o_load, o_rate, o_store, o_watch, omega, step
 __all__: list[str] = []
 
 
-def fixed_step_loop(x0, w0, t0, h, nsteps, every, inertia, params, out_t, out_x, out_w, stats):
+def fixed_step_loop(
+    x0, w0, t0, h, first, nsteps, every, inertia, params, out_t, out_x, out_w, stats
+):
     """Dynamics: ``x, w = step(t, x, w, h, inertia, params)`` repeated ``nsteps`` times."""
     x = o_load(x0)
     w = (w0[0], w0[1], w0[2])
-    out_t[0] = t0
+    out_t[0] = t0 + first * h
     o_store(out_x, 0, x)
     store3(out_w, 0, w)
     row = 1
     countdown = every
     for i in range(nsteps):
-        t = t0 + i * h
+        t = t0 + (first + i) * h
         o_watch(t, x, w, h, stats)
         x, w = step(t, x, w, h, inertia, params)
         countdown -= 1
         if countdown == 0 or i + 1 == nsteps:
             countdown = every
-            out_t[row] = t0 + (i + 1) * h
+            out_t[row] = t0 + (first + i + 1) * h
             o_store(out_x, row, x)
             store3(out_w, row, w)
             if not (finite_row(out_x, row) and finite_row(out_w, row)):
@@ -52,22 +57,24 @@ def fixed_step_loop(x0, w0, t0, h, nsteps, every, inertia, params, out_t, out_x,
     return row
 
 
-def kinematic_loop(x0, w0, t0, h, nsteps, every, inertia, params, out_t, out_x, out_w, stats):
+def kinematic_loop(
+    x0, w0, t0, h, first, nsteps, every, inertia, params, out_t, out_x, out_w, stats
+):
     """Prescribed ω(t): ``x = step(t, x, h, params)``; ``out_w`` records ω(t)."""
     x = o_load(x0)
-    out_t[0] = t0
+    out_t[0] = t0 + first * h
     o_store(out_x, 0, x)
-    store3(out_w, 0, omega(t0, params))
+    store3(out_w, 0, omega(out_t[0], params))
     row = 1
     countdown = every
     for i in range(nsteps):
-        t = t0 + i * h
+        t = t0 + (first + i) * h
         o_watch(t, x, omega(t, params), h, stats)
         x = step(t, x, h, params)
         countdown -= 1
         if countdown == 0 or i + 1 == nsteps:
             countdown = every
-            t1 = t0 + (i + 1) * h
+            t1 = t0 + (first + i + 1) * h
             out_t[row] = t1
             o_store(out_x, row, x)
             store3(out_w, row, omega(t1, params))

@@ -70,3 +70,10 @@ class TemplateIntegrator(Integrator):
         """See :meth:`Integrator.integrate`; the compiled loop is specialised once per
         problem and path, then each call only allocates the samples and runs it."""
         return _codegen.run_loop(self, problem, path, x0, w0, t0, h, nsteps, every, progress)
+
+    def segments(self, problem, path, x0, w0, t0, h, nsteps, every, chunk, progress=None):
+        """See :meth:`Integrator.segments`: :func:`~._codegen.run_segments`, the compiled
+        loop continued piece by piece from the exact state at its step number."""
+        return _codegen.run_segments(
+            self, problem, path, x0, w0, t0, h, nsteps, every, chunk, progress
+        )
