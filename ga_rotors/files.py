@@ -16,9 +16,11 @@ Faults, and what each leaves:
 * two commands writing one ``--out``: serialised by a lock on the folder holding it
   (``fcntl.flock``, no lock file left behind); the second waits up to
   :data:`LOCK_TIMEOUT` seconds, then fails with one line;
-* a full disk, a file where the folder goes, a folder where a file goes, a dangling
-  symbolic link as ``--out``, a name that would leave ``--out`` or is too long: one line
-  (:class:`~ga_rotors.errors.InputError` naming the argument), before anything moves.
+* a full disk, a file where the folder goes, a folder where an output file goes, a file
+  where an output folder goes (an output folder, such as a zarr store, replaces the
+  previous run's folder of that name), a dangling symbolic link as ``--out``, a name
+  that would leave ``--out`` or is too long: one line (:class:`~ga_rotors.errors.InputError`
+  naming the argument), before anything moves.
 """
 
 from __future__ import annotations
@@ -163,7 +165,12 @@ def _locked(folder: Path, argument: str) -> Iterator[None]:
 def _finish_moves(staging: Path, out: Path) -> None:
     for f in sorted(staging.iterdir()):
         if f.name != _COMPLETE:
-            os.replace(f, out / f.name)
+            target = out / f.name
+            if f.is_dir() and target.is_dir() and not target.is_symlink():
+                # a store (a folder) replaces the previous run's: removed, then renamed in;
+                # interrupted in between, the next run's recovery finishes the moves
+                shutil.rmtree(target)
+            os.replace(f, target)
     (staging / _COMPLETE).unlink(missing_ok=True)
     staging.rmdir()
 
@@ -271,9 +278,16 @@ def output_set(out_dir, argument: str = "out_dir") -> Iterator[Path]:
                 names = sorted(f.name for f in staging.iterdir())
                 for name in names:
                     _check_name(name, argument)
-                    if exists and (out / name).is_dir() and not (out / name).is_symlink():
+                    target, folder = out / name, (staging / name).is_dir()
+                    if exists and target.is_dir() and not target.is_symlink() and not folder:
                         raise InputError(
-                            f"{out / name} is a folder; the output file {name} "
+                            f"{target} is a folder; the output file {name} "
+                            "goes there (nothing was replaced)",
+                            key=argument,
+                        )
+                    if exists and folder and os.path.lexists(target) and not target.is_dir():
+                        raise InputError(
+                            f"{target} is not a folder; the output folder {name} (a store) "
                             "goes there (nothing was replaced)",
                             key=argument,
                         )

@@ -16,7 +16,6 @@ import pytest
 from ga_rotors.cli import main
 from ga_rotors.cli.run import ProgressBar
 from ga_rotors.scene import Scene, bundled, load_scene
-from ga_rotors.scene import output as scene_output
 
 ROOT = Path(__file__).resolve().parent.parent
 
@@ -78,28 +77,40 @@ def test_run_without_declared_files_writes_nothing(short, tmp_path, capsys):
     assert "no files declared" in capsys.readouterr().out
 
 
+@pytest.mark.parametrize("when", ["drawing", "mid-run"])
 @pytest.mark.parametrize("existing", [False, True], ids=["new-dir", "existing-dir"])
-def test_a_failed_run_leaves_no_half_written_files(short, tmp_path, monkeypatch, existing):
+def test_a_failed_run_leaves_no_half_written_files(short, tmp_path, monkeypatch, existing, when):
+    from ga_rotors.results import streams
+    from ga_rotors.scene import figures
+
     out = tmp_path / "out"
     if existing:
         out.mkdir()
         (out / "short.csv").write_text("previous run\n")
-    # The CSV and NPZ are written first; the figure then fails.
+    # The data files are streamed into the staging folder as the run goes; then the
+    # figure is drawn. A failure in either place (Ctrl-C mid-run) leaves --out as it was.
     written = []
-    real_csv = scene_output.Trajectory.to_csv
+    real_append = streams.CsvStream.append
 
-    def spy_csv(self, path=None):
-        written.append(path)
-        return real_csv(self, path)
+    def spy_append(self, piece):
+        if when == "mid-run" and written:
+            raise KeyboardInterrupt  # the second piece: the files are half written
+        written.append(self.path)
+        return real_append(self, piece)
 
     def broken_figure(scene, trajectory, fmt=None):
-        assert written and Path(written[0]).exists()  # half the files exist (staged)
+        assert written and Path(written[0]).exists()  # the data files exist (staged)
         raise RuntimeError("injected failure while drawing")
 
-    monkeypatch.setattr(scene_output.Trajectory, "to_csv", spy_csv)
-    monkeypatch.setattr(scene_output, "render", broken_figure)
-    with pytest.raises(RuntimeError, match="injected failure"):
-        main(["run", str(short), "--out", str(out), "--no-progress"])
+    monkeypatch.setattr(streams.CsvStream, "append", spy_append)
+    monkeypatch.setattr(figures, "render", broken_figure)
+    argv = ["run", str(short), "--out", str(out), "--no-progress", "--chunk-steps", "50"]
+    if when == "drawing":
+        with pytest.raises(RuntimeError, match="injected failure"):
+            main(argv)
+    else:
+        assert main(argv) == 130  # Ctrl-C: "ga-rotors: interrupted"
+    assert written and not Path(written[0]).exists()
     if existing:
         assert sorted(p.name for p in out.iterdir()) == ["short.csv"]
         assert (out / "short.csv").read_text() == "previous run\n"
@@ -192,13 +203,12 @@ def test_progress_bar_is_silent_for_short_runs_and_off_a_terminal():
 
 
 def test_run_reports_progress_while_the_loops_run(short, tmp_path, monkeypatch, capsys):
-    from ga_rotors.integrators import _codegen
-
-    monkeypatch.setattr(_codegen, "CHUNK_STEPS", 50)
     seen = []
     monkeypatch.setattr(ProgressBar, "__call__", lambda self, d, t: seen.append((d, t)))
-    assert main(["run", str(short), "--out", str(tmp_path / "o"), "--progress"]) == 0
-    assert seen[-1] == (400, 400) and len(seen) == 2 * 4  # two paths, four chunks each
+    argv = ["run", str(short), "--out", str(tmp_path / "o"), "--progress", "--chunk-steps", "50"]
+    assert main(argv) == 0
+    assert seen[-1] == (400, 400) and len(seen) == 2 * 4  # two paths, four pieces each
+    assert seen == sorted(seen)
 
 
 def test_run_prints_the_packages_warnings_as_one_line_each(tmp_path, capsys):

@@ -97,3 +97,181 @@ def test_chunk_steps_is_checked():
         simulate_chunks(BODY, Q0, W0, **RUN, chunk_steps=0)
     with pytest.raises(InputError, match="not an argument"):
         simulate_chunks(BODY, Q0, W0, **RUN, colour="red")
+
+
+# ------------------------------------------------------------------ streamed scene runs
+
+from ga_rotors.scene import (  # noqa: E402
+    bundled,
+    load_scene,
+    report,
+    run_scene,
+    stream_scene,
+    write_outputs,
+)
+
+ALL_FORMATS = ["csv", "npz", "netcdf", "zarr"]
+
+
+def _pieces_of(scene):
+    """A piece length that splits the run into about seven uneven pieces."""
+    return max(1, scene.steps // 7 + 3)
+
+
+def _compare_files(scene, streamed, whole):
+    import xarray as xr
+
+    from ga_rotors.results import read
+
+    name = scene.name
+    assert (streamed / f"{name}.csv").read_bytes() == (whole / f"{name}.csv").read_bytes()
+    a, b = np.load(streamed / f"{name}.npz"), np.load(whole / f"{name}.npz")
+    assert a.files == b.files
+    for key in a.files:
+        assert np.array_equal(a[key], b[key], equal_nan=a[key].dtype.kind == "f"), key
+    for suffix in (".nc", ".zarr"):
+        xr.testing.assert_identical(read(streamed / f"{name}{suffix}"),
+                                    read(whole / f"{name}{suffix}"))  # fmt: skip
+
+
+@pytest.mark.parametrize("name", sorted(bundled()))
+def test_streamed_run_writes_the_files_and_summary_of_the_whole_run(name, tmp_path):
+    """Every bundled scene in full, streamed in about seven pieces: the same data files
+    (CSV bytes, NPZ arrays, netCDF and zarr Datasets), the same summary, and (a short
+    run: every sample kept) the same figure."""
+    from ga_rotors.scene.figures import DIGEST_PREFIX
+
+    scene = load_scene(name).replace({"output.data": ALL_FORMATS, "output.summary": True})
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # a scene's own warnings (gimbal lock) both ways
+        files, rep = stream_scene(scene, tmp_path / "streamed", chunk_steps=_pieces_of(scene))
+        tr = run_scene(scene)
+        whole = report(scene, tr)
+        write_outputs(scene, tr, tmp_path / "whole", str(whole))
+    assert rep.lines == whole.lines and rep.values == whole.values
+    assert [p.name for p in files] == sorted(
+        (p.name for p in (tmp_path / "whole").iterdir()), key=[p.name for p in files].index
+    )
+    _compare_files(scene, tmp_path / "streamed", tmp_path / "whole")
+    png = {k: (tmp_path / k / f"{name}.png").read_bytes() for k in ("streamed", "whole")}
+    digest = [p[p.index(DIGEST_PREFIX.encode()) :][:60] for p in png.values()]
+    assert digest[0] == digest[1]
+
+
+def _scene(effects, **extra):
+    from ga_rotors.scene import Scene
+
+    data = {
+        "body": {"moments": [1.0, 2.0, 3.0]},
+        "initial": {"angular_velocity": {"body": [0.3, 1.0, 0.2], "units": "rad/s"}},
+        "time": {"duration": 2.0, "output_step": 0.01},
+        "integrator": {"step": 1e-3},
+        "effects": effects,
+        "output": {"data": ALL_FORMATS, "plots": ["omega", "invariants"], "summary": True},
+    }
+    for key, value in extra.items():
+        data[key] = {**data.get(key, {}), **value}
+    return Scene(data)
+
+
+@pytest.mark.parametrize(
+    "scene",
+    [
+        _scene([{"type": "space_torque", "torque": [0.0, 0.1, 0.2]}]),
+        _scene([{"type": "body_torque", "torque": [0.0, 0.0, 0.5]}]),
+        _scene([], integrator={"method": "dop853", "tolerance": 1e-10}),
+    ],
+    ids=["space-torque", "body-torque", "adaptive"],
+)
+def test_streamed_summary_and_files_equal_the_whole_run_beyond_the_bundled(scene, tmp_path):
+    _, rep = stream_scene(scene, tmp_path / "streamed", chunk_steps=_pieces_of(scene))
+    tr = run_scene(scene)
+    whole = report(scene, tr)
+    write_outputs(scene, tr, tmp_path / "whole", str(whole))
+    assert rep.lines == whole.lines and rep.values == whole.values
+    _compare_files(scene, tmp_path / "streamed", tmp_path / "whole")
+
+
+def test_a_stopped_path_streams_as_it_stops(tmp_path):
+    """The Euler-angle path started at its singularity: ragged columns, NaN-padded
+    netCDF/zarr with valid_samples, INCOMPLETE summary, all as the whole run."""
+    scene = load_scene("spinning_disk").replace(
+        {"initial.orientation.euler": [0.0, 0.0, 0.0], "output.data": ALL_FORMATS,
+         "output.summary": True, "time.duration": 1.0}
+    )  # fmt: skip
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        _, rep = stream_scene(scene, tmp_path / "streamed", chunk_steps=_pieces_of(scene))
+        tr = run_scene(scene)
+        whole = report(scene, tr)
+        write_outputs(scene, tr, tmp_path / "whole", str(whole))
+    assert "incomplete" in rep.values and rep.lines == whole.lines
+    _compare_files(scene, tmp_path / "streamed", tmp_path / "whole")
+
+
+def test_a_long_runs_figure_keeps_every_samples_extremes():
+    """Beyond KEEP_ALL samples the figure's copy is thinned: bounded, and each column's
+    smallest and largest value (spikes) survive."""
+    from ga_rotors.scene.run import run_pieces
+    from ga_rotors.scene.thinning import COLUMNS, KEEP_ALL, ThinnedCopy
+
+    scene = load_scene("intermediate_axis_flip").replace(
+        {"time.duration": 60.0, "time.output_step": 0.001}
+    )
+    pieces = list(run_pieces(scene, chunk_steps=7919))
+    count = sum(len(p) for p in pieces)
+    assert count > KEEP_ALL
+    copy = ThinnedCopy(pieces[0].t[0], pieces[-1].t[-1], count)
+    for piece in pieces:
+        copy.add(piece)
+    thin = copy.trajectory()
+    columns = sum(int(np.prod(thin[n].shape[1:])) for n in thin.names if n != "t")
+    assert len(thin) <= COLUMNS * (2 + 2 * columns) and len(thin) < count / 2
+    for name in thin.names:
+        whole = np.concatenate([p[name] for p in pieces])
+        assert (thin[name].max(axis=0) == whole.max(axis=0)).all(), name
+        assert (thin[name].min(axis=0) == whole.min(axis=0)).all(), name
+    assert thin.t[0] == pieces[0].t[0] and thin.t[-1] == pieces[-1].t[-1]
+
+
+def test_a_zarr_store_replaces_the_previous_runs(tmp_path):
+    from ga_rotors.results import read
+
+    scene = load_scene("spinning_disk").replace(
+        {"time.duration": 0.5, "output.data": ["zarr"], "output.plots": []}
+    )
+    stream_scene(scene, tmp_path)
+    first = read(tmp_path / "spinning_disk.zarr")
+    stream_scene(scene.replace({"time.duration": 0.2}), tmp_path)
+    second = read(tmp_path / "spinning_disk.zarr")
+    assert first.sizes["time"] == 51 and second.sizes["time"] == 21
+    assert sorted(p.name for p in tmp_path.iterdir()) == [
+        "spinning_disk.scene.toml", "spinning_disk.summary.txt", "spinning_disk.zarr"
+    ]  # fmt: skip
+
+
+def test_streamed_memory_does_not_grow_with_the_run(tmp_path):
+    """Ten times the steps, the same peak of traced allocations (within 2x): the samples
+    are written as they come (no time is measured)."""
+    import tracemalloc
+
+    scene = load_scene("heavy_top").replace({"output.data": ["csv", "npz"]})
+    peaks = []
+    for duration in (0.5, 5.0):
+        s = scene.replace({"time.duration": duration})
+        stream_scene(s, tmp_path / "warm", chunk_steps=2000)  # compiled, imported
+        tracemalloc.start()
+        stream_scene(s, tmp_path / str(duration), chunk_steps=2000)
+        peaks.append(tracemalloc.get_traced_memory()[1])
+        tracemalloc.stop()
+    assert peaks[1] < 2 * peaks[0], peaks
+
+
+def test_the_disk_budget_refuses_with_the_key(tmp_path, capsys):
+    from ga_rotors.cli import main
+
+    argv = ["run", "heavy_top", "--out", str(tmp_path / "o"), "--max-disk", "0.001"]
+    assert main(argv) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "time.duration" in err and "--max-disk GIB" in err
+    assert "of files" in err and not (tmp_path / "o").exists()

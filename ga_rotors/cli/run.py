@@ -3,12 +3,17 @@
 Integrates exactly the effects and orientation paths the scene declares, prints a closing
 summary (invariant drift, the rotor/quaternion cross-check, the error against the exact
 solution where one exists, and physics readouts such as nutation bounds or flip times),
-and writes the scene's declared data files and figure into --out, atomically: a failed
-run leaves no half-written files. Bundled scenes: ga-rotors scenes. Schema: docs/scenes.md.
+and writes the scene's declared data files and figure into --out. The run is streamed:
+integrated in pieces, each appended to the data files as it is computed, the summary
+accumulated and the figure drawn from a thinned copy, so memory stays bounded whatever
+the number of steps. The files move into --out only when the run is complete: a failed
+or interrupted run leaves the previous ones. Bundled scenes: ga-rotors scenes. Schema:
+docs/scenes.md.
 
 A scene needing more than --max-steps integration steps (default 1e8, summed over paths)
-or --max-memory GiB of samples (default 2) is refused before it runs. A run that stops
-early (a path's state stopped being finite) says INCOMPLETE on its first line and exits 3.
+or --max-disk GiB of files (default 20) is refused before it runs; a run of more than
+1e6 steps prints its estimate first. A run that stops early (a path's state stopped being
+finite) says INCOMPLETE on its first line and exits 3.
 """
 
 from __future__ import annotations
@@ -56,7 +61,23 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         metavar="GIB",
         type=float,
         default=None,
-        help="refuse a scene whose samples need more memory (default 2 GiB)",
+        help="refuse a scene whose run needs more memory (default 2 GiB; a streamed run "
+        "holds one piece of samples at a time)",
+    )
+    parser.add_argument(
+        "--max-disk",
+        metavar="GIB",
+        type=float,
+        default=None,
+        help="refuse a scene whose files need more disk (default 20 GiB)",
+    )
+    parser.add_argument(
+        "--chunk-steps",
+        metavar="N",
+        type=int,
+        default=None,
+        help="steps per piece of the streamed run, each path (default 131072; memory grows "
+        "with N, not with the run)",
     )
     parser.add_argument(
         "--format",
@@ -157,23 +178,30 @@ def _user_code(args: argparse.Namespace, scene):
 
 
 def _budget(args: argparse.Namespace):
-    """The scene budget from --max-steps / --max-memory (defaults where not given)."""
+    """The scene budget from --max-steps / --max-memory / --max-disk (defaults where not
+    given)."""
     from ..scene.budget import DEFAULT, Budget
 
     steps = DEFAULT.max_steps if args.max_steps is None else args.max_steps
     memory = DEFAULT.max_memory_gib if args.max_memory is None else args.max_memory
-    if steps != steps or memory != memory:  # NaN
+    disk = DEFAULT.max_disk_gib if args.max_disk is None else args.max_disk
+    if steps != steps or memory != memory or disk != disk:  # NaN
         from ..errors import InputError
 
-        raise InputError("--max-steps, --max-memory: expected numbers")
-    return Budget(max_steps=steps, max_memory_gib=memory)
+        raise InputError("--max-steps, --max-memory, --max-disk: expected numbers")
+    return Budget(max_steps=steps, max_memory_gib=memory, max_disk_gib=disk)
+
+
+#: Runs of more steps (all paths) print their estimate before they start.
+SHOW_ESTIMATE_STEPS = 10**6
 
 
 def run(args: argparse.Namespace) -> int:
     from pathlib import Path
 
     from ..errors import GimbalLockWarning, IntegrationStoppedWarning, StepLimitWarning
-    from ..scene import load_scene, report, run_scene, write_outputs
+    from ..scene import load_scene, stream_scene
+    from ..scene.budget import check
     from ..warmup import scene_tasks, warm
 
     start = time.perf_counter()
@@ -181,36 +209,37 @@ def run(args: argparse.Namespace) -> int:
     if args.format is not None:
         scene = scene.replace({"output.figure_format": args.format})
     budget = _budget(args)
+    estimate = check(scene, budget, streamed=True)
+    if estimate.steps > SHOW_ESTIMATE_STEPS:
+        print(f"{scene.name}: {estimate} (streamed)", file=sys.stderr)
     if not any(e["type"] == "user" for e in scene.data["effects"]):
         # A scene's first run compiles, and says so where the progress bar shows; user
         # code is left to the run itself, which checks the opt-in and reports on one line.
         show = sys.stderr.isatty() if args.progress is None else args.progress
         warm(scene_tasks(scene), processes=1, show=show)
+    out = Path(args.out) if args.out is not None else Path(DEFAULT_OUT) / scene.name
+    chunk = {}
+    if args.chunk_steps is not None:
+        if args.chunk_steps < 1:
+            from ..errors import InputError
+
+            raise InputError(f"--chunk-steps: expected a positive integer, got {args.chunk_steps}")
+        chunk = {"chunk_steps": args.chunk_steps}
     bar = ProgressBar(sys.stderr, args.progress)
     own = (StepLimitWarning, GimbalLockWarning, IntegrationStoppedWarning)
     with warnings.catch_warnings(record=True) as caught, _user_code(args, scene):
         for category in own:
             warnings.simplefilter("always", category)
         try:
-            trajectory = run_scene(scene, progress=bar, budget=budget)
+            written, rep = stream_scene(scene, out, progress=bar, budget=budget, **chunk)
         finally:
             bar.close()
-    for w in caught:
-        # The package's own warnings are about the scene, not a line of its code: one
-        # line each, no source excerpt.
-        if issubclass(w.category, own):
-            print(f"ga-rotors: warning: {w.message}", file=sys.stderr)
-        else:
-            warnings.warn_explicit(w.message, w.category, w.filename, w.lineno)
-    rep = report(scene, trajectory)
+            _warn(caught, own)
     incomplete = "incomplete" in rep.values
-    summary = str(rep) if scene.data["output"]["summary"] else None
-    if summary is not None:
-        print(summary)
+    if scene.data["output"]["summary"]:
+        print(rep)
     elif incomplete:
         print(rep.lines[0])
-    out = Path(args.out) if args.out is not None else Path(DEFAULT_OUT) / scene.name
-    written = write_outputs(scene, trajectory, out, summary)
     took = time.perf_counter() - start
     if written:
         print(f"\nwrote {', '.join(p.name for p in written)} to {out}/ ({took:.1f} s)")
@@ -222,3 +251,13 @@ def run(args: argparse.Namespace) -> int:
     saved = any(p.suffix == ".npz" for p in written)
     print(f'see it move: ga-rotors view {out if saved else args.scene} (needs "ga-rotors[view]")')
     return 0
+
+
+def _warn(caught, own) -> None:
+    """The run's warnings: the package's own about the scene, one line each (no source
+    excerpt); any other as Python shows it."""
+    for w in caught:
+        if issubclass(w.category, own):
+            print(f"ga-rotors: warning: {w.message}", file=sys.stderr)
+        else:
+            warnings.warn_explicit(w.message, w.category, w.filename, w.lineno)

@@ -21,7 +21,7 @@ import numpy as np
 from ..optional import require
 from .variables import COMPONENT_DIMS, describe
 
-__all__ = ["EXACT_BOUND_TIMES", "provenance", "to_dataset"]
+__all__ = ["EXACT_BOUND_TIMES", "exact_bound_at", "provenance", "to_dataset"]
 
 #: At most this many sample times (evenly spread, the last included) are evaluated to find
 #: the exact reference's largest error bound; the bounds grow smoothly with time.
@@ -73,11 +73,28 @@ def provenance(meta: dict, scene=None) -> dict:
 
 def _exact_bound(scene, t: np.ndarray) -> float | None:
     """Largest rounding-error bound (rad) of the scene's exact reference over ``t``."""
-    exact = scene.exact_solution if scene.exact else None
-    if exact is None or not hasattr(exact.model, "state") or t.size == 0:
+    if t.size == 0:
         return None
     pick = np.unique(np.linspace(0, t.size - 1, min(t.size, EXACT_BOUND_TIMES)).astype(int))
-    error = getattr(exact.model.state(t[pick] - exact.t0), "error", None)
+    return exact_bound_at(scene, t[pick])
+
+
+def exact_bound_at(scene, times: np.ndarray) -> float | None:
+    """Largest rounding-error bound (rad) of the scene's exact reference at ``times``
+    (None when the scene has no reference with a bound).
+
+    Examples
+    --------
+    >>> from ga_rotors.scene import load_scene
+    >>> exact_bound_at(load_scene("heavy_top"), np.array([0.0, 1.0])) < 1e-12
+    True
+    >>> exact_bound_at(load_scene("damped_top"), np.array([0.0])) is None
+    True
+    """
+    exact = scene.exact_solution if scene.exact else None
+    if exact is None or not hasattr(exact.model, "state") or times.size == 0:
+        return None
+    error = getattr(exact.model.state(times - exact.t0), "error", None)
     return None if error is None else float(np.max(error))
 
 

@@ -17,7 +17,7 @@ from ..errors import InputError
 from ..files import atomic_write
 from .variables import describe
 
-__all__ = ["BLOCK_ROWS", "csv_header", "write_csv"]
+__all__ = ["BLOCK_ROWS", "csv_header", "csv_rows", "write_csv"]
 
 #: Rows formatted per ``%`` call (a few MB of text).
 BLOCK_ROWS = 16_384
@@ -70,6 +70,22 @@ def _blocks(trajectory, rows: int):
         yield text
 
 
+def csv_rows(trajectory, block_rows: int = BLOCK_ROWS):
+    """The data rows of ``trajectory`` as UTF-8 text, a block of ``block_rows`` at a time
+    (no header: :func:`csv_header`); the rows of consecutive pieces of a run, joined, are
+    the rows of the run whole.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from ga_rotors.trajectory import Trajectory
+    >>> list(csv_rows(Trajectory({"t": np.array([0.0, 0.25])})))
+    [b'0\\n0.25\\n']
+    """
+    for text in _blocks(trajectory, block_rows):
+        yield text.encode()
+
+
 def write_csv(trajectory, path=None, *, block_rows: int = BLOCK_ROWS) -> str | Path:
     """Write the trajectory as CSV with units in the headers, atomically.
 
@@ -91,7 +107,7 @@ def write_csv(trajectory, path=None, *, block_rows: int = BLOCK_ROWS) -> str | P
 
     def write(fh):
         fh.write(header.encode())
-        for text in _blocks(trajectory, block_rows):
-            fh.write(text.encode())
+        for text in csv_rows(trajectory, block_rows):
+            fh.write(text)
 
     return atomic_write(path, write)

@@ -8,11 +8,15 @@ Data flows one way, one module per step:
 * :mod:`~ga_rotors.scene.toml_io`: a resolved scene written back as TOML;
 * :mod:`~ga_rotors.scene.loading`: :func:`load_scene`, files and the bundled scenes;
 * :mod:`~ga_rotors.scene.exact`: the exact solution that applies, in the scene's terms;
-* :mod:`~ga_rotors.scene.run`: :func:`run_scene`, a scene integrated into a Trajectory;
-* :mod:`~ga_rotors.scene.summary`: the closing summary (invariants, cross-check, exact);
+* :mod:`~ga_rotors.scene.run`: :func:`run_scene`, a scene integrated into a Trajectory
+  (:func:`run_pieces`: the same run as pieces of consecutive samples);
+* :mod:`~ga_rotors.scene.summary`: the closing summary (invariants, cross-check, exact),
+  accumulated piece by piece;
+* :mod:`~ga_rotors.scene.thinning`: the bounded copy of a long run its figure is drawn from;
 * :mod:`~ga_rotors.scene.figures`: the run's figure;
 * :mod:`~ga_rotors.scene.formats`: the data formats (``output.data``), a registry;
-* :mod:`~ga_rotors.scene.output`: the run's files, written atomically.
+* :mod:`~ga_rotors.scene.output`: the run's files, streamed as it goes and moved into
+  place atomically (:func:`stream_scene`).
 
 The names below are imported on first use, so ``import ga_rotors.scene.reader`` (which
 :mod:`ga_rotors.effects` needs) does not import the rest.
@@ -36,6 +40,9 @@ _EXPORTS = {
     "bundled": "loading",
     "bundled_path": "loading",
     "run_scene": "run",
+    "run_pieces": "run",
+    "stream_scene": "output",
+    "RunSummary": "summary",
     "report": "summary",
     "Report": "summary",
     "write_outputs": "output",

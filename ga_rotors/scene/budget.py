@@ -1,15 +1,24 @@
 """What a scene will cost, estimated before it runs, and the budget it must fit.
 
-A scene file may ask for anything: 10⁹ samples (7.5 GiB of arrays), 10¹² steps (days).
-Before integrating, :func:`check` estimates the steps (every path integrates every step)
-and the memory of the stored samples, and refuses a scene beyond the budget with one
-line that names the key and how to raise the budget (``ga-rotors run --max-steps N
---max-memory GIB``, or ``run_scene(scene, budget=Budget(...))``).
+A scene file may ask for anything: 10⁹ samples (7.5 GiB of arrays, 40 GB of CSV), 10¹²
+steps (days). Before integrating, :func:`check` estimates the steps (every path
+integrates every step), the memory and the disk the run takes, and refuses a scene beyond
+the budget with one line that names the key and how to raise the budget (``ga-rotors run
+--max-steps N --max-disk GIB``, or ``Budget(...)`` in Python).
 
-The memory estimate counts the arrays a run keeps: per sample the time, ω, each path's
-state, and the requested quantities, 8 bytes each, times :data:`WORKING_COPIES` for the
-copies made while deriving quantities and writing files. It is an estimate (it leaves
-out the interpreter and the figure), meant to refuse the absurd, not to bill the exact.
+Two kinds of run, two memory estimates:
+
+* a run whose samples stay in memory (:func:`ga_rotors.scene.run_scene`, the user asked
+  for arrays): per sample the time, ω, each path's state and the requested quantities,
+  8 bytes each, times :data:`WORKING_COPIES` for the copies made while deriving
+  quantities and writing files;
+* a streamed run (:func:`ga_rotors.scene.stream_scene`, ``ga-rotors run``): one piece of
+  samples at a time and the figure's thinned copy, whatever the number of steps; what
+  grows with the run is the disk its files take, :data:`BYTES_PER_VALUE` per value and
+  format (CSV text, binary formats), checked against ``max_disk_gib``.
+
+They are estimates (they leave out the interpreter), meant to refuse the absurd, not to
+bill the exact.
 """
 
 from __future__ import annotations
@@ -18,11 +27,22 @@ from dataclasses import dataclass
 
 from ..errors import InputError
 
-__all__ = ["DEFAULT", "Budget", "Estimate", "check", "estimate"]
+__all__ = ["BYTES_PER_VALUE", "CHUNK_STEPS", "DEFAULT", "Budget", "Estimate", "check", "estimate"]
 
 #: Float64 copies of the sample arrays alive at the peak (the loop's output, the
 #: normalised orientations and quantities, the text of a CSV file).
 WORKING_COPIES = 3
+
+#: Bytes a value takes on disk, per format of ``output.data`` (CSV: up to 24 characters of
+#: ``%.17g`` and a separator; the binary formats: float64, uncompressed at most).
+BYTES_PER_VALUE = {"csv": 25, "npz": 8, "netcdf": 8, "zarr": 8}
+
+#: Steps per piece of a streamed run (each path): a few MB of samples at most.
+CHUNK_STEPS = 2**17
+
+#: Samples per piece of a streamed run kept at once (the piece, its quantities, the
+#: writers' copies) on top of the thinned copy's rows (COLUMNS x (2 + 2 x columns)).
+_STREAM_COPIES = 4
 
 #: Columns a path's state occupies per sample.
 _PATH_COLUMNS = {"rotor": 4, "quaternion": 4, "euler": 3}
@@ -32,12 +52,12 @@ _QUANTITY_COLUMNS = {"angles": 3, "omega_space": 3, "L_space": 3, "L": 3}
 
 @dataclass(frozen=True)
 class Budget:
-    """The most a run may take: integration steps (summed over paths) and memory.
+    """The most a run may take: integration steps (summed over paths), memory and disk.
 
     Examples
     --------
-    >>> Budget().max_steps, Budget().max_memory_gib
-    (100000000, 2.0)
+    >>> Budget().max_steps, Budget().max_memory_gib, Budget().max_disk_gib
+    (100000000, 2.0, 20.0)
     >>> Budget(max_steps=0)
     Traceback (most recent call last):
     ...
@@ -46,9 +66,10 @@ class Budget:
 
     max_steps: int = 10**8
     max_memory_gib: float = 2.0
+    max_disk_gib: float = 20.0
 
     def __post_init__(self):
-        for name in ("max_steps", "max_memory_gib"):
+        for name in ("max_steps", "max_memory_gib", "max_disk_gib"):
             value = getattr(self, name)
             if isinstance(value, bool) or not isinstance(value, int | float) or not value > 0:
                 raise InputError(f"expected a positive number, got {value!r}", key=name)
@@ -60,43 +81,75 @@ DEFAULT = Budget()
 
 @dataclass(frozen=True)
 class Estimate:
-    """Steps (all paths) and bytes of samples a scene needs (see :func:`estimate`).
+    """Steps (all paths), bytes of memory and bytes of files a scene needs
+    (see :func:`estimate`).
 
     Examples
     --------
-    >>> Estimate(steps=2000, samples=1002, bytes=240480).bytes / 2**20 < 1
+    >>> Estimate(steps=2000, samples=1002, bytes=240480, disk=200400).bytes / 2**20 < 1
     True
     """
 
     steps: int
     samples: int
     bytes: int
+    disk: int = 0
+
+    def __str__(self) -> str:
+        return (
+            f"{self.steps:.3g} steps, {self.samples:.3g} samples: about "
+            f"{_size(self.bytes)} of memory, {_size(self.disk)} of files"
+        )
 
 
-def estimate(scene) -> Estimate:
-    """The steps and the memory ``scene`` will take.
+def _size(n: int) -> str:
+    for unit, scale in (("GiB", 2**30), ("MiB", 2**20)):
+        if n >= scale:
+            return f"{n / scale:.3g} {unit}"
+    return f"{n / 2**10:.3g} KiB"
+
+
+def estimate(scene, streamed: bool = False) -> Estimate:
+    """The steps, the memory and the disk ``scene`` will take, its samples in memory or
+    ``streamed`` to its files.
 
     Examples
     --------
     >>> from ga_rotors.scene import load_scene
     >>> e = estimate(load_scene("heavy_top"))
-    >>> e.steps, e.samples, round(e.bytes / 2**20, 1)
-    (60000, 6002, 2.5)
+    >>> e.steps, e.samples, round(e.bytes / 2**20, 1), round(e.disk / 2**20, 1)
+    (60000, 6002, 2.5, 2.6)
+    >>> long = load_scene("heavy_top").replace({"time.duration": 500})
+    >>> print(estimate(long))
+    1e+07 steps, 1e+06 samples: about 412 MiB of memory, 429 MiB of files
+    >>> print(estimate(long, streamed=True))
+    1e+07 steps, 1e+06 samples: about 25.1 MiB of memory, 429 MiB of files
     """
+    from .thinning import COLUMNS
+
     paths = scene.paths
     samples = scene.steps // scene.sample_every + 2
     columns = 1 + 3 + sum(_PATH_COLUMNS.get(p, 4) for p in paths)
     for name in scene.data["output"]["quantities"]:
         columns += len(paths) if name == "error" else _QUANTITY_COLUMNS.get(name, 1)
+    per_value = sum(BYTES_PER_VALUE.get(f, 8) for f in scene.data["output"]["data"])
+    if streamed:
+        piece = min(samples, CHUNK_STEPS // scene.sample_every + 2)
+        thinned = min(samples, COLUMNS * (2 + 2 * columns)) if scene.data["output"]["plots"] else 0
+        memory = (piece * _STREAM_COPIES + thinned) * columns * 8
+    else:
+        memory = samples * columns * 8 * WORKING_COPIES
     return Estimate(
         steps=scene.steps * len(paths),
         samples=samples,
-        bytes=samples * columns * 8 * WORKING_COPIES,
+        bytes=memory,
+        disk=samples * columns * per_value,
     )
 
 
-def check(scene, budget: Budget = DEFAULT) -> Estimate:
-    """Refuse ``scene`` (SceneError naming the key) when it is beyond ``budget``.
+def check(scene, budget: Budget = DEFAULT, streamed: bool = False) -> Estimate:
+    """Refuse ``scene`` (SceneError naming the key) when it is beyond ``budget``, its
+    samples kept in memory or ``streamed`` to its files.
 
     Examples
     --------
@@ -108,24 +161,39 @@ def check(scene, budget: Budget = DEFAULT) -> Estimate:
     ga_rotors.errors.SceneError: ...heavy_top.toml: time.duration: 300000 s needs 6e+09 ...
     >>> check(s, Budget(max_steps=10**10, max_memory_gib=500)).steps
     6000000000
+
+    Streamed, the memory is bounded, and the files are what grows:
+
+    >>> check(s, Budget(max_steps=10**10), streamed=True)
+    Traceback (most recent call last):
+    ...
+    ga_rotors.errors.SceneError: ...: time.duration: 300000 s needs about 251 GiB of files ...
     """
     from .reader import Reader
 
-    e = estimate(scene)
+    e = estimate(scene, streamed)
     gib = e.bytes / 2**30
-    over = []
+    over, raise_with = [], []
     if e.steps > budget.max_steps:
         over.append(f"{e.steps:.3g} integration steps (budget {budget.max_steps:.3g})")
+        raise_with.append("--max-steps N")
     if gib > budget.max_memory_gib:
         over.append(
-            f"about {gib:.3g} GiB for {e.samples:.3g} samples (budget "
+            f"about {gib:.3g} GiB of memory for {e.samples:.3g} samples (budget "
             f"{budget.max_memory_gib:g} GiB; time.output_step sets how many are kept)"
         )
+        raise_with.append("--max-memory GIB")
+    if streamed and e.disk / 2**30 > budget.max_disk_gib:
+        over.append(
+            f"about {e.disk / 2**30:.3g} GiB of files for {e.samples:.3g} samples (budget "
+            f"{budget.max_disk_gib:g} GiB; time.output_step sets how many are written)"
+        )
+        raise_with.append("--max-disk GIB")
     if over:
         duration = scene.data["time"]["duration"]
         raise Reader(scene.file).error(
             "time.duration",
             f"{duration:g} s needs {' and '.join(over)}; to run it anyway raise the budget: "
-            "ga-rotors run --max-steps N --max-memory GIB",
+            f"ga-rotors run {' '.join(raise_with)}",
         )
     return e

@@ -1,9 +1,11 @@
 """Data formats a scene run can write (``output.data``): one registry, one entry per format.
 
-Each :class:`DataFormat` names its file suffix and how to write a trajectory to a path;
-the schema accepts exactly the names in :data:`FORMATS`, and
-:func:`ga_rotors.scene.output.write_outputs` writes each declared one through the atomic
-writer. A new format is one :func:`register` call (``docs/extending.md``).
+Each :class:`DataFormat` names its file suffix, how to write a whole trajectory to a path
+and how to open a writer that takes a run piece by piece (``stream``: the four built-in
+formats write as the run goes on, see :mod:`ga_rotors.results.streams`); the schema
+accepts exactly the names in :data:`FORMATS`, and :func:`ga_rotors.scene.stream_scene`
+writes each declared one into the run's staging folder. A new format is one
+:func:`register` call (``docs/extending.md``).
 """
 
 from __future__ import annotations
@@ -18,10 +20,13 @@ __all__ = ["FORMATS", "DataFormat", "register"]
 
 @dataclass(frozen=True)
 class DataFormat:
-    """One data format: ``write(trajectory, path)`` writes the whole file at ``path``.
+    """One data format: ``write(trajectory, path)`` writes the whole file at ``path``;
+    ``stream(path, scene)``, if given, opens a writer taking the run piece by piece
+    (``append(piece)``, then ``close(meta)``; ``abort()`` on failure).
 
     ``path`` is in a staging directory (the run's files move into place together), so
-    the writer need not be atomic itself.
+    the writer need not be atomic itself. A format without ``stream`` is written whole
+    at the end of the run, its pieces kept in memory until then.
 
     Examples
     --------
@@ -33,6 +38,48 @@ class DataFormat:
     suffix: str
     doc: str
     write: Callable = field(repr=False)
+    stream: Callable | None = field(default=None, repr=False)
+
+    def open(self, path, scene=None):
+        """A writer of this format at ``path`` for the pieces of a run.
+
+        Examples
+        --------
+        >>> import tempfile, pathlib
+        >>> import numpy as np
+        >>> from ga_rotors.trajectory import Trajectory
+        >>> path = pathlib.Path(tempfile.mkdtemp()) / "run.csv"
+        >>> out = FORMATS["csv"].open(path)
+        >>> out.append(Trajectory({"t": np.array([0.0, 1.0])}))
+        >>> out.close({})
+        >>> path.read_text().splitlines()
+        ['t [s]', '0', '1']
+        """
+        if self.stream is not None:
+            return self.stream(path, scene)
+        return _Whole(self, path)
+
+
+class _Whole:
+    """The writer of a format that only writes whole trajectories: pieces kept, joined."""
+
+    def __init__(self, fmt: DataFormat, path):
+        self.fmt, self.path, self.pieces = fmt, path, []
+
+    def append(self, piece) -> None:
+        self.pieces.append(piece)
+
+    def close(self, meta: dict) -> None:
+        import numpy as np
+
+        from ..trajectory import Trajectory
+
+        first = self.pieces[0]
+        arrays = {n: np.concatenate([p[n] for p in self.pieces]) for n in first.names}
+        self.fmt.write(Trajectory(arrays, first.components, meta), self.path)
+
+    def abort(self) -> None:
+        self.pieces = []
 
 
 def _csv(trajectory, path):
@@ -43,10 +90,20 @@ def _npz(trajectory, path):
     return trajectory.to_npz(path)
 
 
-def _netcdf(trajectory, path):
+def _store(trajectory, path):
     from ..results import write  # xarray and h5netcdf: the [results] extra
 
     return write(trajectory, path)
+
+
+def _stream(name: str):
+    def open_stream(path, scene):
+        from ..results import streams
+
+        cls = getattr(streams, name)
+        return cls(path, scene) if name in ("NetcdfStream", "ZarrStream") else cls(path)
+
+    return open_stream
 
 
 #: format name -> DataFormat, in the order the docs list them.
@@ -74,11 +131,23 @@ def register(fmt: DataFormat) -> DataFormat:
     return fmt
 
 
-register(DataFormat("csv", ".csv", "every array as CSV columns, full precision", _csv))
-register(DataFormat("npz", ".npz", "every array in one NumPy .npz archive", _npz))
+register(
+    DataFormat("csv", ".csv", "every array as CSV columns, full precision", _csv,
+               _stream("CsvStream"))
+)  # fmt: skip
+register(
+    DataFormat("npz", ".npz", "every array in one NumPy .npz archive", _npz,
+               _stream("NpzStream"))
+)  # fmt: skip
 register(
     DataFormat(
         "netcdf", ".nc", "every array with its unit and the run's settings (ga-rotors[results])",
-        _netcdf,
+        _store, _stream("NetcdfStream"),
+    )
+)  # fmt: skip
+register(
+    DataFormat(
+        "zarr", ".zarr", "a zarr store: the netCDF content, chunked (ga-rotors[results])",
+        _store, _stream("ZarrStream"),
     )
 )  # fmt: skip

@@ -1,50 +1,157 @@
-"""A scene run's files: data (CSV, NPZ), the figure, the summary and the resolved scene.
+"""A scene run's files: data, the figure, the summary and the resolved scene.
 
-:func:`write_outputs` writes, into one directory, exactly what ``output`` declares:
+:func:`stream_scene` runs a scene and writes, into one directory, exactly what ``output``
+declares, as the run goes on:
 
-* ``<name>.csv`` / ``<name>.npz`` (or any registered format) for ``output.data``;
-* ``<name>.png`` (or ``.svg``, ``.pdf``: ``output.figure_format``), one panel per entry
-  of ``output.plots`` (drawn with matplotlib, carrying a digest of the data it shows);
-* ``<name>.summary.txt`` when ``output.summary`` is on, and ``<name>.scene.toml``, the
-  resolved scene, whenever anything is written (what made these files).
+* ``<name>.csv`` / ``.npz`` / ``.nc`` / ``.zarr`` (any registered format) for
+  ``output.data``, each appended piece by piece (:mod:`ga_rotors.results.streams`);
+* ``<name>.png``, one panel per entry of ``output.plots`` (drawn with matplotlib, a
+  palette PNG carrying a digest of the data it shows), drawn from a bounded thinned copy
+  of the run (:class:`~ga_rotors.scene.thinning.ThinnedCopy`: every sample's extremes per
+  pixel column);
+* ``<name>.summary.txt`` when ``output.summary`` is on (accumulated piece by piece,
+  :class:`~ga_rotors.scene.summary.RunSummary`), and ``<name>.scene.toml``, the resolved
+  scene, whenever anything is written (what made these files).
 
-Atomicity: everything is first written into a staging directory on the same file system;
-only when every file is complete are they moved into place (one ``rename`` of the whole
-directory when it did not exist, otherwise one ``os.replace`` per file). A failure at any
-point removes the staging directory, so a failed run leaves no half-written files and
-changes nothing it had not finished.
+The run is integrated in pieces of :data:`~ga_rotors.scene.budget.CHUNK_STEPS` steps
+(:func:`ga_rotors.scene.run.run_pieces`, bit for bit the run whole), so memory holds one
+piece, the thinned copy and a few numbers per piece, whatever the number of steps.
+:func:`write_outputs` writes the same files from a trajectory already in memory.
+
+Atomicity: everything is written into a staging directory on the same file system
+(:func:`ga_rotors.files.output_set`); only when the run has finished and every file is
+complete are they moved into place. A failure or an interruption at any point removes
+the staging directory, so the previous output stays as it was.
 """
 
 from __future__ import annotations
 
+from pathlib import Path
+
 from ..trajectory import Trajectory
-from .figures import render
+from .budget import CHUNK_STEPS
 from .formats import FORMATS
+from .loading import load_scene
 from .model import Scene
 
-__all__ = ["write_outputs"]
+__all__ = ["stream_scene", "write_outputs"]
 
 
-def _plan(scene: Scene, tr: Trajectory, summary: str | None) -> list[tuple[str, object]]:
-    name = scene.name
+def _declared(scene: Scene) -> bool:
     out = scene.data["output"]
-    plan: list[tuple[str, object]] = []
-    for fmt in out["data"]:
-        write = FORMATS[fmt].write
-        plan.append((f"{name}{FORMATS[fmt].suffix}", lambda p, write=write: write(tr, p)))
+    return bool(out["data"] or out["plots"])
+
+
+def _names(scene: Scene, summary: bool) -> list[str]:
+    out, name = scene.data["output"], scene.name
+    names = [f"{name}{FORMATS[fmt].suffix}" for fmt in out["data"]]
     if out["plots"]:
-        figure = f"{name}.{out['figure_format']}"
-        plan.append((figure, lambda p: p.write_bytes(render(scene, tr))))
-    if not plan:
-        return []
-    if summary is not None:
-        plan.append((f"{name}.summary.txt", lambda p: p.write_text(summary + "\n", "utf-8")))
-    plan.append((f"{name}.scene.toml", lambda p: p.write_text(scene.to_toml(), "utf-8")))
-    return plan
+        names.append(f"{name}.png")
+    if summary:
+        names.append(f"{name}.summary.txt")
+    return [*names, f"{name}.scene.toml"]
+
+
+def _write(scene: Scene, pieces, stage: Path | None, summarise: bool):
+    """Feed ``pieces`` to the writers in ``stage`` (None: no files), the thinned copy and
+    (``summarise``) the summary; write the figure, summary and scene files; return the
+    Report (None unless ``summarise``)."""
+    from .summary import RunSummary
+    from .thinning import ThinnedCopy
+
+    out, name = scene.data["output"], scene.name
+    writers = []
+    if stage is not None:
+        for fmt in out["data"]:
+            writers.append(FORMATS[fmt].open(stage / f"{name}{FORMATS[fmt].suffix}", scene))
+    summary = RunSummary(scene) if summarise else None
+    thin = None
+    meta = None
+    try:
+        for piece in pieces:
+            if thin is None and stage is not None and out["plots"]:
+                meta0 = piece.meta
+                t_end = float(piece.t[0]) + meta0["steps"] * meta0["step"]
+                every = meta0["sample_every"]
+                count = meta0["steps"] // every + 1 + (1 if meta0["steps"] % every else 0)
+                thin = ThinnedCopy(float(piece.t[0]), t_end, count)
+            for writer in writers:
+                writer.append(piece)
+            if summary is not None:
+                summary.add(piece)
+            if thin is not None:
+                thin.add(piece)
+            meta = piece.meta
+        for writer in writers:
+            writer.close(meta)
+    except BaseException:
+        for writer in writers:
+            writer.abort()
+        raise
+    rep = summary.report() if summary is not None else None
+    if stage is not None:
+        if thin is not None:
+            from .figures import figure_png
+
+            (stage / f"{name}.png").write_bytes(figure_png(scene, thin.trajectory(meta)))
+        if rep is not None and out["summary"]:
+            (stage / f"{name}.summary.txt").write_text(str(rep) + "\n", "utf-8")
+        (stage / f"{name}.scene.toml").write_text(scene.to_toml(), "utf-8")
+    return rep
+
+
+def stream_scene(scene, out_dir, *, progress=None, budget=None, chunk_steps: int = CHUNK_STEPS):
+    """Run ``scene`` and write its declared files into ``out_dir`` as the run goes on.
+
+    Parameters
+    ----------
+    scene : Scene or str or path
+    out_dir : str or path
+        Created if missing; the new files replace the previous ones only when the run
+        has finished and every file is complete.
+    progress : callable, optional
+        ``progress(done, total)`` in steps (all paths).
+    budget : ga_rotors.scene.budget.Budget, optional
+        Steps and disk the run may take (default :data:`ga_rotors.scene.budget.DEFAULT`),
+        checked before it starts, the key named (:func:`ga_rotors.scene.budget.check`).
+    chunk_steps : int
+        Steps per piece (each path).
+
+    Returns
+    -------
+    (list of Path, Report)
+        The files written (none when the scene declares no data and no plots: then
+        nothing is created) and the run's summary.
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> s = load_scene("heavy_top").replace({"time.duration": 0.5, "output.data": ["csv"]})
+    >>> out = pathlib.Path(tempfile.mkdtemp()) / "run"
+    >>> files, rep = stream_scene(s, out, chunk_steps=1000)
+    >>> [p.name for p in files]
+    ['heavy_top.csv', 'heavy_top.png', 'heavy_top.summary.txt', 'heavy_top.scene.toml']
+    >>> rep.values["drift_total_energy"] < 1e-9
+    True
+    """
+    from ..files import output_set
+    from . import budget as _budget
+    from .run import run_pieces
+
+    scene = load_scene(scene)
+    _budget.check(scene, _budget.DEFAULT if budget is None else budget, streamed=True)
+    pieces = run_pieces(scene, chunk_steps=chunk_steps, progress=progress)
+    if not _declared(scene):
+        return [], _write(scene, pieces, None, True)
+    with output_set(out_dir, "--out") as stage:
+        rep = _write(scene, pieces, stage, True)
+    return [Path(out_dir) / n for n in _names(scene, scene.data["output"]["summary"])], rep
 
 
 def write_outputs(scene: Scene, trajectory: Trajectory, out_dir, summary: str | None = None):
-    """Write the declared files into ``out_dir`` atomically; return their paths.
+    """Write the declared files of a run already in memory into ``out_dir`` atomically;
+    return their paths (the files :func:`stream_scene` writes, ``summary`` as the
+    summary's text).
 
     Nothing is written (and no directory created) when the scene declares no data and
     no plots.
@@ -59,9 +166,12 @@ def write_outputs(scene: Scene, trajectory: Trajectory, out_dir, summary: str | 
     >>> [p.name for p in write_outputs(s, run_scene(s), out)]
     ['spinning_disk.csv', 'spinning_disk.scene.toml']
     """
-    from ..files import write_together
+    from ..files import output_set
 
-    plan = _plan(scene, trajectory, summary)
-    if not plan:
+    if not _declared(scene):
         return []
-    return write_together(out_dir, plan, argument="--out")
+    with output_set(out_dir, "--out") as stage:
+        _write(scene, [trajectory], stage, False)
+        if summary is not None:
+            (stage / f"{scene.name}.summary.txt").write_text(summary + "\n", "utf-8")
+    return [Path(out_dir) / n for n in _names(scene, summary is not None)]

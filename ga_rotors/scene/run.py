@@ -25,7 +25,7 @@ from ..trajectory import Trajectory
 from .loading import load_scene
 from .model import Scene
 
-__all__ = ["run_scene"]
+__all__ = ["run_pieces", "run_scene"]
 
 
 def _user_compile_error(scene: Scene, exc: Exception):
@@ -41,6 +41,9 @@ def _user_compile_error(scene: Scene, exc: Exception):
 
 def run_scene(scene, *, progress=None, budget=None) -> Trajectory:
     """Integrate a scene (a :class:`Scene`, a file path or a bundled scene's name).
+
+    Every sample stays in memory (the returned arrays); for a long run, stream it to
+    files instead (:func:`ga_rotors.scene.stream_scene`, what ``ga-rotors run`` does).
 
     Parameters
     ----------
@@ -66,47 +69,75 @@ def run_scene(scene, *, progress=None, budget=None) -> Trajectory:
     >>> tr.meta["torques"], tr.meta["problem"]
     (['gravity'], 'torqued')
     """
-    from .. import simulation as _sim
     from . import budget as _budget
 
     scene = load_scene(scene)
     _budget.check(scene, _budget.DEFAULT if budget is None else budget)
+    return next(_pieces(scene, None, progress))
+
+
+def run_pieces(scene, *, chunk_steps: int | None = None, progress=None):
+    """:func:`run_scene` as Trajectories of consecutive samples, about ``chunk_steps``
+    steps each (default :data:`~ga_rotors.scene.budget.CHUNK_STEPS`;
+    :func:`ga_rotors.simulation.simulate_chunks`), the scene's quantities computed per
+    piece: joined, they are :func:`run_scene`'s arrays bit for bit, and memory holds one
+    piece at a time. No budget is checked here (the caller's, who decides what is kept:
+    :func:`ga_rotors.scene.stream_scene`).
+
+    Examples
+    --------
+    >>> scene = load_scene("heavy_top").replace({"time.duration": 0.1})
+    >>> pieces = list(run_pieces(scene, chunk_steps=400))    # 1000 steps, sampled every 5
+    >>> [len(p) for p in pieces], pieces[-1].names == run_scene(scene).names
+    ([81, 80, 40], True)
+    """
+    from .budget import CHUNK_STEPS
+
+    return _pieces(load_scene(scene), chunk_steps or CHUNK_STEPS, progress)
+
+
+def _pieces(scene: Scene, chunk_steps, progress):
+    from .. import simulation as _sim
+
     torques = scene.torques()
     wanted = scene.data["output"]["quantities"]
+    args = (scene.body, scene.orientation, scene.angular_velocity)
+    options = dict(
+        duration=scene.data["time"]["duration"],
+        step=scene.step,
+        paths=scene.paths,
+        integrator=scene.method,
+        torques=torques,
+        accept_lower_order=scene.data["integrator"].get("accept_lower_order", False),
+        euler_angles=scene.euler_angles,
+        outputs=[name for name in wanted if name in _sim.OUTPUTS],
+        sample_every=scene.sample_every,
+        t0=scene.data["time"]["start"],
+        progress=progress,
+        step_limit_key=f"{scene.file}: integrator.step",
+    )
+    extra = [name for name in wanted if name not in _sim.OUTPUTS]
+    meta = {"scene": scene.name, "principal_rotation": scene.principal_rotation,
+            "exact": scene.exact, "scene_toml": scene.to_toml()}  # fmt: skip
     try:
-        tr = _sim.simulate(
-            scene.body,
-            scene.orientation,
-            scene.angular_velocity,
-            duration=scene.data["time"]["duration"],
-            step=scene.step,
-            paths=scene.paths,
-            integrator=scene.method,
-            torques=torques,
-            accept_lower_order=scene.data["integrator"].get("accept_lower_order", False),
-            euler_angles=scene.euler_angles,
-            outputs=[name for name in wanted if name in _sim.OUTPUTS],
-            sample_every=scene.sample_every,
-            t0=scene.data["time"]["start"],
-            progress=progress,
-            step_limit_key=f"{scene.file}: integrator.step",
-        )
+        if chunk_steps is None:
+            source = iter([_sim.simulate(*args, **options)])
+        else:
+            source = _sim.simulate_chunks(*args, chunk_steps=chunk_steps, **options)
+        for tr in source:
+            arrays, components = {}, {}
+            if extra:
+                for name, (values, labels) in _quantities(scene, tr, extra).items():
+                    arrays[name] = values
+                    if labels:
+                        components[name] = labels
+            yield tr.extended(arrays, components, meta)
     except Exception as exc:
         from numba.core.errors import NumbaError
 
         if isinstance(exc, NumbaError) and any(e["type"] == "user" for e in scene.data["effects"]):
             raise _user_compile_error(scene, exc) from None
         raise
-    extra = [name for name in wanted if name not in _sim.OUTPUTS]
-    arrays, components = {}, {}
-    if extra:
-        for name, (values, labels) in _quantities(scene, tr, extra).items():
-            arrays[name] = values
-            if labels:
-                components[name] = labels
-    meta = {"scene": scene.name, "principal_rotation": scene.principal_rotation,
-            "exact": scene.exact, "scene_toml": scene.to_toml()}  # fmt: skip
-    return tr.extended(arrays, components, meta)
 
 
 def _quantities(scene: Scene, tr: Trajectory, names: list[str]) -> dict:

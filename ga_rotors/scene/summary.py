@@ -30,7 +30,15 @@ import numpy as np
 from ..trajectory import Trajectory
 from .model import Scene
 
-__all__ = ["Report", "extrema", "hermite_at", "invariant_series", "report", "zero_crossings"]
+__all__ = [
+    "Report",
+    "RunSummary",
+    "extrema",
+    "hermite_at",
+    "invariant_series",
+    "report",
+    "zero_crossings",
+]
 
 
 @dataclass
@@ -147,8 +155,15 @@ def extrema(t, y, dy) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
 # ---------------------------------------------------------------------------- measuring
 
 
-def invariant_series(scene: Scene, tr: Trajectory, q: np.ndarray) -> list[tuple]:
+def invariant_series(scene: Scene, tr: Trajectory, q: np.ndarray, start=None) -> list[tuple]:
     """The conserved quantities of ``scene``'s effects along ``tr``.
+
+    Parameters
+    ----------
+    start : tuple (t, w, q, t_end), optional
+        The run's first sample (time, ω, normalised orientation) and last time, when
+        ``tr`` is a later piece of the run (:class:`RunSummary`); by default ``tr``'s own
+        first sample and last time.
 
     Returns
     -------
@@ -169,198 +184,382 @@ def invariant_series(scene: Scene, tr: Trajectory, q: np.ndarray) -> list[tuple]
 
     body, w = scene.body, tr.w
     t = tr.t[: w.shape[0]]
+    if start is None:
+        start = (tr.t[0], w[0], q[0], tr.t[-1])
+    t_first, w_first, q_first, t_end = start
+    w_first, q_first = np.asarray(w_first)[None, :], np.asarray(q_first)[None, :]
     types = [e["type"] for e in scene.data["effects"]]
     L_body = body.momentum(w)
     L_space = Q.rotate(q, L_body)
-    L0 = float(np.linalg.norm(L_space[0]))
+    L_first = Q.rotate(q_first, body.momentum(w_first))
+    L0 = float(np.linalg.norm(L_first[0]))
 
-    def dev(values, scale):
-        d = np.abs(values - values[0])
+    def dev(values, first, scale):
+        d = np.abs(values - first[0])
         d = np.linalg.norm(d, axis=-1) if d.ndim > 1 else d
         return d / scale if scale > 0 else d
 
     rows = []
     if not types:
-        e = body.energy(w)
+        e, e0 = body.energy(w), np.atleast_1d(body.energy(w_first))
+        norm, norm0 = np.linalg.norm(L_space, axis=-1), np.linalg.norm(L_first, axis=-1)
         rows += [
-            ("energy", "energy", dev(e, e[0]), "relative to E₀"),
-            ("momentum_norm", "|L|", dev(np.linalg.norm(L_space, axis=-1), L0),
-             "relative to |L₀|"),
-            ("space_momentum", "space-frame L", dev(L_space, L0), "relative to |L₀|"),
-        ]  # fmt: skip
+            ("energy", "energy", dev(e, e0, e0[0]), "relative to E₀"),
+            ("momentum_norm", "|L|", dev(norm, norm0, L0), "relative to |L₀|"),
+            ("space_momentum", "space-frame L", dev(L_space, L_first, L0), "relative to |L₀|"),
+        ]
     elif types == ["gravity"]:
         weight, r = scene.gravity
         total = body.energy(w) - Q.rotate(q, r) @ weight
-        scale = float(body.energy(w[0]) + np.linalg.norm(weight) * np.linalg.norm(r))
+        total0 = np.atleast_1d(body.energy(w_first) - Q.rotate(q_first, r) @ weight)
+        scale = float(body.energy(w_first[0]) + np.linalg.norm(weight) * np.linalg.norm(r))
         up = -weight / np.linalg.norm(weight)
         rows += [
-            ("total_energy", "total energy", dev(total, scale), "relative to E_kin,0 + m|g||r|"),
-            ("vertical_momentum", "vertical L", dev(L_space @ up, L0), "relative to |L₀|"),
-        ]
+            ("total_energy", "total energy", dev(total, total0, scale),
+             "relative to E_kin,0 + m|g||r|"),
+            ("vertical_momentum", "vertical L", dev(L_space @ up, L_first @ up, L0),
+             "relative to |L₀|"),
+        ]  # fmt: skip
         if scene.exact == "heavy_top":
-            rows.append(("axial_momentum", "body L₃", dev(L_body[:, 2], L0), "relative to |L₀|"))
+            axial = body.momentum(w_first)[:, 2]
+            rows.append(("axial_momentum", "body L₃", dev(L_body[:, 2], axial, L0),
+                         "relative to |L₀|"))  # fmt: skip
     elif types == ["space_torque"]:
         tau = np.array(scene.data["effects"][0]["torque"])
-        free = L_space - (t - t[0])[:, None] * tau
-        scale = L0 + float(np.linalg.norm(tau)) * float(t[-1] - t[0])
-        rows.append(("space_momentum", "L − τ t", dev(free, scale), "relative to |L₀| + |τ| T"))
+        free = L_space - (t - t_first)[:, None] * tau
+        scale = L0 + float(np.linalg.norm(tau)) * float(t_end - t_first)
+        rows.append(("space_momentum", "L − τ t", dev(free, L_first, scale),
+                     "relative to |L₀| + |τ| T"))  # fmt: skip
     return rows
 
 
-def _invariants(scene: Scene, tr: Trajectory, q: np.ndarray, rep: Report) -> None:
-    rows = invariant_series(scene, tr, q)
-    if not rows:
-        types = ", ".join(e["type"] for e in scene.data["effects"])
-        rep.lines.append(f"  none simple under {types}")
-        return
-    for key, label, deviation, scale in rows:
-        value = float(deviation.max())
-        rep.values[f"drift_{key}"] = value
-        rep.lines.append(f"  {label:<22} max drift {value:9.2e}  ({scale})")
+def _unwrap(raw: np.ndarray, before) -> tuple[np.ndarray, tuple[float, float]]:
+    """Unwrapped angles ``raw`` continuing from ``before`` = (last raw, its correction).
+
+    The standard unwrap (jumps beyond π corrected by whole turns), its corrections summed
+    in one running sum carried from piece to piece, so the pieces of a run unwrap to the
+    same numbers as the run whole.
+    """
+    prev_raw, carried = before if before is not None else (raw[0], 0.0)
+    dd = np.diff(np.concatenate([[prev_raw], raw]))
+    ddmod = np.mod(dd + np.pi, 2 * np.pi) - np.pi
+    ddmod[(ddmod == -np.pi) & (dd > 0)] = np.pi
+    correct = ddmod - dd
+    correct[np.abs(dd) < np.pi] = 0.0
+    total = np.cumsum(np.concatenate([[carried], correct]))[1:]
+    return raw + total, (float(raw[-1]), float(total[-1]))
 
 
-def _paths(tr: Trajectory, rep: Report) -> None:
-    from .. import paths as _paths
+class RunSummary:
+    """The summary of a run handed over piece by piece (:func:`report` is its one-piece use).
 
-    for path, info in tr.meta["paths"].items():
-        status = "complete" if info["complete"] else f"stopped at t = {info['ended_at']:g} s"
-        line = f"  {path:<11} {status}"
-        spec = _paths.get(path)
-        if spec.on_unit_sphere:
-            drift = float(np.abs(np.linalg.norm(tr[spec.array], axis=-1) - 1.0).max())
-            rep.values[f"norm_drift_{path}"] = drift
-            line += f", max | |{path}| − 1 | = {drift:.1e}"
-        watch = info.get("watch")
-        if watch and watch.get("unresolved_steps"):
-            line += (
-                f"; {watch['unresolved_steps']} steps did not resolve the Euler rates (from t = "
-                f"{watch['first_unresolved']:g} s; min |sin θ| {watch['min_abs_sin_theta']:.1e})"
-            )
-        rep.lines.append(line)
+    What :func:`report` measures is accumulated as the pieces arrive: largest drifts,
+    errors and path disagreements as running maxima; the physics readouts' extrema and
+    zero crossings found on each piece with the previous piece's last sample in front, so
+    none is lost at a boundary. It keeps a few numbers per piece (and one per extremum or
+    flip), never the samples, and the report of a run in pieces is the report of the run
+    whole.
 
+    Examples
+    --------
+    >>> from ga_rotors.scene import load_scene, run_pieces
+    >>> scene = load_scene("spinning_disk").replace({"time.duration": 1.0})
+    >>> summary = RunSummary(scene)
+    >>> for piece in run_pieces(scene, chunk_steps=300):
+    ...     summary.add(piece)
+    >>> rep = summary.report()
+    >>> rep.values["error_rotor"] < 1e-9, rep.values["rotor_vs_quaternion"] < 1e-13
+    (True, True)
+    """
 
-def _heavy_top(scene: Scene, exact, tr: Trajectory, q: np.ndarray, rep: Report) -> None:
-    from .. import quaternion as Q
+    def __init__(self, scene: Scene):
+        self.scene = scene
+        self.meta: dict = {}
+        self.first = None  # (t, w, q, t_end): the run's first sample and last time
+        self.last = None  # the previous piece's last (t, w, q), in front of the next piece
+        self.maxima: dict[str, float] = {}
+        self.labels: dict[str, tuple[str, str]] = {}
+        self.cross: dict[tuple, list] = {}
+        self.exact_failure: str | None = None
+        self.found: dict[str, list] = {"when": [], "value": [], "is_max": [], "flips": []}
+        self.psi = None  # the heavy top's azimuth: (last raw, carried correction)
+        self.peak_psi: list[float] = []  # ψ at the first and at the latest peak of θ
+        self.final = None  # the last (t, w)
 
-    nut = exact.model.nutation()
-    w = tr.w
-    t = tr.t[: w.shape[0]]
-    frame_q = Q.multiply(exact.frame, q)  # the model's space frame: gravity along −z
-    axis = Q.rotate(frame_q, np.array([0.0, 0.0, 1.0]))
-    w_space = Q.rotate(frame_q, w)
-    u, du = axis[:, 2], np.cross(w_space, axis)[:, 2]  # cos θ and its exact rate
-    when, value, is_max = extrema(t, u, du)
-    if when.size < 3:
-        rep.lines.append("  nutation: fewer than 3 extrema of θ in the run; not measured")
-        return
-    theta = np.arccos(np.clip(value, -1.0, 1.0))
-    low = ~is_max  # minima of cos θ are the maxima of θ
-    measured = {"theta_min": float(theta[is_max].min()), "theta_max": float(theta[low].max())}
-    peaks = when[low]
-    if peaks.size >= 2:
-        measured["period"] = float((peaks[-1] - peaks[0]) / (peaks.size - 1))
+    def _max(self, key: str, values) -> None:
+        if np.size(values):
+            value = float(np.max(values))
+            old = self.maxima.get(key)
+            self.maxima[key] = value if old is None or value > old else old
+
+    def add(self, piece: Trajectory) -> None:
+        """Take the next piece of the run (the first holds sample 0)."""
+        from .. import paths as _paths
+        from .. import quaternion as Q
+
+        self.meta = piece.meta
+        for path in piece.paths:
+            spec = _paths.get(path)
+            if spec.on_unit_sphere:
+                drift = np.abs(np.linalg.norm(piece[spec.array], axis=-1) - 1.0)
+                self._max(f"norm_drift_{path}", drift)
+        w = piece.w
+        n = w.shape[0]
+        if n == 0:
+            return
+        t = piece.t[:n]
+        q = Q.normalize(piece.quaternions())[:n]
+        if self.first is None:
+            t_end = float(piece.t[0]) + piece.meta["steps"] * piece.meta["step"]
+            self.first = (float(t[0]), w[0].copy(), q[0].copy(), t_end)
+        for key, label, deviation, scale in invariant_series(self.scene, piece, q, self.first):
+            self.labels[key] = (label, scale)
+            self._max(f"drift_{key}", deviation)
+        if len(self.scene.paths) > 1:
+            self._cross(piece)
+        if self.scene.exact is not None and self.exact_failure is None:
+            self._exact(piece, t, w, q)
+        self.last = (t[-1:].copy(), w[-1:].copy(), q[-1:].copy())
+        self.final = (float(t[-1]), w[-1].copy())
+
+    def _cross(self, piece: Trajectory) -> None:
+        from .. import paths as _paths
+        from ..crosscheck import cross_check
+
+        # a path that stopped has no rows in the pieces after: the others still compare
+        ended = [_paths.get(p).array for p in piece.paths if piece[_paths.get(p).array].size == 0]
+        if len(piece.paths) - len(ended) < 2:
+            return
+        if ended:
+            keep = [n for n in piece.names if n not in ended]
+            piece = Trajectory({n: piece[n] for n in keep}, piece.components, piece.meta)
+        for c in cross_check(piece):
+            old = self.cross.setdefault(c.paths, [c.max_angle, c.at_time, 0])
+            if c.max_angle > old[0]:
+                old[0], old[1] = c.max_angle, c.at_time
+            old[2] += c.samples
+
+    def _exact(self, piece: Trajectory, t, w, q) -> None:
+        from .. import quaternion as Q
+        from ..errors import GaRotorsError
+
+        scene = self.scene
+        try:
+            exact = scene.exact_solution
+            self._max("omega_error", np.linalg.norm(w - exact.angular_velocity(t), axis=-1))
+            if exact.has_orientation:
+                for path in scene.paths:
+                    qp = Q.normalize(piece.quaternions(path))
+                    error = exact.orientation_error(piece.t[: qp.shape[0]], qp)
+                    self._max(f"error_{path}", error)
+        except GaRotorsError as exc:
+            self.exact_failure = f"exact solution ({scene.exact}): not evaluated: {exc}"
+            return
+        if self.last is not None:  # the previous piece's last sample goes in front
+            t = np.concatenate([self.last[0], t])
+            w = np.concatenate([self.last[1], w])
+            q = np.concatenate([self.last[2], q])
+        if scene.exact == "heavy_top":
+            self._heavy_top(exact, t, w, q)
+        elif scene.exact == "asymmetric_top":
+            from .._kernels import free_euler_rates
+
+            b = sorted(range(3), key=lambda k: scene.body.moments[k])[1]
+            rates = free_euler_rates.py_func(scene.body.moments, (w[:, 0], w[:, 1], w[:, 2]))
+            self.found["flips"].append(zero_crossings(t, w[:, b], rates[b]))
+
+    def _heavy_top(self, exact, t, w, q) -> None:
+        from .. import quaternion as Q
+
+        frame_q = Q.multiply(exact.frame, q)  # the model's space frame: gravity along −z
+        axis = Q.rotate(frame_q, np.array([0.0, 0.0, 1.0]))
+        w_space = Q.rotate(frame_q, w)
+        u, du = axis[:, 2], np.cross(w_space, axis)[:, 2]  # cos θ and its exact rate
+        when, value, is_max = extrema(t, u, du)
+        for key, found in (("when", when), ("value", value), ("is_max", is_max)):
+            self.found[key].append(found)
         # ψ is the azimuth of the axis; with ω_s = ψ̇ ẑ + θ̇ n̂ + φ̇ e₃ (ZYZ),
         # ψ̇ = (ω_s·ẑ − cos θ ω_s·e₃) / sin²θ exactly, so ψ too is Hermite-interpolated.
-        psi = np.unwrap(np.arctan2(axis[:, 1], axis[:, 0]))
-        dpsi = (w_space[:, 2] - u * np.einsum("ij,ij->i", w_space, axis)) / (1.0 - u * u)
-        ends = hermite_at(t, psi, dpsi, peaks[[0, -1]])
-        measured["mean_precession"] = float((ends[1] - ends[0]) / (peaks[-1] - peaks[0]))
-    exact_values = {
-        "theta_min": nut.theta_min,
-        "theta_max": nut.theta_max,
-        "period": nut.period,
-        "mean_precession": nut.mean_precession,
-    }
-    units = {"theta_min": "°", "theta_max": "°", "period": " s", "mean_precession": " rad/s"}
-    for key, value in measured.items():
-        ref = exact_values[key]
-        shown, ref_shown = (np.degrees(value), np.degrees(ref)) if "theta" in key else (value, ref)
-        rep.values[f"{key}"] = value
-        rep.values[f"{key}_exact"] = ref
-        rep.values[f"{key}_error"] = abs(value - ref)
+        raw = np.arctan2(axis[:, 1], axis[:, 0])
+        if self.psi is None:
+            psi, self.psi = _unwrap(raw, None)
+        else:  # the sample in front was unwrapped with the previous piece: raw + correction
+            front = self.psi[0] + self.psi[1]
+            psi, self.psi = _unwrap(raw[1:], self.psi)
+            psi = np.concatenate([[front], psi])
+        peaks = when[~is_max]
+        if peaks.size:
+            dpsi = (w_space[:, 2] - u * np.einsum("ij,ij->i", w_space, axis)) / (1.0 - u * u)
+            at = hermite_at(t, psi, dpsi, peaks[[0, -1]])
+            first = self.peak_psi[0] if self.peak_psi else float(at[0])
+            self.peak_psi = [first, float(at[-1])]
+
+    # ------------------------------------------------------------------ the report
+
+    def report(self) -> Report:
+        """The :class:`Report` of the pieces taken so far (all of them: the run's)."""
+        scene, meta = self.scene, self.meta
+        rep = Report(scene.name)
+        torques = ", ".join(meta["torques"]) or "none (torque-free)"
+        spec = scene.data["integrator"]
+        how = (
+            f"adaptive at tolerance {spec['tolerance']:g}, sampled every {meta['step']:g} s"
+            if "tolerance" in spec
+            else f"{meta['steps']:,} steps of {meta['step']:g} s"
+        )
+        rep.lines.append(f"scene {scene.name}: {meta['integrator']}, {how}; torques: {torques}")
+        rep.lines.append("paths (geodesic angles below are between rotations: states normalised):")
+        self._paths(rep)
+        rep.lines.append(f"invariants ({meta['primary']} path):")
+        self._invariants(rep)
+        if len(scene.paths) > 1:
+            from ..crosscheck import PathComparison
+
+            rep.lines.append("cross-check (largest geodesic angle between paths):")
+            for pair, (angle, at, samples) in self.cross.items():
+                rep.values[f"{pair[0]}_vs_{pair[1]}"] = angle
+                rep.lines.append(f"  {PathComparison(pair, angle, at, samples)}")
+        self._exact_lines(rep)
+        stopped = {p: i for p, i in meta["paths"].items() if not i["complete"]}
+        if stopped:  # said first: every figure above covers only the steps taken
+            t_end = self.first[3] if self.first is not None else 0.0
+            where = ", ".join(f"{p} at t = {i['ended_at']:g} s" for p, i in stopped.items())
+            rep.lines.insert(
+                0,
+                f"INCOMPLETE: the run stopped before t = {t_end:g} s ({where}); the figures "
+                "below cover only the steps taken",
+            )
+            rep.values["incomplete"] = 1.0
+        return rep
+
+    def _paths(self, rep: Report) -> None:
+        for path, info in self.meta["paths"].items():
+            status = "complete" if info["complete"] else f"stopped at t = {info['ended_at']:g} s"
+            line = f"  {path:<11} {status}"
+            drift = self.maxima.get(f"norm_drift_{path}")
+            if drift is not None:
+                rep.values[f"norm_drift_{path}"] = drift
+                line += f", max | |{path}| − 1 | = {drift:.1e}"
+            watch = info.get("watch")
+            if watch and watch.get("unresolved_steps"):
+                line += (
+                    f"; {watch['unresolved_steps']} steps did not resolve the Euler rates (from "
+                    f"t = {watch['first_unresolved']:g} s; min |sin θ| "
+                    f"{watch['min_abs_sin_theta']:.1e})"
+                )
+            rep.lines.append(line)
+
+    def _invariants(self, rep: Report) -> None:
+        if not self.labels:
+            types = ", ".join(e["type"] for e in self.scene.data["effects"])
+            rep.lines.append(f"  none simple under {types}")
+            return
+        for key, (label, scale) in self.labels.items():
+            value = self.maxima[f"drift_{key}"]
+            rep.values[f"drift_{key}"] = value
+            rep.lines.append(f"  {label:<22} max drift {value:9.2e}  ({scale})")
+
+    def _exact_lines(self, rep: Report) -> None:
+        scene = self.scene
+        if scene.exact is None:
+            rep.lines.append(f"exact solution: none ({scene.exact_reason})")
+            return
+        if self.exact_failure is not None:
+            rep.lines.append(self.exact_failure)
+            return
+        if "omega_error" not in self.maxima:  # no sample at all
+            return
+        rep.lines.append(f"exact solution ({scene.exact}):")
+        for path in scene.paths:
+            key = f"error_{path}"
+            if key in self.maxima:
+                rep.values[key] = self.maxima[key]
+                rep.lines.append(f"  {path:<11} max orientation error {self.maxima[key]:.2e} rad")
+        rep.values["omega_error"] = self.maxima["omega_error"]
+        rep.lines.append(f"  {'ω':<11} max |ω − ω_exact| {self.maxima['omega_error']:.2e} rad/s")
+        exact = scene.exact_solution
+        if scene.exact == "heavy_top":
+            self._heavy_top_lines(exact, rep)
+        elif scene.exact == "asymmetric_top":
+            self._flip_lines(exact, rep)
+        elif scene.exact == "damped_symmetric_top":
+            self._damped_lines(exact, rep)
+
+    def _heavy_top_lines(self, exact, rep: Report) -> None:
+        nut = exact.model.nutation()
+        when = np.concatenate(self.found["when"])
+        value = np.concatenate(self.found["value"])
+        is_max = np.concatenate(self.found["is_max"]).astype(bool)
+        if when.size < 3:
+            rep.lines.append("  nutation: fewer than 3 extrema of θ in the run; not measured")
+            return
+        theta = np.arccos(np.clip(value, -1.0, 1.0))
+        low = ~is_max  # minima of cos θ are the maxima of θ
+        measured = {"theta_min": float(theta[is_max].min()), "theta_max": float(theta[low].max())}
+        peaks = when[low]
+        if peaks.size >= 2:
+            measured["period"] = float((peaks[-1] - peaks[0]) / (peaks.size - 1))
+            start, end = self.peak_psi
+            measured["mean_precession"] = float((end - start) / (peaks[-1] - peaks[0]))
+        exact_values = {
+            "theta_min": nut.theta_min,
+            "theta_max": nut.theta_max,
+            "period": nut.period,
+            "mean_precession": nut.mean_precession,
+        }
+        units = {"theta_min": "°", "theta_max": "°", "period": " s", "mean_precession": " rad/s"}
+        for key, value in measured.items():
+            ref = exact_values[key]
+            shown, ref_shown = (
+                (np.degrees(value), np.degrees(ref)) if "theta" in key else (value, ref)
+            )
+            rep.values[f"{key}"] = value
+            rep.values[f"{key}_exact"] = ref
+            rep.values[f"{key}_error"] = abs(value - ref)
+            rep.lines.append(
+                f"  {key.replace('_', ' '):<22} {shown:.10g}{units[key]} (exact {ref_shown:.10g}"
+                f"{units[key]}, difference {abs(value - ref):.1e})"
+            )
+
+    def _flip_lines(self, exact, rep: Report) -> None:
+        model = exact.model
+        b = sorted(range(3), key=lambda k: self.scene.body.moments[k])[1]
+        flips = np.concatenate(self.found["flips"]) if self.found["flips"] else np.empty(0)
+        if flips.size < 2 or not np.isfinite(model.flip_period):
+            rep.lines.append(f"  flips of ω{b + 1}: {flips.size} in the run; period not measured")
+            return
+        gaps = np.diff(flips)
+        rep.values["flip_period"] = float(gaps.mean())
+        rep.values["flip_period_exact"] = model.flip_period
+        rep.values["flip_period_error"] = float(np.abs(gaps - model.flip_period).max())
         rep.lines.append(
-            f"  {key.replace('_', ' '):<22} {shown:.10g}{units[key]} (exact {ref_shown:.10g}"
-            f"{units[key]}, difference {abs(value - ref):.1e})"
+            f"  flips of ω{b + 1}: {flips.size}, mean interval {gaps.mean():.10g} s "
+            f"(exact 2K(m)/λ = {model.flip_period:.10g} s, m = {model.m:.6g}; largest "
+            f"difference {rep.values['flip_period_error']:.1e} s)"
+        )
+
+    def _damped_lines(self, exact, rep: Report) -> None:
+        t_last, w_last = self.final
+        body = self.scene.body
+        measured = np.linalg.norm(body.momentum(w_last))
+        ref = float(exact.model.momentum_norm([t_last - self.first[0]])[0])
+        rep.values["momentum_final"] = float(measured)
+        rep.values["momentum_final_exact"] = ref
+        # a body at rest stays at rest: |L| = 0, and a relative difference means nothing
+        diff = (
+            f"relative difference {abs(measured - ref) / ref:.1e}"
+            if ref > 0
+            else f"difference {abs(measured - ref):.1e}"
+        )
+        rep.lines.append(
+            f"  |L| at the end {measured:.10g} (exact {ref:.10g}, {diff}); "
+            f"|L₀| = {np.linalg.norm(body.momentum(self.first[1])):.6g}"
         )
 
 
-def _flips(scene: Scene, exact, tr: Trajectory, rep: Report) -> None:
-    from .._kernels import free_euler_rates
-
-    model = exact.model
-    w = tr.w
-    t = tr.t[: w.shape[0]]
-    b = sorted(range(3), key=lambda k: scene.body.moments[k])[1]
-    rates = free_euler_rates.py_func(scene.body.moments, (w[:, 0], w[:, 1], w[:, 2]))
-    flips = zero_crossings(t, w[:, b], rates[b])
-    if flips.size < 2 or not np.isfinite(model.flip_period):
-        rep.lines.append(f"  flips of ω{b + 1}: {flips.size} in the run; period not measured")
-        return
-    gaps = np.diff(flips)
-    rep.values["flip_period"] = float(gaps.mean())
-    rep.values["flip_period_exact"] = model.flip_period
-    rep.values["flip_period_error"] = float(np.abs(gaps - model.flip_period).max())
-    rep.lines.append(
-        f"  flips of ω{b + 1}: {flips.size}, mean interval {gaps.mean():.10g} s "
-        f"(exact 2K(m)/λ = {model.flip_period:.10g} s, m = {model.m:.6g}; largest difference "
-        f"{rep.values['flip_period_error']:.1e} s)"
-    )
-
-
-def _damped(scene: Scene, exact, tr: Trajectory, rep: Report) -> None:
-    w = tr.w
-    t = tr.t[: w.shape[0]]
-    measured = np.linalg.norm(scene.body.momentum(w[-1]))
-    ref = float(exact.model.momentum_norm([t[-1] - t[0]])[0])
-    rep.values["momentum_final"] = float(measured)
-    rep.values["momentum_final_exact"] = ref
-    # a body at rest stays at rest: |L| = 0, and a relative difference means nothing
-    diff = (
-        f"relative difference {abs(measured - ref) / ref:.1e}"
-        if ref > 0
-        else f"difference {abs(measured - ref):.1e}"
-    )
-    rep.lines.append(
-        f"  |L| at the end {measured:.10g} (exact {ref:.10g}, {diff}); "
-        f"|L₀| = {np.linalg.norm(scene.body.momentum(w[0])):.6g}"
-    )
-
-
-def _exact(scene: Scene, tr: Trajectory, q: np.ndarray, rep: Report) -> None:
-    from .. import quaternion as Q
-    from ..errors import GaRotorsError
-
-    if scene.exact is None:
-        rep.lines.append(f"exact solution: none ({scene.exact_reason})")
-        return
-    try:
-        exact = scene.exact_solution
-        t = tr.t[: tr.w.shape[0]]
-        w_err = np.linalg.norm(tr.w - exact.angular_velocity(t), axis=-1)
-        errors = {}
-        if exact.has_orientation:
-            for path in scene.paths:
-                qp = Q.normalize(tr.quaternions(path))
-                errors[path] = float(exact.orientation_error(tr.t[: qp.shape[0]], qp).max())
-    except GaRotorsError as exc:
-        rep.lines.append(f"exact solution ({scene.exact}): not evaluated: {exc}")
-        return
-    rep.lines.append(f"exact solution ({scene.exact}):")
-    for path, value in errors.items():
-        rep.values[f"error_{path}"] = value
-        rep.lines.append(f"  {path:<11} max orientation error {value:.2e} rad")
-    rep.values["omega_error"] = float(w_err.max())
-    rep.lines.append(f"  {'ω':<11} max |ω − ω_exact| {w_err.max():.2e} rad/s")
-    if scene.exact == "heavy_top":
-        _heavy_top(scene, exact, tr, q, rep)
-    elif scene.exact == "asymmetric_top":
-        _flips(scene, exact, tr, rep)
-    elif scene.exact == "damped_symmetric_top":
-        _damped(scene, exact, tr, rep)
-
-
 def report(scene: Scene, trajectory: Trajectory) -> Report:
-    """Measure a simulated scene (see the module docstring).
+    """Measure a simulated scene (see the module docstring); :class:`RunSummary` of the
+    whole trajectory as one piece.
 
     Examples
     --------
@@ -371,39 +570,6 @@ def report(scene: Scene, trajectory: Trajectory) -> Report:
     >>> rep.values["error_rotor"] < 1e-9, rep.values["rotor_vs_quaternion"] < 1e-13
     (True, True)
     """
-    from .. import quaternion as Q
-    from ..crosscheck import cross_check
-
-    rep = Report(scene.name)
-    tr = trajectory
-    method = tr.meta["integrator"]
-    torques = ", ".join(tr.meta["torques"]) or "none (torque-free)"
-    spec = scene.data["integrator"]
-    how = (
-        f"adaptive at tolerance {spec['tolerance']:g}, sampled every {tr.meta['step']:g} s"
-        if "tolerance" in spec
-        else f"{tr.meta['steps']:,} steps of {tr.meta['step']:g} s"
-    )
-    rep.lines.append(f"scene {scene.name}: {method}, {how}; torques: {torques}")
-    rep.lines.append("paths (geodesic angles below are between rotations: states normalised):")
-    _paths(tr, rep)
-    q = Q.normalize(tr.quaternions())[: tr.w.shape[0]]
-    rep.lines.append(f"invariants ({tr.meta['primary']} path):")
-    _invariants(scene, tr, q, rep)
-    if len(scene.paths) > 1:
-        rep.lines.append("cross-check (largest geodesic angle between paths):")
-        for c in cross_check(tr):
-            rep.values[f"{c.paths[0]}_vs_{c.paths[1]}"] = c.max_angle
-            rep.lines.append(f"  {c}")
-    _exact(scene, tr, q, rep)
-    stopped = {p: i for p, i in tr.meta["paths"].items() if not i["complete"]}
-    if stopped:  # said first: every figure above covers only the steps taken
-        t_end = float(tr.t[0]) + tr.meta["steps"] * tr.meta["step"] if tr.t.size else 0.0
-        where = ", ".join(f"{p} at t = {i['ended_at']:g} s" for p, i in stopped.items())
-        rep.lines.insert(
-            0,
-            f"INCOMPLETE: the run stopped before t = {t_end:g} s ({where}); the figures "
-            "below cover only the steps taken",
-        )
-        rep.values["incomplete"] = 1.0
-    return rep
+    summary = RunSummary(scene)
+    summary.add(trajectory)
+    return summary.report()

@@ -1,0 +1,333 @@
+"""Results files written piece by piece, as a long run goes on: memory holds one piece.
+
+Each writer takes the pieces of one run in order (:class:`~ga_rotors.trajectory.Trajectory`
+objects of consecutive samples, the first holding sample 0, as
+:func:`ga_rotors.simulation.simulate_chunks` hands them out) with :meth:`append`, and
+finishes the file with :meth:`close`, given the run's final ``meta`` (what the run
+became: which paths completed, how many samples each has). The file is the one the whole
+trajectory would give, written in one go:
+
+* :class:`CsvStream` — CSV with units in the headers (:mod:`ga_rotors.results.table`), a
+  block of rows at a time;
+* :class:`NpzStream` — the ``.npz`` of :meth:`Trajectory.to_npz`: each array's rows go
+  to a file of their own as they come, and :meth:`close` copies them into the archive
+  (no compression, as ``numpy.savez``), one buffer at a time;
+* :class:`NetcdfStream` — netCDF along an unlimited ``time`` dimension, extended per piece;
+* :class:`ZarrStream` — a zarr store (format 2) appended along ``time``.
+
+netCDF and zarr files read back (:func:`ga_rotors.results.read`) as the Dataset
+:func:`ga_rotors.results.to_dataset` makes of the whole trajectory. Writers write where
+they are told: a scene run points them into its staging folder
+(:func:`ga_rotors.files.output_set`), which moves the finished set into place.
+"""
+
+from __future__ import annotations
+
+import shutil
+import tempfile
+import zipfile
+from pathlib import Path
+
+import numpy as np
+
+from ..optional import require
+
+__all__ = ["CHUNK_ROWS", "CsvStream", "NetcdfStream", "NpzStream", "ZarrStream"]
+
+#: Rows per chunk of the netCDF and zarr variables along ``time``.
+CHUNK_ROWS = 16_384
+
+
+class CsvStream:
+    """CSV written piece by piece (:func:`ga_rotors.results.write_csv`'s text).
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> from ga_rotors.trajectory import Trajectory
+    >>> path = pathlib.Path(tempfile.mkdtemp()) / "run.csv"
+    >>> out = CsvStream(path)
+    >>> out.append(Trajectory({"t": np.array([0.0, 0.5]), "energy": np.array([1.0, 2.0])}))
+    >>> out.append(Trajectory({"t": np.array([1.0]), "energy": np.array([3.0])}))
+    >>> out.close({})
+    >>> print(path.read_text(), end="")
+    t [s],energy [J]
+    0,1
+    0.5,2
+    1,3
+    """
+
+    def __init__(self, path):
+        self.path = Path(path)
+        self._fh = None
+
+    def append(self, piece) -> None:
+        """Write the rows of ``piece`` (the header first, with the first piece)."""
+        from .table import csv_header, csv_rows
+
+        if self._fh is None:
+            self._fh = open(self.path, "wb")
+            self._fh.write((",".join(csv_header(piece)) + "\n").encode())
+        for text in csv_rows(piece):
+            self._fh.write(text)
+
+    def close(self, meta: dict) -> None:
+        """Finish the file."""
+        if self._fh is not None:
+            self._fh.close()
+            self._fh = None
+
+    def abort(self) -> None:
+        """Stop writing (the run failed; the staging folder goes away with the file)."""
+        self.close({})
+
+
+class NpzStream:
+    """The ``.npz`` archive of :meth:`Trajectory.to_npz`, its arrays' rows collected on disk.
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> from ga_rotors.trajectory import Trajectory
+    >>> path = pathlib.Path(tempfile.mkdtemp()) / "run.npz"
+    >>> out = NpzStream(path)
+    >>> for lo in (0, 2):
+    ...     out.append(Trajectory({"t": np.arange(lo, lo + 2.0), "w": np.ones((2, 3))},
+    ...                           {"w": ("1", "2", "3")}))
+    >>> out.close({})
+    >>> data = np.load(path)
+    >>> data["t"].tolist(), data["w"].shape, data["w__components"].tolist()
+    ([0.0, 1.0, 2.0, 3.0], (4, 3), ['1', '2', '3'])
+    """
+
+    def __init__(self, path):
+        self.path = Path(path)
+        self._dir = Path(tempfile.mkdtemp(dir=self.path.parent, prefix=".npz-rows-"))
+        self._files: dict = {}  # name -> (open file, trailing shape, rows)
+        self._components: dict = {}
+
+    def append(self, piece) -> None:
+        """Add the rows of ``piece`` to each array's file."""
+        for name in piece.names:
+            a = np.ascontiguousarray(piece[name], dtype=np.float64)
+            if name not in self._files:
+                fh = open(self._dir / f"{len(self._files)}.rows", "wb")
+                self._files[name] = [fh, a.shape[1:], 0]
+            entry = self._files[name]
+            entry[0].write(a.tobytes())
+            entry[2] += a.shape[0]
+        for name, labels in piece.components.items():
+            if name in self._files:
+                self._components[name] = labels
+
+    def close(self, meta: dict) -> None:
+        """Write the archive: each array's header, then its rows copied from disk."""
+        with zipfile.ZipFile(self.path, "w", zipfile.ZIP_STORED, allowZip64=True) as archive:
+            for name, (fh, trailing, rows) in self._files.items():
+                fh.close()
+                header = np.lib.format.header_data_from_array_1_0(np.empty((0, *trailing)))
+                header["shape"] = (rows, *trailing)
+                with archive.open(f"{name}.npy", "w", force_zip64=True) as member:
+                    np.lib.format.write_array_header_1_0(member, header)
+                    with open(fh.name, "rb") as rows_file:
+                        shutil.copyfileobj(rows_file, member, 1 << 22)
+            for name, labels in self._components.items():
+                with archive.open(f"{name}__components.npy", "w", force_zip64=True) as member:
+                    np.lib.format.write_array(member, np.array(labels))
+        self.abort()
+
+    def abort(self) -> None:
+        """Remove the rows collected so far."""
+        for fh, _, _ in self._files.values():
+            fh.close()
+        self._files = {}
+        shutil.rmtree(self._dir, ignore_errors=True)
+
+
+class _DatasetStream:
+    """What the netCDF and zarr writers share: per-piece Datasets, attributes at the end."""
+
+    def __init__(self, path, scene=None):
+        require("xarray", "results")
+        self.path = Path(path)
+        self.scene = scene
+        self.rows = 0
+        self.valid: dict[str, int] = {}  # array -> rows written (short for a stopped path)
+        self.bound = None
+
+    def _dataset(self, piece):
+        from .dataset import to_dataset
+
+        if self.bound is None and self.scene is not None:
+            self.bound = _BoundTimes(self.scene, piece)
+        if self.bound is not None:
+            self.bound.take(piece.t, self.rows)
+        for name in piece.names:
+            self.valid[name] = self.valid.get(name, 0) + piece[name].shape[0]
+        ds = to_dataset(piece)
+        self.rows += len(piece)
+        return ds
+
+    def _attrs(self, meta: dict) -> tuple[dict, dict]:
+        """The run's attributes, and each time variable's ``valid_samples`` (or None)."""
+        from .dataset import provenance
+
+        attrs = provenance(meta, self.scene)
+        if self.bound is not None:
+            bound = self.bound.value()
+            if bound is not None:
+                attrs["exact_error_bound"] = bound
+                attrs["exact_error_bound_units"] = "rad"
+        valid = {
+            name: (rows if rows < self.rows else None)
+            for name, rows in self.valid.items()
+            if name != "t"
+        }
+        return attrs, valid
+
+    def _encoding(self, ds) -> dict:
+        return {
+            name: {self._chunk_key: (CHUNK_ROWS, *var.shape[1:])}
+            for name, var in ds.variables.items()
+            if var.dims[:1] == ("time",)
+        }
+
+    def abort(self) -> None:
+        """Nothing to undo: the staging folder goes away with the file."""
+
+
+class _BoundTimes:
+    """The sample times :func:`ga_rotors.results.dataset` evaluates the exact reference's
+    error bound at, picked from the pieces as they pass (their indices are known from the
+    run's sample count)."""
+
+    def __init__(self, scene, first_piece):
+        from .dataset import EXACT_BOUND_TIMES
+
+        meta = first_piece.meta
+        steps, every = meta["steps"], meta["sample_every"]
+        count = steps // every + 1 + (1 if steps % every else 0)
+        self.scene = scene
+        self.pick = np.unique(np.linspace(0, count - 1, min(count, EXACT_BOUND_TIMES)).astype(int))
+        self.times: list = []
+
+    def take(self, t, offset: int) -> None:
+        inside = self.pick[(self.pick >= offset) & (self.pick < offset + t.shape[0])]
+        self.times.append(t[inside - offset])
+
+    def value(self):
+        from .dataset import exact_bound_at
+
+        return exact_bound_at(self.scene, np.concatenate(self.times))
+
+
+class NetcdfStream(_DatasetStream):
+    """netCDF (HDF5, through h5netcdf) along an unlimited ``time`` dimension.
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> from ga_rotors.trajectory import Trajectory
+    >>> from ga_rotors.results import read
+    >>> path = pathlib.Path(tempfile.mkdtemp()) / "run.nc"
+    >>> out = NetcdfStream(path)
+    >>> for lo in (0, 2):
+    ...     out.append(Trajectory({"t": np.arange(lo, lo + 2.0), "energy": np.ones(2)},
+    ...                           meta={"integrator": "rk4"}))
+    >>> out.close({"integrator": "rk4"})
+    >>> ds = read(path)
+    >>> ds["t"].values.tolist(), ds["energy"].attrs["units"], ds.attrs["integrator"]
+    ([0.0, 1.0, 2.0, 3.0], 'J', 'rk4')
+    """
+
+    _chunk_key = "chunksizes"
+
+    def append(self, piece) -> None:
+        """Extend every ``time`` variable by the piece's rows."""
+        ds = self._dataset(piece)
+        if self.rows == len(piece):  # the first piece makes the file
+            from .store import _netcdf_engine
+
+            ds.to_netcdf(self.path, engine=_netcdf_engine(), unlimited_dims=["time"],
+                         encoding=self._encoding(ds))  # fmt: skip
+            return
+        h5netcdf = require("h5netcdf", "results")
+        with h5netcdf.File(self.path, "a") as f:
+            old = self.rows - len(piece)
+            f.resize_dimension("time", self.rows)
+            for name, var in ds.variables.items():
+                if var.dims[:1] == ("time",):
+                    f.variables[name][old : self.rows, ...] = var.values
+
+    def close(self, meta: dict) -> None:
+        """Write the run's attributes (the final ``meta``) and the short paths' counts."""
+        if self.rows == 0:
+            return
+        h5netcdf = require("h5netcdf", "results")
+        attrs, valid = self._attrs(meta)
+        with h5netcdf.File(self.path, "a") as f:
+            for key in list(f.attrs):
+                if key not in attrs:
+                    del f.attrs[key]
+            for key, value in attrs.items():
+                f.attrs[key] = value
+            for name, rows in valid.items():
+                _set_valid(f.variables[name].attrs, rows)
+
+
+class ZarrStream(_DatasetStream):
+    """A zarr store (format 2, as :func:`ga_rotors.results.write` writes) appended along
+    ``time``, its metadata consolidated at the end.
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> from ga_rotors.trajectory import Trajectory
+    >>> from ga_rotors.results import read
+    >>> path = pathlib.Path(tempfile.mkdtemp()) / "run.zarr"
+    >>> out = ZarrStream(path)
+    >>> for lo in (0, 2):
+    ...     out.append(Trajectory({"t": np.arange(lo, lo + 2.0), "energy": np.ones(2)}))
+    >>> out.close({})
+    >>> read(path)["t"].values.tolist()
+    [0.0, 1.0, 2.0, 3.0]
+    """
+
+    _chunk_key = "chunks"
+
+    def append(self, piece) -> None:
+        """Append the piece's rows to every ``time`` variable."""
+        from .store import ZARR_FORMAT
+
+        require("zarr", "results")
+        ds = self._dataset(piece)
+        if self.rows == len(piece):
+            ds.to_zarr(self.path, mode="w", zarr_format=ZARR_FORMAT, consolidated=False,
+                       encoding=self._encoding(ds))  # fmt: skip
+        else:
+            ds.drop_vars([n for n, v in ds.variables.items() if v.dims[:1] != ("time",)]).to_zarr(
+                self.path, append_dim="time", consolidated=False
+            )
+
+    def close(self, meta: dict) -> None:
+        """Write the run's attributes, the short paths' counts; consolidate the metadata."""
+        if self.rows == 0:
+            return
+        zarr = require("zarr", "results")
+        from .store import ZARR_FORMAT
+
+        attrs, valid = self._attrs(meta)
+        group = zarr.open_group(str(self.path), mode="r+", zarr_format=ZARR_FORMAT)
+        group.attrs.clear()
+        group.attrs.update(attrs)
+        for name, rows in valid.items():
+            _set_valid(group[name].attrs, rows)
+        zarr.consolidate_metadata(str(self.path), zarr_format=ZARR_FORMAT)
+
+
+def _set_valid(attrs, rows) -> None:
+    if rows is None:
+        if "valid_samples" in attrs:
+            del attrs["valid_samples"]
+    else:
+        attrs["valid_samples"] = int(rows)
