@@ -17,7 +17,6 @@ from pathlib import Path
 import pytest
 
 from ga_rotors import cli
-from ga_rotors.trajectory import Trajectory
 
 ROOT = Path(__file__).resolve().parent.parent
 SCENE = "spinning_disk"
@@ -45,13 +44,15 @@ def test_sigterm_while_writing_leaves_the_previous_set(tmp_path, monkeypatch, ca
     handler = signal.getsignal(signal.SIGTERM)
     assert cli.main(["run", str(_scene(tmp_path, 0.1)), "--out", str(out), *ARGS]) == 0
     before = {p: p.read_bytes() for p in out.iterdir()}
-    real = Trajectory.to_npz
+    from ga_rotors.results.streams import NpzStream
 
-    def killed_midway(self, path):
-        real(self, path)  # the CSV and this file are written in the staging folder...
+    real = NpzStream.close
+
+    def killed_midway(self, meta):
+        real(self, meta)  # the CSV and this file are written in the staging folder...
         os.kill(os.getpid(), signal.SIGTERM)  # ...when the run is told to stop
 
-    monkeypatch.setattr(Trajectory, "to_npz", killed_midway)
+    monkeypatch.setattr(NpzStream, "close", killed_midway)
     capsys.readouterr()
     assert cli.main(["run", str(_scene(tmp_path, 0.2)), "--out", str(out), *ARGS]) == 143
     assert "terminated (SIGTERM)" in capsys.readouterr().err

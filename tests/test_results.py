@@ -153,7 +153,7 @@ def test_a_scene_declaring_netcdf_data_writes_a_readable_dataset(tmp_path):
     written = write_outputs(scene, tr, tmp_path / "run")
     assert [p.name for p in written] == ["heavy_top.nc", "heavy_top.csv", "heavy_top.scene.toml"]
     back = results.read(tmp_path / "run" / "heavy_top.nc")
-    xr.testing.assert_identical(back, results.to_dataset(tr))
+    xr.testing.assert_identical(back, results.to_dataset(tr, scene))  # with the bound
     assert back.attrs["scene_toml"] == scene.to_toml()  # the run records its scene
     assert back.attrs["exact_solution"] == "heavy_top"
     assert (tmp_path / "run" / "heavy_top.csv").read_text().startswith("t [s],w_1 [rad/s]")

@@ -275,3 +275,40 @@ def test_the_disk_budget_refuses_with_the_key(tmp_path, capsys):
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and "time.duration" in err and "--max-disk GIB" in err
     assert "of files" in err and not (tmp_path / "o").exists()
+
+
+# ------------------------------------------------------------------ CSV text, compiled
+
+from hypothesis import given, settings  # noqa: E402
+from hypothesis import strategies as st  # noqa: E402
+
+from ga_rotors.results.decimal import format_rows  # noqa: E402
+
+
+def _printf(values):
+    return "".join(f"{v:.17g}\n" for v in values).encode()  # printf's %.17g
+
+
+@settings(max_examples=300, deadline=None)
+@given(st.lists(st.floats(allow_nan=True, allow_infinity=True, width=64), min_size=1,
+                max_size=50))  # fmt: skip
+def test_csv_values_are_printfs_17g_and_read_back(values):
+    text = format_rows(np.array(values)[:, None])
+    assert text == _printf(values)
+    back = np.array([float(v) for v in text.split()])
+    assert np.array_equal(back, np.array(values), equal_nan=True)
+
+
+def test_csv_values_at_the_hard_places():
+    """Powers of ten and their neighbours (where log10 is one off), the range's ends,
+    subnormals, the %g switch points, and a million values of every magnitude."""
+    rng = np.random.default_rng(13)
+    p = 10.0 ** np.arange(-307, 309)
+    values = np.concatenate([
+        p, np.nextafter(p, 0), np.nextafter(p, np.inf), -p,
+        [5e-324, 2.2250738585072014e-308, 2.225073858507201e-308, 1.7976931348623157e308,
+         1e-4, 9.9999999999999995e-05, 1e17, 99999999999999999.0, 0.0, -0.0],
+        np.frombuffer(rng.bytes(8 * 500_000), dtype=np.float64),
+        rng.standard_normal(500_000) * 10.0 ** rng.integers(-300, 300, 500_000),
+    ])  # fmt: skip
+    assert format_rows(values[:, None]) == _printf(values.tolist())

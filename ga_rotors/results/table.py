@@ -1,10 +1,10 @@
 """CSV for spreadsheets: one column per component, the unit in every header.
 
 Headers read ``name_component [unit]`` (``t [s]``, ``w_1 [rad/s]``, ``q_w [1]``); values
-are ``%.17g`` (every float64 round-trips exactly). Rows are formatted a block at a time,
-one C-level ``%`` over the whole block instead of a Python call per row or per value, and
-written block by block, so memory beyond the arrays themselves stays at one block. A
-path that stopped early leaves its cells empty after its last sample, never NaN.
+are written as ``%.17g`` writes them (every float64 round-trips exactly), a block of rows
+at a time by one compiled pass (:mod:`ga_rotors.results.decimal`: no Python object per
+value), and written block by block, so memory beyond the arrays themselves stays at one
+block. A path that stopped early leaves its cells empty after its last sample, never NaN.
 """
 
 from __future__ import annotations
@@ -19,7 +19,7 @@ from .variables import describe
 
 __all__ = ["BLOCK_ROWS", "csv_header", "csv_rows", "write_csv"]
 
-#: Rows formatted per ``%`` call (a few MB of text).
+#: Rows formatted per compiled call (a few MB of text).
 BLOCK_ROWS = 16_384
 
 
@@ -49,25 +49,19 @@ def csv_header(trajectory) -> list[str]:
 
 
 def _blocks(trajectory, rows: int):
-    """Text of the data rows, ``rows`` at a time."""
+    """The data rows as UTF-8 text, ``rows`` at a time (:func:`~.decimal.format_rows`)."""
+    from .decimal import format_rows
+
     cols = trajectory.columns()
     n = len(trajectory)
-    lengths = [trajectory[name].shape[0] for _, name, _ in cols]
-    full = min(lengths) if cols else n
-    ncol = len(cols)
-    row_fmt = ",".join(["%.17g"] * ncol) + "\n"
+    lengths = np.array([trajectory[name].shape[0] for _, name, _ in cols], dtype=np.int64)
     for lo in range(0, n, rows):
         hi = min(n, lo + rows)
-        block = np.empty((hi - lo, ncol))
+        block = np.zeros((hi - lo, len(cols)))
         for j, (_, name, comp) in enumerate(cols):
             a = trajectory[name][lo:hi]
             block[: a.shape[0], j] = a if comp is None else a[:, comp]
-        m = max(0, min(hi, full) - lo)  # rows of the block where every column is present
-        text = (row_fmt * m) % tuple(block[:m].ravel().tolist()) if m else ""
-        for r in range(m, hi - lo):  # the ragged tail of a path that ended early
-            cells = [f"{block[r, j]:.17g}" if lo + r < lengths[j] else "" for j in range(ncol)]
-            text += ",".join(cells) + "\n"
-        yield text
+        yield format_rows(block, lengths, lo)
 
 
 def csv_rows(trajectory, block_rows: int = BLOCK_ROWS):
@@ -82,8 +76,7 @@ def csv_rows(trajectory, block_rows: int = BLOCK_ROWS):
     >>> list(csv_rows(Trajectory({"t": np.array([0.0, 0.25])})))
     [b'0\\n0.25\\n']
     """
-    for text in _blocks(trajectory, block_rows):
-        yield text.encode()
+    yield from _blocks(trajectory, block_rows)
 
 
 def write_csv(trajectory, path=None, *, block_rows: int = BLOCK_ROWS) -> str | Path:
@@ -103,7 +96,7 @@ def write_csv(trajectory, path=None, *, block_rows: int = BLOCK_ROWS) -> str | P
     """
     header = ",".join(csv_header(trajectory)) + "\n"
     if path is None:
-        return header + "".join(_blocks(trajectory, block_rows))
+        return header + b"".join(_blocks(trajectory, block_rows)).decode()
 
     def write(fh):
         fh.write(header.encode())
