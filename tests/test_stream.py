@@ -312,3 +312,45 @@ def test_csv_values_at_the_hard_places():
         rng.standard_normal(500_000) * 10.0 ** rng.integers(-300, 300, 500_000),
     ])  # fmt: skip
     assert format_rows(values[:, None]) == _printf(values.tolist())
+
+
+def test_the_stream_benchmark_runs_in_its_quick_mode(tmp_path):
+    """benchmarks/bench_stream.py end to end, tiny (no number is judged here)."""
+    import json
+    import subprocess
+    import sys
+    from pathlib import Path
+
+    root = Path(__file__).resolve().parent.parent
+    out = tmp_path / "bench.json"
+    proc = subprocess.run(
+        [sys.executable, str(root / "benchmarks" / "bench_stream.py"), "--quick", "--json",
+         str(out)],
+        capture_output=True, text=True, timeout=600,
+    )  # fmt: skip
+    assert proc.returncode == 0, proc.stderr
+    assert "stream / bare wall time" in proc.stdout
+    results = json.loads(out.read_text())["results"]
+    assert set(results) == {"bare", "stream"}
+    assert all(r["peak_mb"] > 0 and r["seconds"] > 0 for rows in results.values() for r in rows)
+
+
+def test_a_long_torqued_runs_figure_balances_energy_over_every_sample(tmp_path):
+    """Thinned, the energy-balance panel still integrates τ·ω over every sample: its work
+    is the whole run's (the trapezoid sums, carried from piece to piece)."""
+    from ga_rotors.scene.figures import energy_balance
+    from ga_rotors.scene.output import _Balance
+    from ga_rotors.scene.run import run_pieces
+
+    scene = _scene([{"type": "body_torque", "torque": [0.0, 0.2, 0.5]}],
+                   time={"duration": 30.0, "output_step": 0.001})  # fmt: skip
+    balance, kept = _Balance(scene), []
+    for piece in run_pieces(scene, chunk_steps=4999):
+        kept.append(balance.add(piece))
+    tr = run_scene(scene)
+    gain, work = energy_balance(scene, tr, tr.quaternions())
+    joined = np.concatenate([p["torque_work"] for p in kept])
+    assert np.allclose(joined, work, rtol=1e-12, atol=1e-15 * abs(work).max())
+    assert (np.concatenate([p["energy_gain"] for p in kept]) == gain).all()
+    stream_scene(scene.replace({"output.data": []}), tmp_path)  # the figure draws from it
+    assert (tmp_path / f"{scene.name}.png").stat().st_size > 0

@@ -25,6 +25,7 @@ __all__ = [
     "data_digest",
     "draw",
     "energy_balance",
+    "energy_balance_drawn",
     "figure_png",
     "render",
 ]
@@ -177,12 +178,31 @@ def _invariants(axes, ctx: _Context) -> None:
         ax.semilogy(ctx.t, L_exact, ls=(0, (4, 3)), lw=1.2, label=label)
         ax.set_ylabel("|L| (kg·m²/s)", fontsize=8)
         ax.legend(**_BESIDE)
-    elif any(e["type"] == "user" for e in ctx.scene.data["effects"]):
+    elif not energy_balance_drawn(ctx.scene):
         # The balance would call the user's torque again, outside the run's opt-in.
         ax.text(0.5, 0.5, "energy balance not drawn: it would run the user torque again",
                 ha="center", transform=ax.transAxes, fontsize=8)  # fmt: skip
     else:
         _energy_balance(ax, ctx)
+
+
+def energy_balance_drawn(scene: Scene) -> bool:
+    """Whether the invariants panel of ``scene`` draws :func:`energy_balance` (its effects
+    conserve nothing simple; not the damped top, drawn against its exact |L|; no user
+    torque, which would run again outside the run's opt-in).
+
+    Examples
+    --------
+    >>> from ga_rotors.scene import load_scene
+    >>> [energy_balance_drawn(load_scene(name)) for name in ("heavy_top", "damped_top")]
+    [False, False]
+    """
+    types = [e["type"] for e in scene.data["effects"]]
+    if "invariants" not in scene.data["output"]["plots"]:
+        return False
+    if types in ([], ["gravity"], ["space_torque"]):  # invariant_series has rows to draw
+        return False
+    return scene.exact != "damped_symmetric_top" and "user" not in types
 
 
 def energy_balance(scene: Scene, tr: Trajectory, q: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -220,7 +240,10 @@ def energy_balance(scene: Scene, tr: Trajectory, q: np.ndarray) -> tuple[np.ndar
 
 
 def _energy_balance(ax, ctx: _Context) -> None:
-    gain, work = energy_balance(ctx.scene, ctx.tr, ctx.get("q"))
+    if "energy_gain" in ctx.tr:  # a thinned copy: accumulated over every sample as it ran
+        gain, work = ctx.tr["energy_gain"], ctx.tr["torque_work"]
+    else:
+        gain, work = energy_balance(ctx.scene, ctx.tr, ctx.get("q"))
     ax.plot(ctx.t, gain, lw=1.0, label="kinetic energy gained E − E₀")
     ax.plot(ctx.t, work, lw=1.2, ls=(0, (4, 3)), label="work done by the torques ∫τ·ω dt")
     ax.set_ylabel("energy (J)", fontsize=8)

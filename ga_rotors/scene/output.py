@@ -28,6 +28,8 @@ from __future__ import annotations
 
 from pathlib import Path
 
+import numpy as np
+
 from ..trajectory import Trajectory
 from .budget import CHUNK_STEPS
 from .formats import FORMATS
@@ -56,6 +58,7 @@ def _write(scene: Scene, pieces, stage: Path | None, summarise: bool):
     """Feed ``pieces`` to the writers in ``stage`` (None: no files), the thinned copy and
     (``summarise``) the summary; write the figure, summary and scene files; return the
     Report (None unless ``summarise``)."""
+    from .figures import energy_balance_drawn
     from .summary import RunSummary
     from .thinning import ThinnedCopy
 
@@ -65,7 +68,7 @@ def _write(scene: Scene, pieces, stage: Path | None, summarise: bool):
         for fmt in out["data"]:
             writers.append(FORMATS[fmt].open(stage / f"{name}{FORMATS[fmt].suffix}", scene))
     summary = RunSummary(scene) if summarise else None
-    thin = None
+    thin = balance = None
     meta = None
     try:
         for piece in pieces:
@@ -80,7 +83,9 @@ def _write(scene: Scene, pieces, stage: Path | None, summarise: bool):
             if summary is not None:
                 summary.add(piece)
             if thin is not None:
-                thin.add(piece)
+                if balance is None and not thin.keep_all and energy_balance_drawn(scene):
+                    balance = _Balance(scene)
+                thin.add(piece if balance is None else balance.add(piece))
             meta = piece.meta
         for writer in writers:
             writer.close(meta)
@@ -98,6 +103,32 @@ def _write(scene: Scene, pieces, stage: Path | None, summarise: bool):
             (stage / f"{name}.summary.txt").write_text(str(rep) + "\n", "utf-8")
         (stage / f"{name}.scene.toml").write_text(scene.to_toml(), "utf-8")
     return rep
+
+
+class _Balance:
+    """The energy balance of a thinned run's figure (:func:`~.figures.energy_balance`),
+    accumulated over every sample: each piece gets ``energy_gain`` and ``torque_work``."""
+
+    def __init__(self, scene: Scene):
+        self.scene, self.first_energy, self.last, self.work = scene, None, None, 0.0
+
+    def add(self, piece: Trajectory) -> Trajectory:
+        from .. import quaternion as Q
+        from .figures import energy_balance
+
+        n = piece.w.shape[0]
+        if n == 0:
+            return piece
+        t, w, q = piece.t[:n], piece.w, Q.normalize(piece.quaternions())[:n]
+        if self.last is not None:  # the previous piece's last sample in front
+            t, w, q = (np.concatenate([a, b]) for a, b in zip(self.last, (t, w, q), strict=True))
+        _, work = energy_balance(self.scene, Trajectory({"t": t, "w": w}), q)
+        work = self.work + (work[1:] if self.last is not None else work)
+        energy = self.scene.body.energy(piece.w)
+        if self.first_energy is None:
+            self.first_energy = energy[0]
+        self.last, self.work = (t[-1:], w[-1:], q[-1:]), float(work[-1])
+        return piece.extended({"energy_gain": energy - self.first_energy, "torque_work": work})
 
 
 def stream_scene(scene, out_dir, *, progress=None, budget=None, chunk_steps: int = CHUNK_STEPS):

@@ -1,0 +1,142 @@
+"""Streamed scene runs: wall time against the bare integration, and peak memory.
+
+Run from the repository root::
+
+    python benchmarks/bench_stream.py                        # 1e7 steps per path, 3 repeats
+    python benchmarks/bench_stream.py --steps 1e8 --repeats 1 --only stream
+    python benchmarks/bench_stream.py --quick                # the suite's smoke run
+
+The scene is the bundled heavy top (RK4 at 0.1 ms on the rotor and quaternion paths, a
+sample every 5 steps: t, ω, both orientations, the ZYZ angles, total energy, the error of
+each path against the exact Lagrange top), integrated for ``--steps`` steps per path and
+written as CSV with its four-panel figure and summary (``--data`` for other formats).
+Each measurement is a fresh child process, the compiled loops warm (a short run of the
+same scene first, in the same child), interleaved over the repeats:
+
+* ``bare``: :func:`ga_rotors.simulate` of the same paths and sampling, the samples kept in
+  memory, nothing derived or written: the integration alone (its loops, its arrays);
+* ``stream``: ``ga-rotors run`` as a user runs it (:func:`ga_rotors.scene.stream_scene`):
+  the run in pieces, quantities per piece, every file appended as it goes, summary and
+  figure, moved into place at the end;
+* ``whole`` (``--only whole``; what ``ga-rotors run`` did before): :func:`run_scene` then
+  :func:`write_outputs`, every sample in memory.
+
+Times are measured inside the child around the call (interpreter start-up and imports
+excluded, the same for every mode); peak memory is the child's maximum resident set
+(``os.wait4``'s ``ru_maxrss``), start-up included. Reported: median and min–max over the
+repeats, and stream / bare. No number here is a test: the suite only runs ``--quick``.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import statistics
+import subprocess
+import sys
+import tempfile
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parent.parent
+
+CHILD = r"""
+import json, sys, time, warnings
+from ga_rotors.scene import load_scene
+mode, steps, out, data = sys.argv[1], int(float(sys.argv[2])), sys.argv[3], sys.argv[4]
+scene = load_scene("heavy_top").replace({"output.data": data.split(",") if data else [],
+                                         "output.summary": True})
+scene = scene.replace({"time.duration": steps * scene.step})
+warm = scene.replace({"time.duration": 200 * scene.step})
+if mode == "bare":
+    from ga_rotors import simulate
+    def once(s):
+        return simulate(s.body, s.orientation, s.angular_velocity,
+                        duration=s.data["time"]["duration"], step=s.step, paths=s.paths,
+                        integrator=s.method, torques=s.torques(), sample_every=s.sample_every)
+elif mode == "stream":
+    from ga_rotors.scene import stream_scene
+    from ga_rotors.scene.budget import Budget
+    budget = Budget(max_steps=10**10, max_disk_gib=1000)
+    def once(s):
+        return stream_scene(s, out, budget=budget)
+else:
+    from ga_rotors.scene import report, run_scene, write_outputs
+    from ga_rotors.scene.budget import Budget
+    budget = Budget(max_steps=10**10, max_memory_gib=1000)
+    def once(s):
+        tr = run_scene(s, budget=budget)
+        return write_outputs(s, tr, out, str(report(s, tr)))
+with warnings.catch_warnings():
+    warnings.simplefilter("ignore")
+    once(warm)  # compiled, imported
+    start = time.perf_counter()
+    once(scene)
+    took = time.perf_counter() - start
+print(json.dumps({"seconds": took}))
+"""
+
+
+def _child(mode: str, steps: float, data: str) -> dict:
+    """One measurement in a fresh process: seconds (inside) and peak RSS (MB)."""
+    with tempfile.TemporaryDirectory(prefix="bench_stream-") as tmp:
+        env = {**os.environ, "PYTHONPATH": str(ROOT)}
+        log = Path(tmp) / "log"
+        with open(log, "w") as sink:  # a file, not a pipe: a chatty child never blocks
+            proc = subprocess.Popen(
+                [sys.executable, "-c", CHILD, mode, str(steps), str(Path(tmp) / "out"), data],
+                stdout=sink, stderr=subprocess.STDOUT, env=env,
+            )  # fmt: skip
+            _, status, usage = os.wait4(proc.pid, 0)  # this child's own peak memory
+        proc.returncode = os.waitstatus_to_exitcode(status)
+        out = log.read_text()
+        if proc.returncode != 0:
+            raise SystemExit(f"bench_stream: the {mode} child failed:\n{out}")
+        files = sum(f.stat().st_size for f in (Path(tmp) / "out").rglob("*") if f.is_file())
+    result = json.loads(out.strip().splitlines()[-1])
+    result["peak_mb"] = usage.ru_maxrss / 1024  # KiB on Linux
+    result["files_mb"] = files / 2**20
+    return result
+
+
+def _summary(values: list[float]) -> str:
+    return f"{statistics.median(values):9.2f}  ({min(values):.2f}–{max(values):.2f})"
+
+
+def main(argv=None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--steps", type=float, default=1e7, help="steps per path (default 1e7)")
+    parser.add_argument("--repeats", type=int, default=3)
+    parser.add_argument("--only", choices=["bare", "stream", "whole"], action="append",
+                        help="modes to run (default: bare and stream)")  # fmt: skip
+    parser.add_argument("--data", default="csv", help="output.data, comma-separated")
+    parser.add_argument("--quick", action="store_true", help="a tiny run, bare and stream")
+    parser.add_argument("--json", metavar="FILE", help="also write the results as JSON")
+    args = parser.parse_args(argv)
+    modes = args.only or ["bare", "stream"]
+    if args.quick:
+        args.steps, args.repeats, modes = 2000, 1, ["bare", "stream"]
+    results: dict[str, list[dict]] = {m: [] for m in modes}
+    for _ in range(args.repeats):
+        for mode in modes:  # interleaved: the machine's load falls on every mode alike
+            results[mode].append(_child(mode, args.steps, args.data))
+    print(
+        f"heavy top, {args.steps:.3g} steps per path (rotor + quaternion), a sample every 5 "
+        f"steps, data: {args.data or 'none'}; {args.repeats} repeat(s), fresh processes"
+    )
+    print(f"{'mode':<8} {'seconds: median (min–max)':<28} {'peak RSS MB':<28} files MB")
+    for mode, rows in results.items():
+        seconds, peak = (_summary([r[key] for r in rows]) for key in ("seconds", "peak_mb"))
+        print(f"{mode:<8} {seconds:<28} {peak:<28} {rows[0]['files_mb']:.2f}")
+    if "bare" in results and "stream" in results:
+        pairs = zip(results["stream"], results["bare"], strict=True)
+        print(
+            f"stream / bare wall time: {_summary([s['seconds'] / b['seconds'] for s, b in pairs])}"
+        )
+    if args.json:
+        Path(args.json).write_text(json.dumps({"steps": args.steps, "results": results}))
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
