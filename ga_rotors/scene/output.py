@@ -57,52 +57,93 @@ def _names(scene: Scene, summary: bool) -> list[str]:
 def _write(scene: Scene, pieces, stage: Path | None, summarise: bool):
     """Feed ``pieces`` to the writers in ``stage`` (None: no files), the thinned copy and
     (``summarise``) the summary; write the figure, summary and scene files; return the
-    Report (None unless ``summarise``)."""
-    from .figures import energy_balance_drawn
-    from .summary import RunSummary
-    from .thinning import ThinnedCopy
+    Report (None unless ``summarise``).
 
-    out, name = scene.data["output"], scene.name
-    writers = []
-    if stage is not None:
-        for fmt in out["data"]:
-            writers.append(FORMATS[fmt].open(stage / f"{name}{FORMATS[fmt].suffix}", scene))
-    summary = RunSummary(scene) if summarise else None
-    thin = balance = None
-    meta = None
+    A piece is consumed (written, measured, thinned) in a second thread while the next
+    one is integrated: the compiled loops and the CSV formatting release the GIL, so on
+    two cores they overlap. One piece is consumed at a time, in order, and every
+    consumer has finished before this returns or raises: nothing writes into the staging
+    folder after a failure or an interrupt.
+    """
+    from concurrent.futures import ThreadPoolExecutor
+
+    out = scene.data["output"]
+    sink = _Sink(scene, stage, summarise)
     try:
-        for piece in pieces:
-            if thin is None and stage is not None and out["plots"]:
-                meta0 = piece.meta
-                t_end = float(piece.t[0]) + meta0["steps"] * meta0["step"]
-                every = meta0["sample_every"]
-                count = meta0["steps"] // every + 1 + (1 if meta0["steps"] % every else 0)
-                thin = ThinnedCopy(float(piece.t[0]), t_end, count)
-            for writer in writers:
-                writer.append(piece)
-            if summary is not None:
-                summary.add(piece)
-            if thin is not None:
-                if balance is None and not thin.keep_all and energy_balance_drawn(scene):
-                    balance = _Balance(scene)
-                thin.add(piece if balance is None else balance.add(piece))
-            meta = piece.meta
-        for writer in writers:
-            writer.close(meta)
+        with ThreadPoolExecutor(max_workers=1, thread_name_prefix="ga_rotors-writer") as pool:
+            pending = None
+            try:
+                for piece in pieces:  # integrated here, consumed there
+                    if pending is not None:
+                        pending.result()  # the previous piece is done (or its error raised)
+                    pending = pool.submit(sink.add, piece)
+            except BaseException:
+                if pending is not None:
+                    pending.cancel()  # not started: dropped; started: the pool waits for it
+                raise
+            if pending is not None:
+                pending.result()
+        sink.close()
     except BaseException:
-        for writer in writers:
-            writer.abort()
+        sink.abort()
         raise
-    rep = summary.report() if summary is not None else None
+    rep = sink.summary.report() if sink.summary is not None else None
     if stage is not None:
-        if thin is not None:
+        name = scene.name
+        if sink.thin is not None:
             from .figures import figure_png
 
-            (stage / f"{name}.png").write_bytes(figure_png(scene, thin.trajectory(meta)))
+            (stage / f"{name}.png").write_bytes(figure_png(scene, sink.thin.trajectory(sink.meta)))
         if rep is not None and out["summary"]:
             (stage / f"{name}.summary.txt").write_text(str(rep) + "\n", "utf-8")
         (stage / f"{name}.scene.toml").write_text(scene.to_toml(), "utf-8")
     return rep
+
+
+class _Sink:
+    """Where the pieces of a run go: its data files, its summary, its figure's copy."""
+
+    def __init__(self, scene: Scene, stage: Path | None, summarise: bool):
+        from .summary import RunSummary
+
+        out, name = scene.data["output"], scene.name
+        self.scene, self.meta = scene, None
+        self.writers = []
+        if stage is not None:
+            for fmt in out["data"]:
+                path = stage / f"{name}{FORMATS[fmt].suffix}"
+                self.writers.append(FORMATS[fmt].open(path, scene))
+        self.summary = RunSummary(scene) if summarise else None
+        self.figure = stage is not None and bool(out["plots"])
+        self.thin = self.balance = None
+
+    def add(self, piece: Trajectory) -> None:
+        from .figures import energy_balance_drawn
+        from .thinning import ThinnedCopy
+
+        if self.thin is None and self.figure:
+            meta = piece.meta
+            every = meta["sample_every"]
+            count = meta["steps"] // every + 1 + (1 if meta["steps"] % every else 0)
+            t_end = float(piece.t[0]) + meta["steps"] * meta["step"]
+            self.thin = ThinnedCopy(float(piece.t[0]), t_end, count)
+            if not self.thin.keep_all and energy_balance_drawn(self.scene):
+                self.balance = _Balance(self.scene)
+        for writer in self.writers:
+            writer.append(piece)
+        if self.summary is not None:
+            self.summary.add(piece)
+        if self.thin is not None:
+            self.thin.add(piece if self.balance is None else self.balance.add(piece))
+        self.meta = piece.meta
+
+    def close(self) -> None:
+        for writer in self.writers:
+            writer.close(self.meta)
+
+    def abort(self) -> None:
+        for writer in self.writers:
+            writer.abort()
 
 
 class _Balance:
