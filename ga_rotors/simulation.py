@@ -351,6 +351,8 @@ def _pieces(plan: _Plan, chunk: int | None, progress):
     :func:`simulate_chunks`); ``chunk=None``: one piece, each path's loop called once."""
     method, problem, requested, nsteps = plan.method, plan.problem, plan.requested, plan.nsteps
     every, h, t0 = plan.sample_every, plan.h, plan.t0
+    if type(method).segments is base.Integrator.segments:
+        chunk = None  # an integrator that cannot continue a run: one piece, the whole run
     total = nsteps * len(requested)
     done = dict.fromkeys(requested, 0)
     sources = {}

@@ -234,7 +234,7 @@ def run(args: argparse.Namespace) -> int:
             written, rep = stream_scene(scene, out, progress=bar, budget=budget, **chunk)
         finally:
             bar.close()
-            _warn(caught, own)
+    _warn(caught, own)  # after a run that failed, its one-line error says it all
     incomplete = "incomplete" in rep.values
     if scene.data["output"]["summary"]:
         print(rep)

@@ -275,7 +275,8 @@ class Integrator(ABC):
         from the exact state, step number and carried state (watch statistics; an
         adaptive method's step size) where the previous one ended. The compiled methods
         and ``dop853`` do this; this default, for an integrator that cannot continue,
-        yields one piece holding the whole run.
+        yields one piece holding the whole run (and :func:`~ga_rotors.simulation.simulate_chunks`
+        then hands out the run as one piece).
 
         Examples
         --------

@@ -73,6 +73,7 @@ class ThinnedCopy:
         t = piece.t
         where = np.floor((t - self.t_start) / self.span * self.columns)
         slices = np.clip(where, 0, self.columns - 1).astype(np.int64)
+        # times increase, so each slice is a run of consecutive rows: reduceat per run
         starts = np.flatnonzero(np.diff(slices, prepend=-1))
         keep = [starts, np.append(starts[1:] - 1, t.shape[0] - 1)]  # each slice's ends
         for name in piece.names:
@@ -80,11 +81,15 @@ class ThinnedCopy:
             if name == "t" or a.shape[0] == 0:
                 continue
             n = a.shape[0]
+            runs = starts[starts < n]
+            sizes = np.diff(np.append(runs, n))
+            run_of = np.repeat(np.arange(runs.shape[0]), sizes)
             for column in a.reshape(n, -1).T:
-                order = np.lexsort((column, slices[:n]))
-                ends = np.flatnonzero(np.diff(slices[:n][order], prepend=-1))
-                keep.append(order[ends])  # smallest of each slice
-                keep.append(order[np.append(ends[1:] - 1, n - 1)])  # largest
+                for reduce in (np.minimum, np.maximum):  # NaN, if any, is the extreme
+                    extreme = np.repeat(reduce.reduceat(column, runs), sizes)
+                    hits = np.flatnonzero((column == extreme) | (extreme != extreme))
+                    first = np.concatenate([[True], run_of[hits][1:] != run_of[hits][:-1]])
+                    keep.append(hits[first])  # the first row of each run reaching it
         return np.unique(np.concatenate(keep))
 
     def trajectory(self, meta: dict | None = None) -> Trajectory:
