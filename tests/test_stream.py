@@ -303,7 +303,7 @@ def test_csv_values_at_the_hard_places():
     """Powers of ten and their neighbours (where log10 is one off), the range's ends,
     subnormals, the %g switch points, and a million values of every magnitude."""
     rng = np.random.default_rng(13)
-    p = 10.0 ** np.arange(-307, 309)
+    p = np.concatenate([10.0 ** np.arange(-307, 309), [float(f"1e{k}") for k in range(-308, 309)]])
     values = np.concatenate([
         p, np.nextafter(p, 0), np.nextafter(p, np.inf), -p,
         [5e-324, 2.2250738585072014e-308, 2.225073858507201e-308, 1.7976931348623157e308,

@@ -66,8 +66,13 @@ def _dd_mul(a_hi, a_lo, b_hi, b_lo):
 
 @jit
 def _scaled(ax, k, pow10):
-    """ax·10^(16−k) as double-double."""
+    """ax·10^(16−k) as double-double (two factors from the table beyond its range)."""
     s = 16 - k
+    if -_HALF <= s <= _HALF:  # one factor (values within about 1e±160)
+        hi, lo = _two_prod(ax, pow10[s + _HALF, 0])
+        lo += ax * pow10[s + _HALF, 1]
+        h = hi + lo
+        return h, lo - (h - hi)
     s1 = s // 2
     s2 = s - s1
     f_hi, f_lo = pow10[s1 + _HALF, 0], pow10[s1 + _HALF, 1]
@@ -92,9 +97,13 @@ def _digits(ax, pow10, out):
     k = int(np.floor(np.log10(ax)))
     for _ in range(4):  # log10 may be one off next to a power of ten
         hi, lo = _scaled(ax, k, pow10)
-        if hi < 1e16 or (hi == 1e16 and lo < 0.0):
+        # hi + lo is within ~1e-31 (relative) of the exact product: at a boundary, a
+        # lo below -1e-9 is a value below it, anything closer is the power of ten itself
+        # (no other float64 lies within 1e-25 of one; if one did, 17 digits round it
+        # to the power of ten anyway)
+        if hi < 1e16 or (hi == 1e16 and lo < -1e-9):
             k -= 1
-        elif hi > 1e17 or (hi == 1e17 and lo >= 0.0):
+        elif hi > 1e17 or (hi == 1e17 and lo > -1e-8):
             k += 1
         else:
             break
