@@ -5,10 +5,11 @@ declares, as the run goes on:
 
 * ``<name>.csv`` / ``.npz`` / ``.nc`` / ``.zarr`` (any registered format) for
   ``output.data``, each appended piece by piece (:mod:`ga_rotors.results.streams`);
-* ``<name>.png``, one panel per entry of ``output.plots`` (drawn with matplotlib, a
-  palette PNG carrying a digest of the data it shows), drawn from a bounded thinned copy
-  of the run (:class:`~ga_rotors.scene.thinning.ThinnedCopy`: every sample's extremes per
-  pixel column);
+* ``<name>.png`` (or ``.svg``, ``.pdf``: ``output.figure_format``), one panel per entry
+  of ``output.plots`` (drawn with matplotlib, carrying a digest of the data it shows),
+  drawn from a bounded thinned copy of the run
+  (:class:`~ga_rotors.scene.thinning.ThinnedCopy`: every sample's extremes per pixel
+  column);
 * ``<name>.summary.txt`` when ``output.summary`` is on (accumulated piece by piece,
   :class:`~ga_rotors.scene.summary.RunSummary`), and ``<name>.scene.toml``, the resolved
   scene, whenever anything is written (what made these files).
@@ -48,7 +49,7 @@ def _names(scene: Scene, summary: bool) -> list[str]:
     out, name = scene.data["output"], scene.name
     names = [f"{name}{FORMATS[fmt].suffix}" for fmt in out["data"]]
     if out["plots"]:
-        names.append(f"{name}.png")
+        names.append(f"{name}.{out['figure_format']}")
     if summary:
         names.append(f"{name}.summary.txt")
     return [*names, f"{name}.scene.toml"]
@@ -91,9 +92,10 @@ def _write(scene: Scene, pieces, stage: Path | None, summarise: bool):
     if stage is not None:
         name = scene.name
         if sink.thin is not None:
-            from .figures import figure_png
+            from . import figures
 
-            (stage / f"{name}.png").write_bytes(figure_png(scene, sink.thin.trajectory(sink.meta)))
+            figure = figures.render(scene, sink.thin.trajectory(sink.meta))
+            (stage / f"{name}.{out['figure_format']}").write_bytes(figure)
         if rep is not None and out["summary"]:
             (stage / f"{name}.summary.txt").write_text(str(rep) + "\n", "utf-8")
         (stage / f"{name}.scene.toml").write_text(scene.to_toml(), "utf-8")
