@@ -106,7 +106,11 @@ Running
 remembered by the problem), judges the step limit on the initial state
 (:meth:`Integrator.check_step`, closed form, its message built only past the limit), then
 calls :meth:`Integrator.integrate`, which does no checking: a caller that has checked
-once (``simulate`` over several paths) calls ``integrate`` directly.
+once (``simulate`` over several paths) calls ``integrate`` directly. A template
+integrator's ``run`` does all of it in one compiled call of its generated module
+(:func:`~ga_rotors.integrators.loops.judged_run`: the limit, measured by a compiled kernel,
+then the loop), and comes back to :meth:`Integrator.check_step` for the words only past
+the limit; what a run costs around its loop is measured by ``benchmarks/bench_overhead.py``.
 A non-template integrator (e.g. scipy's DOP853) subclasses :class:`Integrator` and
 implements :meth:`~Integrator.integrate` itself; :func:`ga_rotors.integrators._codegen.vector_field`
 gives it the same compiled, specialised right-hand side.
@@ -124,6 +128,7 @@ from typing import NamedTuple
 import numpy as np
 
 from ..errors import InputError
+from .limits import WATCH_GROWTH, watch_candidates
 from .problem import (
     FREE,
     KINEMATIC,
@@ -159,11 +164,6 @@ __all__ = [
     "register",
     "torque_conflict",
 ]
-
-#: After a run, the step limit is evaluated again at each sample where |ω| or |L| first
-#: grows by this factor past every earlier sample's (:meth:`Integrator.watch_step`): the
-#: crossing it reports is at most that much growth late, and a long run costs few checks.
-WATCH_GROWTH = 1.001
 
 #: What an integrator may declare it preserves by construction.
 PROPERTIES = frozenset(
@@ -421,19 +421,8 @@ class Integrator(ABC):
         """
         if self.step_limit is None or problem.inertia is None or len(w) == 0:
             return None
-        w = np.asarray(w, dtype=np.float64)
-        inertia = np.asarray(problem.inertia, dtype=np.float64)
-        candidates = np.zeros(len(w), dtype=bool)
-        for size in (np.einsum("ij,ij->i", w, w), np.einsum("ij,ij->i", w * inertia, w * inertia)):
-            # the samples setting a new high (|ω|², |L|²), then those of them a factor
-            # WATCH_GROWTH past the high they beat: logs of the few highs only
-            high = np.maximum.accumulate(size)
-            records = np.concatenate([[0], 1 + np.flatnonzero(size[1:] > high[:-1])])
-            with np.errstate(divide="ignore"):  # |ω| = 0: log is -inf, never a new level
-                level = np.floor(np.log(size[records]) * (0.5 / np.log(WATCH_GROWTH)))
-            new = np.concatenate([[np.isfinite(level[0])], level[1:] > level[:-1]])
-            candidates[records[new]] = True
-        candidates = np.flatnonzero(candidates)
+        w = np.ascontiguousarray(w, dtype=np.float64)
+        candidates = watch_candidates(w, problem.inertia)
         for k in candidates:
             limit = self.step_limit(problem.inertia, w[k], h, nsteps)
             if limit.exceeded:

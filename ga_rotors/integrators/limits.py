@@ -11,6 +11,14 @@ evaluates it on the initial state. The quantities (derived in ``docs/stability.m
   ±i|ω|/2). About a stable principal axis ±iν are the wobble's eigenvalues.
 * A Runge–Kutta-type method (stability polynomial R from its tableau) scales the wobble's
   energy by |R(ihν)|² per step: :func:`wobble_damping` limits N·|ln |R(ihν)|²| to 1.
+
+Each limit here is *measured* by one compiled kernel, ``measure(inertia, w, h, nsteps,
+*constants) -> (value, limit)``, attached to the limit function (:func:`measured`): the
+generated loop module judges the limit with it inside the compiled call of a run
+(:meth:`Integrator.run`'s verdict and :func:`watch_candidates`'s samples cost no Python),
+and the limit function builds its :class:`StepLimit` (the words) from the same numbers,
+so a run and its message can never disagree. A limit without a ``measure`` (a user's plain
+Python function) is judged in Python before the run.
 """
 
 from __future__ import annotations
@@ -27,12 +35,15 @@ from ._rigid import symmetric_pair
 
 __all__ = [
     "PHASE_LIMIT",
+    "WATCH_GROWTH",
     "StepLimit",
     "fixed_point_sweep",
+    "measured",
     "moser_veselov",
     "principal_rotation_angle",
     "stability_polynomial",
     "symmetric_remainder_angle",
+    "watch_candidates",
     "wobble_damping",
 ]
 
@@ -65,6 +76,31 @@ class StepLimit(NamedTuple):
     def exceeded(self) -> bool:
         """Whether ``value`` is at or past ``limit`` (NaN counts as past)."""
         return not self.value < self.limit
+
+
+def measured(measure, constants: tuple = ()):
+    """Attach the compiled ``measure`` (and its trailing ``constants``) to a step-limit
+    function, so a generated loop can judge the limit itself (see the module's text).
+
+    ``measure(inertia, w, h, nsteps, *constants)`` returns (value, limit), the numbers of
+    the :class:`StepLimit` the function builds; it must be a compiled kernel defined at
+    module level (the generated module imports it), ``constants`` numbers, booleans or
+    tuples of numbers (written into the generated module as literals).
+
+    Examples
+    --------
+    >>> moser_veselov.measure.__name__, moser_veselov.constants
+    ('_speed_measure', ())
+    >>> rk4_limit = wobble_damping((1.0, 1.0, 0.5), steps_q=True)
+    >>> rk4_limit.constants
+    ((1.0, 1.0, 0.5), True, True)
+    """
+
+    def attach(limit):
+        limit.measure, limit.constants = measure, tuple(constants)
+        return limit
+
+    return attach
 
 
 @jit
@@ -191,6 +227,18 @@ def _wobble(coeffs, inertia, w, h, nsteps, steps_q, on_q):
 PHASE_LIMIT = 0.1
 
 
+@jit
+def _wobble_measure(inertia, w, h, nsteps, coeffs, steps_q, on_q):
+    """(value, limit) of :func:`wobble_damping`: the damping's N·|ln |R(ihν)|²| against 1,
+    or, where it is further past (or nearer to) its bound, the phase lag against
+    :data:`PHASE_LIMIT`."""
+    _, gain, _, lag = _wobble(coeffs, inertia, w, h, nsteps, steps_q, on_q)
+    damping = abs(nsteps * gain)
+    if not on_q or damping / 1.0 >= lag / PHASE_LIMIT:
+        return damping, 1.0
+    return lag, PHASE_LIMIT
+
+
 def wobble_damping(coeffs: Sequence[float], steps_q: bool, phase_on_q: bool | None = None):
     """The step limit of a Runge–Kutta-type method with stability polynomial ``coeffs``:
     N·|ln |R(ihν)|²| < 1, the wobble's energy changed by less than a factor e over the run;
@@ -212,35 +260,37 @@ def wobble_damping(coeffs: Sequence[float], steps_q: bool, phase_on_q: bool | No
     ('N·|ln|R(ihν)|²|', 12.22, True)
     """
 
-    coeffs = np.array([float(c) for c in coeffs])
-    on_q = steps_q if phase_on_q is None else phase_on_q
+    coeffs = tuple(float(c) for c in coeffs)
+    on_q = bool(steps_q if phase_on_q is None else phase_on_q)
+    steps_q = bool(steps_q)
 
+    @measured(_wobble_measure, (coeffs, steps_q, on_q))
     def limit(inertia, w, h, nsteps) -> StepLimit:
-        y, ln_gain, turn, lag = _wobble(
-            coeffs, _floats(inertia), _floats(w), float(h), int(nsteps), steps_q, on_q
-        )
-        total = nsteps * ln_gain
+        inertia, w, h, nsteps = _floats(inertia), _floats(w), float(h), int(nsteps)
+        value, bound = _wobble_measure(inertia, w, h, nsteps, coeffs, steps_q, on_q)
+        if bound == 1.0:
 
-        def damping_effect():
-            amplitude = math.exp(0.5 * total) if total < 1400 else math.inf
-            return (
-                f"at hν = {y:.3g} each step scales the wobble's energy by |R(ihν)|² = "
-                f"{math.exp(ln_gain):.6g}, so over {nsteps} steps its amplitude (‖ω⊥‖ about a "
-                f"principal axis{', and |q|' if steps_q else ''}) is "
-                + (f"damped × {amplitude:.3g}" if total < 0 else f"amplified × {amplitude:.3g}")
-            )
+            def damping_effect():
+                y, ln_gain, _, _ = _wobble(coeffs, inertia, w, h, nsteps, steps_q, on_q)
+                total = nsteps * ln_gain
+                amplitude = math.exp(0.5 * total) if total < 1400 else math.inf
+                return (
+                    f"at hν = {y:.3g} each step scales the wobble's energy by |R(ihν)|² = "
+                    f"{math.exp(ln_gain):.6g}, so over {nsteps} steps its amplitude (‖ω⊥‖ "
+                    f"about a principal axis{', and |q|' if steps_q else ''}) is "
+                    + (f"damped × {amplitude:.3g}" if total < 0 else f"amplified × {amplitude:.3g}")
+                )
 
-        damping = StepLimit("N·|ln|R(ihν)|²|", abs(total), 1.0, damping_effect)
-        if not on_q or damping.value / damping.limit >= lag / PHASE_LIMIT:
-            return damping
+            return StepLimit("N·|ln|R(ihν)|²|", value, bound, damping_effect)
 
         def phase_effect():
+            turn = _wobble(coeffs, inertia, w, h, nsteps, steps_q, on_q)[2]
             return (
                 f"each step turns the body by 2·arg R(iy) instead of h|ω| = {2 * turn:.3g} "
-                f"rad, so over {nsteps} steps its orientation lags its spin by {lag:.3g} rad"
+                f"rad, so over {nsteps} steps its orientation lags its spin by {value:.3g} rad"
             )
 
-        return StepLimit("2N·|arg R(iy)e^(−iy)|", lag, PHASE_LIMIT, phase_effect)
+        return StepLimit("2N·|arg R(iy)e^(−iy)|", value, bound, phase_effect)
 
     return limit
 
@@ -252,6 +302,13 @@ def _floats(v) -> np.ndarray:
     return np.asarray(v, dtype=np.float64)
 
 
+@jit
+def _sweep_measure(inertia, w, h, nsteps):
+    """(h·ν, 2) of :func:`fixed_point_sweep`."""
+    return h * linear_rate(inertia, w, True), 2.0
+
+
+@measured(_sweep_measure)
 def fixed_point_sweep(inertia, w, h, nsteps) -> StepLimit:
     """Implicit midpoint by fixed-point sweeps: the sweep's map has derivative (h/2)·∂f,
     whose spectral radius is hν/2 (ν with |ω|/2: the sweep also solves for q), so it
@@ -262,11 +319,11 @@ def fixed_point_sweep(inertia, w, h, nsteps) -> StepLimit:
     >>> fixed_point_sweep((1.0, 1.0, 1.0), (0.0, 0.0, 3.0), 1.0, 10).value
     1.5
     """
-    y = h * linear_rate(_floats(inertia), _floats(w), True)
+    y, bound = _sweep_measure(_floats(inertia), _floats(w), float(h), int(nsteps))
     return StepLimit(
         "h·ν",
         y,
-        2.0,
+        bound,
         lambda: (
             f"the fixed-point sweep contracts by hν/2 = {y / 2:.3g} per sweep; from 1 it "
             "diverges and the run stops (NaN), just below it it needs many sweeps"
@@ -274,6 +331,13 @@ def fixed_point_sweep(inertia, w, h, nsteps) -> StepLimit:
     )
 
 
+@jit
+def _speed_measure(inertia, w, h, nsteps):
+    """(h·|ω|, 1) of :func:`moser_veselov`; |ω| without overflow or underflow."""
+    return h * math.hypot(math.hypot(w[0], w[1]), w[2]), 1.0
+
+
+@measured(_speed_measure)
 def moser_veselov(inertia, w, h, nsteps) -> StepLimit:
     """lgvi solves h Π = sin θ ⋯ for the step's rotation: about a principal axis (and on
     a sphere) it reads sin θ = h|ω|, with no solution from h|ω| = 1.
@@ -283,11 +347,11 @@ def moser_veselov(inertia, w, h, nsteps) -> StepLimit:
     >>> moser_veselov((1.0, 2.0, 3.0), (0.0, 0.0, 2.0), 0.5, 1).exceeded
     True
     """
-    y = h * _speed(w)
+    y, bound = _speed_measure(_floats(inertia), _floats(w), float(h), int(nsteps))
     return StepLimit(
         "h·|ω|",
         y,
-        1.0,
+        bound,
         lambda: (
             "its discrete Moser–Veselov equation, sin θ = h|ω| about a principal axis, "
             "has no solution there"
@@ -295,16 +359,19 @@ def moser_veselov(inertia, w, h, nsteps) -> StepLimit:
     )
 
 
-def _speed(w) -> float:
-    """|ω| (or the length of any 3-vector), without overflow or underflow."""
-    return math.hypot(float(w[0]), float(w[1]), float(w[2]))
+@jit
+def _momentum(inertia, w):
+    """|L| = |I ω| (principal frame), without overflow or underflow."""
+    return math.hypot(math.hypot(inertia[0] * w[0], inertia[1] * w[1]), inertia[2] * w[2])
 
 
-def _momentum(inertia, w) -> float:
-    """|L| = |I ω| (principal frame)."""
-    return math.hypot(*(float(inertia[k]) * float(w[k]) for k in range(3)))
+@jit
+def _principal_measure(inertia, w, h, nsteps):
+    """(h·|L|/I_min, 1) of :func:`principal_rotation_angle`."""
+    return h * _momentum(inertia, w) / min(inertia[0], min(inertia[1], inertia[2])), 1.0
 
 
+@measured(_principal_measure)
 def principal_rotation_angle(inertia, w, h, nsteps) -> StepLimit:
     """An axis splitting turns L about axis i by h·L_i/I_i ≤ h|L|/I_min per sub-flow; its
     error terms are nested commutators of those turns, powers of that angle times |L|/I_i:
@@ -315,12 +382,11 @@ def principal_rotation_angle(inertia, w, h, nsteps) -> StepLimit:
     >>> principal_rotation_angle((1.0, 1.0, 1e-6), (1.0, 0.5, 0.3), 0.01, 1000).exceeded
     True
     """
-    momentum = _momentum(inertia, w)
-    y = h * momentum / min(float(i) for i in inertia)
+    y, bound = _principal_measure(_floats(inertia), _floats(w), float(h), int(nsteps))
     return StepLimit(
         "h·|L|/I_min",
         y,
-        1.0,
+        bound,
         lambda: (
             f"a sub-flow may turn L by up to {y:.3g} rad per step, past the splitting's "
             "error expansion: the thinnest axis' rate is lost (use split_sym or a Runge–Kutta "
@@ -329,6 +395,14 @@ def principal_rotation_angle(inertia, w, h, nsteps) -> StepLimit:
     )
 
 
+@jit
+def _remainder_measure(inertia, w, h, nsteps):
+    """(h·|L|·|1/I_r − 1/I_p|, 1) of :func:`symmetric_remainder_angle`."""
+    _, p, r = symmetric_pair(inertia)
+    return h * _momentum(inertia, w) * abs(1.0 / inertia[r] - 1.0 / inertia[p]), 1.0
+
+
+@measured(_remainder_measure)
 def symmetric_remainder_angle(inertia, w, h, nsteps) -> StepLimit:
     """split_sym's only approximation is its remainder rotation, h·L_r·(1/I_r − 1/I_p) about
     axis r, bounded by h|L|·|1/I_r − 1/I_p|: the same angle bound as the axis splittings.
@@ -338,16 +412,63 @@ def symmetric_remainder_angle(inertia, w, h, nsteps) -> StepLimit:
     >>> symmetric_remainder_angle((1.0, 1.0, 2.0), (0.0, 0.0, 1000.0), 1e-3, 1000).value
     0.0
     """
-    inertia = tuple(float(i) for i in inertia)
-    _, p, r = symmetric_pair(inertia)  # compiled (it is also split_sym's template helper)
-    momentum = _momentum(inertia, w)
-    y = h * momentum * abs(1.0 / inertia[r] - 1.0 / inertia[p])
+    y, bound = _remainder_measure(_floats(inertia), _floats(w), float(h), int(nsteps))
     return StepLimit(
         "h·|L|·|1/I_r − 1/I_p|",
         y,
-        1.0,
+        bound,
         lambda: (
             f"the remainder rotation may turn L by up to {y:.3g} rad per step, past the "
             "Strang composition's error expansion"
         ),
     )
+
+
+#: After a run, the step limit is evaluated again at each sample where |ω| or |L| first
+#: grows by this factor past every earlier sample's (:func:`watch_candidates`): the
+#: crossing it reports is at most that much growth late, and a long run costs few checks.
+WATCH_GROWTH = 1.001
+
+
+@jit
+def _watch_candidates(w, rows, inertia):
+    """The sample indices :func:`watch_candidates` returns, for the first ``rows`` rows."""
+    marked = np.zeros(rows, dtype=np.bool_)
+    scale = 0.5 / math.log(WATCH_GROWTH)
+    for moment in (False, True):
+        high = -1.0
+        level = -math.inf
+        for i in range(rows):
+            a, b, c = w[i, 0], w[i, 1], w[i, 2]
+            if moment:
+                a, b, c = a * inertia[0], b * inertia[1], c * inertia[2]
+            size = a * a + b * b + c * c
+            if i > 0 and not size > high:
+                if size != size:  # NaN: no later sample sets a high (as a running max)
+                    high = math.nan
+                continue
+            high = size
+            new = np.floor(math.log(size) * scale) if size > 0.0 else -math.inf
+            if (new > level) if i > 0 else math.isfinite(new):
+                marked[i] = True
+            level = new
+    return np.flatnonzero(marked)
+
+
+def watch_candidates(w, inertia) -> np.ndarray:
+    """The samples at which a run's step limit is judged again after the run: those where
+    |ω|² or |L|² (``w`` the samples' body ω, principal frame) sets a new high that passes
+    every earlier high's level by a factor :data:`WATCH_GROWTH` in |ω| or |L| (the
+    quantities of the step limits grow with them), the first sample included. Compiled:
+    the generated loop of a run calls the same kernel on its samples.
+
+    Examples
+    --------
+    |ω| grows by 10 % from sample 2 on; sample 1 repeats sample 0, sample 3 only 0.01 %:
+
+    >>> w = np.array([[0, 0, 1.0], [0, 0, 1.0], [0, 0, 1.1], [0, 0, 1.1001]])
+    >>> watch_candidates(w, (1.0, 2.0, 3.0)).tolist()
+    [0, 2]
+    """
+    w = np.ascontiguousarray(w, dtype=np.float64).reshape(-1, 3)
+    return _watch_candidates(w, w.shape[0], _floats(inertia))

@@ -15,6 +15,11 @@ and compiles them there. Both loops share one calling convention::
 * ``rows`` is the number of samples written; it is smaller than the arrays when the state
   stopped being finite (the samples before are valid, nothing after is written).
 
+Around the loop, :func:`judged_run` is a run's one compiled call: the step limit on the
+initial state, the loop, and the stored samples' watch, with its verdicts returned as
+numbers (``(rows, value, bound, crossing)``) for the Python around it to turn into words
+only when a limit is past (:meth:`ga_rotors.integrators.TemplateIntegrator.run`).
+
 The right-hand-side templates (``dynamics_rhs``, ``kinematic_rhs``) evaluate the vector
 field once, for integrators that are not compiled loops (scipy's DOP853); see
 :func:`ga_rotors.integrators._codegen.vector_field`.
@@ -23,7 +28,8 @@ field once, for integrators that are not compiled loops (scipy's DOP853); see
 from __future__ import annotations
 
 from ._arith import finite_row, store3
-from .slots import accel, o_load, o_rate, o_store, o_watch, omega, step
+from .limits import _watch_candidates
+from .slots import accel, limit, loop, o_load, o_rate, o_store, o_watch, omega, step
 
 # Templates only (consumed by ga_rotors.integrators._codegen, never called as Python):
 # nothing here is an API of its own.
@@ -82,6 +88,34 @@ def kinematic_loop(
                 return row
             row += 1
     return row
+
+
+#: ``judged_run``'s ``flags``: judge the step limit on the initial state; ...
+JUDGE = 1
+#: ... past it, do not run (the method has no step there: lgvi); ...
+REFUSE = 2
+#: ... within it, find the first stored sample whose ω is past it.
+WATCH = 4
+
+
+def judged_run(x0, w0, t0, h, nsteps, every, inertia, params, out_t, out_x, out_w, stats, flags):
+    """``loop`` with the step limit judged around it, as ``flags`` ask; returns (rows
+    written, the limit's value and bound on the initial state (0, 1 when not judged), the
+    first stored sample past the limit or −1). A refused run writes no rows."""
+    value, bound = 0.0, 1.0
+    if flags & JUDGE:
+        value, bound = limit(inertia, w0, h, nsteps)
+        if flags & REFUSE and not value < bound:
+            return 0, value, bound, -1
+    rows = loop(x0, w0, t0, h, 0, nsteps, every, inertia, params, out_t, out_x, out_w, stats)
+    crossing = -1
+    if flags & WATCH and value < bound:
+        for k in _watch_candidates(out_w, rows, inertia):
+            at, most = limit(inertia, out_w[k], h, nsteps)
+            if not at < most:
+                crossing = k
+                break
+    return rows, value, bound, crossing
 
 
 def dynamics_rhs(t, y, inertia, params, out):

@@ -21,6 +21,12 @@ omega      omega(t, params) -> ω                 the prescribed body angular ve
                                                  (kinematic problems only)
 step       one step of the integrator            the integrator's step template for the
                                                  problem kind (used by the loop templates)
+loop       the fixed-step loop                   the loop template for the problem kind
+                                                 (used by ``judged_run``)
+limit      limit(inertia, w, h, nsteps)          the integrator's step limit, measured:
+           -> (value, bound)                     its compiled ``measure``
+                                                 (:func:`~.limits.measured`); (0, 1) when
+                                                 it has none or the problem is kinematic
 o_rate     o_rate(x, w) -> ẋ                     the path's kinematics (q̇ = ½ q ⊗ (0, ω),
                                                  Ṙ = ½ R Ω, or the ZYZ angle rates)
 o_axpy     o_axpy(x, h, k) -> x + h·k            tuple arithmetic of the path's size
@@ -48,6 +54,8 @@ __all__ = [
     "PATH_SLOTS",
     "TemplateSlotError",
     "accel",
+    "limit",
+    "loop",
     "o_axpy",
     "o_from_quat",
     "o_load",
@@ -77,7 +85,7 @@ PATH_SLOTS = {
 }
 
 #: Slots whose definition the code generator writes.
-GENERATED_SLOTS = ("torque", "accel", "omega", "step")
+GENERATED_SLOTS = ("torque", "accel", "omega", "step", "loop", "limit")
 
 
 class TemplateSlotError(GaRotorsError, RuntimeError):
@@ -132,6 +140,8 @@ torque = _slot("torque", "τ = torque(t, q, w, params): declared torques, body f
 accel = _slot("accel", "ω̇ = accel(t, x, w, inertia, params): Euler's equations.")
 omega = _slot("omega", "ω = omega(t, params): prescribed body angular velocity.")
 step = _slot("step", "The integrator's step for the problem kind.")
+loop = _slot("loop", "rows = loop(x0, w0, t0, h, first, nsteps, every, ...): the loop.")
+limit = _slot("limit", "value, bound = limit(inertia, w, h, nsteps): the measured step limit.")
 o_rate = _slot("o_rate", "ẋ = o_rate(x, w): the orientation path's kinematics.")
 o_axpy = _slot("o_axpy", "x + h·k on the path's state.")
 o_rk4 = _slot("o_rk4", "x + h/6 (k1 + 2 k2 + 2 k3 + k4) on the path's state.")

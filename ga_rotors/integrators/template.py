@@ -60,11 +60,52 @@ class TemplateIntegrator(Integrator):
         object.__setattr__(self, "paths", frozenset(self.paths))
         object.__setattr__(self, "steps", dict(self.steps))
         object.__setattr__(self, "_problems", frozenset(self.steps))
+        # (problem, path, prepared run) of the last run: a run repeating it (a sweep, a
+        # benchmark, the accuracy study's repeats) skips even the problem's look-up
+        object.__setattr__(self, "_last", (None, None, None))
         self._validate_declaration()
 
     @property
     def problems(self) -> frozenset[str]:
         return self._problems
+
+    def run(self, problem, path, x0, w0, t0, h, nsteps, every, progress=None):
+        """See :meth:`Integrator.run`: the same checks, with the step limit judged inside
+        the run's one compiled call (:func:`~ga_rotors.integrators.loops.judged_run`) when
+        the limit is measured (:func:`~ga_rotors.integrators.limits.measured`, every
+        built-in limit); only a run past it comes back to :meth:`check_step`, which builds
+        the words and warns, or raises before any step for a method that refuses (lgvi).
+
+        Examples
+        --------
+        >>> from ga_rotors.integrators import Problem, get
+        >>> r = get("rk4").run(Problem((1.0, 2.0, 3.0)), "quaternion", (1.0, 0, 0, 0),
+        ...                    (0.0, 0.0, 2.0), 0.0, 0.01, 100, 50)
+        >>> r.t.tolist(), r.x.shape
+        ([0.0, 0.5, 1.0], (3, 4))
+        >>> get("lgvi").run(Problem((1.0, 2.0, 3.0)), "quaternion", (1.0, 0, 0, 0),
+        ...                 (0.0, 0.0, 200.0), 0.0, 0.01, 100, 50)
+        Traceback (most recent call last):
+        ...
+        ga_rotors.errors.InputError: h: lgvi cannot step h·|ω| = 2 (limit 1): ...
+        """
+        last = self._last
+        if last[0] is problem and last[1] == path:
+            prep = last[2]
+        else:
+            prep = _codegen.prepared(self, problem, path, checked=True)
+            object.__setattr__(self, "_last", (problem, path, prep))
+        if progress is not None or prep.python_limit:
+            self.check_step(problem, w0, h, nsteps, where="h")
+            return _codegen.run_prepared(prep, x0, w0, t0, h, nsteps, every, 0, progress)[0]
+        result, value, bound, _ = _codegen.run_prepared(
+            prep, x0, w0, t0, h, nsteps, every, prep.flags
+        )
+        if not value < bound:  # past the limit: the words, and the warning or the error
+            self.check_step(problem, w0, h, nsteps, where="h")
+            if result is None:  # refused, yet check_step let it pass: run it unjudged
+                result = _codegen.run_prepared(prep, x0, w0, t0, h, nsteps, every)[0]
+        return result
 
     def integrate(self, problem, path, x0, w0, t0, h, nsteps, every, progress=None):
         """See :meth:`Integrator.integrate`; the compiled loop is specialised once per
