@@ -99,6 +99,8 @@ def require_unit(
     ga_rotors.errors.InputError: q: expected unit quaternions (| |q| - 1 | <= 1e-06), got norm 2 ...
     """
     norms = np.sqrt(np.einsum("...i,...i->...", q, q))
+    if norms.ndim == 0 and abs(float(norms) - 1.0) <= tol:
+        return q / norms  # one quaternion within tolerance: the same division, less Python
     dev = np.abs(norms - 1.0)
     if dev.size and not (dev.max() <= tol):
         where = np.unravel_index(int(np.argmax(dev)), dev.shape)

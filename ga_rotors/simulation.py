@@ -45,6 +45,10 @@ _BODIES: dict[tuple, RigidBody] = {}
 def _body(body) -> RigidBody:
     if isinstance(body, RigidBody):
         return body
+    if type(body) is tuple:  # moments seen before (the key equals only valid moments)
+        found = _BODIES.get(body)
+        if found is not None:
+            return found
     if body is None:
         raise InputError("body: a dynamics simulation needs a RigidBody or principal moments")
     moments = tuple(as_float_array(body, "body", last=3).tolist())
@@ -89,7 +93,41 @@ def whole_steps(duration, step) -> int:
     return int(n)
 
 
+#: (duration, step) -> steps, and paths -> the requested paths in order, for arguments
+#: seen before (a sweep, repeats): their checks cost more than a short run's loop.
+_STEPS: dict[tuple, int] = {}
+_REQUESTED: dict = {}
+
+
+def _steps(duration, step) -> int:
+    """:func:`whole_steps`, remembered for the (type, value) pairs it accepted."""
+    key = (type(duration), duration, type(step), step)
+    try:
+        return _STEPS[key]
+    except (KeyError, TypeError):  # new, or unhashable: whole_steps says what is wrong
+        n = whole_steps(duration, step)
+        if len(_STEPS) >= 64:
+            _STEPS.clear()
+        try:
+            _STEPS[key] = n
+        except TypeError:
+            pass
+        return n
+
+
 def _requested(paths) -> list[str]:
+    try:
+        return list(_REQUESTED[paths])
+    except (KeyError, TypeError):  # new, or unhashable (a list)
+        found = _requested_now(paths)
+        if type(paths) is str or type(paths) is tuple:
+            if len(_REQUESTED) >= 64:
+                _REQUESTED.clear()
+            _REQUESTED[paths] = tuple(found)
+        return found
+
+
+def _requested_now(paths) -> list[str]:
     if isinstance(paths, str):
         paths = (paths,)
     out = []
@@ -279,19 +317,18 @@ def _plan(body, orientation, angular_velocity, duration, step, paths, integrator
           step_limit_key) -> _Plan:  # fmt: skip
     method = integrator if isinstance(integrator, base.Integrator) else base.get(integrator)
     requested = _requested(paths)
-    nsteps = whole_steps(duration, step)
-    if isinstance(sample_every, bool) or not isinstance(sample_every, int) or sample_every < 1:
-        raise InputError(f"sample_every: expected a positive integer, got {sample_every!r}")
-    if isinstance(t0, bool) or not isinstance(t0, int | float) or not math.isfinite(t0):
-        raise InputError(f"t0: expected a finite number of seconds, got {t0!r}")
+    nsteps = _steps(duration, step)
+    if type(sample_every) is not int or sample_every < 1:
+        if isinstance(sample_every, bool) or not isinstance(sample_every, int) or sample_every < 1:
+            raise InputError(f"sample_every: expected a positive integer, got {sample_every!r}")
+    if type(t0) is not float or not math.isfinite(t0):
+        if isinstance(t0, bool) or not isinstance(t0, int | float) or not math.isfinite(t0):
+            raise InputError(f"t0: expected a finite number of seconds, got {t0!r}")
     for name in outputs:
         if name not in OUTPUTS:
             raise InputError(f"outputs: unknown output {name!r}; expected one of {OUTPUTS}")
 
-    q0 = as_float_array(orientation, "orientation", last=4)
-    if q0.shape != (4,):
-        raise InputError(f"orientation: expected one quaternion of shape (4,), got {q0.shape}")
-    q0 = require_unit(q0, "orientation")
+    q0 = _orientation(orientation)
 
     if isinstance(angular_velocity, base.PrescribedOmega):
         if body is not None:
@@ -302,10 +339,9 @@ def _plan(body, orientation, angular_velocity, duration, step, paths, integrator
             raise InputError("outputs: energy and momentum need a body, not a prescribed ω(t)")
     else:
         rigid = _body(body)
-        w0 = as_float_array(angular_velocity, "angular_velocity", last=3)
-        if w0.shape != (3,):
-            raise InputError(f"angular_velocity: expected shape (3,), got {w0.shape}")
-        problem = base.problem_for(rigid.moments, tuple(torques), accept_lower_order)
+        w0 = _angular_velocity(angular_velocity)
+        torques = torques if type(torques) is tuple else tuple(torques)
+        problem = base.problem_for(rigid.moments, torques, accept_lower_order)
     for p in requested:
         method.check_once(problem, p)
 
@@ -324,9 +360,9 @@ def _plan(body, orientation, angular_velocity, duration, step, paths, integrator
         q0 = _q.multiply(q0, principal)
         w0 = _q.rotate(_q.conjugate(principal), w0)
 
-    # The step limit, judged once on the initial state (principal frame); the paths below
-    # are integrated without checks (Integrator.integrate): checked once, here.
-    initial_limit = method.check_step(problem, w0, step, nsteps, where=step_limit_key)
+    # The step limit is judged on the initial state (principal frame) by _pieces: inside
+    # the primary path's compiled call for one piece (Integrator.run_watched).
+    initial_limit = None
 
     starts = {}
     for p in requested:
@@ -356,6 +392,9 @@ def _pieces(plan: _Plan, chunk: int | None, progress):
     total = nsteps * len(requested)
     done = dict.fromkeys(requested, 0)
     sources = {}
+    initial_limit = None
+    if chunk is not None:  # judged here, watched piece by piece below
+        initial_limit = method.check_step(problem, plan.w0, h, nsteps, plan.step_limit_key)
     for p in requested:
         report = None
         if progress is not None:
@@ -364,7 +403,16 @@ def _pieces(plan: _Plan, chunk: int | None, progress):
                 done[p] = steps
                 progress(sum(done.values()), total)
 
-        if chunk is None:
+        if chunk is None and p == requested[0]:
+            # one piece: the step limit judged on the initial state and watched over the
+            # samples in the primary path's own call (past it, a warning naming the
+            # caller of simulate, or lgvi's refusal before any step)
+            whole = method.run_watched(
+                problem, p, plan.starts[p], plan.w0, t0, h, nsteps, every, report,
+                where=plan.step_limit_key, stacklevel=4,
+            )  # fmt: skip
+            sources[p] = iter([whole])
+        elif chunk is None:
             whole = method.integrate(
                 problem, p, plan.starts[p], plan.w0, t0, h, nsteps, every, report
             )
@@ -376,7 +424,7 @@ def _pieces(plan: _Plan, chunk: int | None, progress):
     span = nsteps if chunk is None else max(1, int(chunk) // every) * every
     status = {p: {"complete": True, "samples": 0, "ended_at": t0} for p in requested}
     live = dict(sources)
-    watching = plan.initial_limit is not None and not plan.initial_limit.exceeded
+    watching = initial_limit is not None and not initial_limit.exceeded
     for lo in range(0, nsteps, span):
         hi = min(nsteps, lo + span)
         marks = np.arange(lo if lo == 0 else lo + every, hi + 1, every)
@@ -486,6 +534,38 @@ def _derive(plan: _Plan, grid, results: dict, status: dict) -> Trajectory:
         "_w": primary_w,  # principal frame, for the step-limit watch; removed by _pieces
     }
     return Trajectory(arrays, components, meta)
+
+
+_F64 = np.dtype(np.float64)
+
+
+def _orientation(orientation) -> np.ndarray:
+    """The initial orientation, checked and renormalised (one quaternion, unit within
+    :data:`ga_rotors._validate.UNIT_TOLERANCE`)."""
+    if type(orientation) is np.ndarray and orientation.dtype == _F64 and orientation.shape == (4,):
+        # an array of the right kind: only its values are left to check, and a finite
+        # sum of squares says they are finite (a NaN or an infinity takes the long way,
+        # which names it)
+        a, b, c, d = orientation.tolist()
+        if math.isfinite(a * a + b * b + c * c + d * d):
+            return require_unit(orientation, "orientation")
+    q0 = as_float_array(orientation, "orientation", last=4)
+    if q0.shape != (4,):
+        raise InputError(f"orientation: expected one quaternion of shape (4,), got {q0.shape}")
+    return require_unit(q0, "orientation")
+
+
+def _angular_velocity(angular_velocity) -> np.ndarray:
+    """The initial body ω, checked: three finite numbers."""
+    w = angular_velocity
+    if type(w) is np.ndarray and w.dtype == _F64 and w.shape == (3,):
+        a, b, c = w.tolist()
+        if math.isfinite(a) and math.isfinite(b) and math.isfinite(c):
+            return w
+    w = as_float_array(angular_velocity, "angular_velocity", last=3)
+    if w.shape != (3,):
+        raise InputError(f"angular_velocity: expected shape (3,), got {w.shape}")
+    return w
 
 
 #: Largest geodesic angle (rad) allowed between ``euler_angles`` and ``orientation``: both

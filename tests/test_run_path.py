@@ -24,15 +24,13 @@ from ga_rotors.integrators import (
     get,
     loops,
 )
-from ga_rotors.integrators.limits import StepLimit, WATCH_GROWTH, watch_candidates
+from ga_rotors.integrators.limits import WATCH_GROWTH, StepLimit, watch_candidates
 from ga_rotors.integrators.rk4 import rk4_step
 
 BODY = (1.0, 2.0, 3.0)
 Q0 = np.array([0.5, 0.5, 0.5, 0.5])
 W0 = np.array([1.0, 0.5, 0.2])
-TEMPLATED = [
-    c["name"] for c in catalogue() if isinstance(get(c["name"]), TemplateIntegrator)
-]
+TEMPLATED = [c["name"] for c in catalogue() if isinstance(get(c["name"]), TemplateIntegrator)]
 DYNAMIC = [name for name in TEMPLATED if set(get(name).problems) - {KINEMATIC}]
 MEASURED = [name for name in DYNAMIC if get(name).step_limit is not None]
 
@@ -165,9 +163,7 @@ def test_the_compiled_verdict_is_the_step_limits_own_numbers(name, inertia, w0, 
     if name == "split_sym" or nsteps > 50:  # keep each example's run short
         nsteps = min(nsteps, 50)
     prep = _codegen.prepared(method, problem, "quaternion", checked=True)
-    _, value, bound, _ = _codegen.run_prepared(
-        prep, Q0, w0, 0.0, h, nsteps, nsteps, loops.JUDGE
-    )
+    _, value, bound, _ = _codegen.run_prepared(prep, Q0, w0, 0.0, h, nsteps, nsteps, loops.JUDGE)
     expected = method.step_limit(inertia, w0, h, nsteps)
     assert (value, bound) == (expected.value, expected.limit)
 
@@ -221,3 +217,80 @@ def test_the_fused_watch_finds_the_sample_watch_step_warns_about():
     with pytest.warns(StepLimitWarning, match="crosses its step limit"):
         found = method.watch_step(problem, result.t, result.w, 0.01, 2000)
     assert found[0] == result.t[crossing]
+
+
+# ---------------------------------------------------------------------------- simulate
+
+
+def test_simulate_takes_arrays_and_sequences_to_the_same_bits():
+    from ga_rotors import simulate
+
+    kw = {"duration": 0.05, "step": 1e-3, "paths": ("quaternion", "rotor"), "sample_every": 7}
+    a = simulate(BODY, Q0, W0, **kw)
+    b = simulate(list(BODY), Q0.tolist(), W0.tolist(), **kw)
+    assert a.names == b.names and a.meta == b.meta
+    for name in a.names:
+        assert np.array_equal(a[name], b[name]), name
+
+
+@pytest.mark.parametrize(
+    "orientation, angular_velocity, message",
+    [
+        ([np.nan, 0, 0, 1], W0, r"orientation: contains nan at index \(0,\)"),
+        ([1.0, 0, np.inf, 0], W0, r"orientation: contains inf at index \(2,\)"),
+        ([2.0, 0, 0, 0], W0, "orientation: expected unit quaternions"),
+        ([1.0, 0, 0], W0, r"orientation: expected an array of shape \(\.\.\., 4\)"),
+        (Q0, [1.0, np.nan, 0], r"angular_velocity: contains nan at index \(1,\)"),
+        (Q0, [1.0, 2.0], r"angular_velocity: expected an array of shape \(\.\.\., 3\)"),
+    ],
+)
+def test_simulate_refuses_bad_arrays_as_it_refuses_bad_lists(
+    orientation, angular_velocity, message
+):
+    from ga_rotors import simulate
+
+    for q, w in (
+        (orientation, angular_velocity),
+        (np.array(orientation, dtype=float), np.array(angular_velocity, dtype=float)),
+    ):
+        with np.errstate(invalid="ignore"), pytest.raises(InputError, match=message):
+            simulate(BODY, q, w, duration=0.01, step=1e-3)
+
+
+def test_what_simulate_remembers_never_lets_a_bad_argument_pass_twice():
+    from ga_rotors import simulate
+
+    for _ in range(2):
+        with pytest.raises(InputError, match="does not divide"):
+            simulate(BODY, Q0, W0, duration=1.0, step=0.3)
+        with pytest.raises(InputError, match="triangle inequality"):
+            simulate((1.0, 1.0, 3.0), Q0, W0, duration=0.01, step=1e-3)
+        with pytest.raises(InputError, match="duration: expected a number"):
+            simulate(BODY, Q0, W0, duration=True, step=1e-3)
+
+
+@pytest.mark.parametrize("t0", [0.0, -0.0, 0.37, -2.5])
+@pytest.mark.parametrize("every", [1, 3, 7])
+@pytest.mark.parametrize("progress", [None, lambda done, total: None], ids=["one call", "chunks"])
+def test_simulates_times_are_the_grid_t0_plus_k_h(t0, every, progress):
+    from ga_rotors import simulate
+
+    h, n = 1e-3, 20
+    tr = simulate(BODY, Q0, W0, duration=n * h, step=h, sample_every=every, t0=t0,
+                  paths="quaternion", progress=progress)  # fmt: skip
+    k = np.concatenate([np.arange(0, n + 1, every), [n] if n % every else []])
+    assert np.array_equal(tr.t, t0 + h * k)
+    assert np.signbit(tr.t[0]) == (t0 < 0)  # -0.0 starts at +0.0, as the grid does
+
+
+def test_simulates_step_limit_warnings_point_at_its_caller():
+    from ga_rotors import simulate
+    from ga_rotors.effects import body_torque
+
+    with pytest.warns(StepLimitWarning, match="rk4 cannot step") as past:
+        simulate(BODY, Q0, (5.0, 3.0, 1000.0), duration=1.0, step=1e-3, paths="quaternion")
+    spin = TorqueTerm(body_torque, (0.0, 0.0, 30.0), depends_on_omega=False)
+    with pytest.warns(StepLimitWarning, match="rk4 crosses its step limit") as crossing:
+        simulate((1.0, 1.5, 2.0), Q0, (0.0, 0.0, 10.0), duration=20.0, step=0.01,
+                 paths="quaternion", torques=[spin], sample_every=10)  # fmt: skip
+    assert [w.filename for w in (*past, *crossing)] == [__file__, __file__]

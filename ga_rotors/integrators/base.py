@@ -305,6 +305,38 @@ class Integrator(ABC):
         self.check_step(problem, w0, h, nsteps, where="h")
         return self.integrate(problem, path, x0, w0, t0, h, nsteps, every, progress)
 
+    def run_watched(
+        self, problem: Problem, path: str, x0, w0, t0: float, h: float, nsteps: int,
+        every: int, progress: Callable[[int], None] | None = None, *, where: str = "step",
+        stacklevel: int = 2,
+    ) -> LoopResult:  # fmt: skip
+        """:meth:`run`, with the step limit's messages starting with ``where``, then
+        watched over the stored samples (:meth:`watch_step`) when the start was within it:
+        what :func:`ga_rotors.simulation.simulate` does for its primary path.
+        ``stacklevel`` is the warnings' as seen from here (2: this method's caller).
+
+        Examples
+        --------
+        A torque spins the body up past rk4's limit during the run:
+
+        >>> import warnings
+        >>> from ga_rotors.effects import body_torque
+        >>> spin = TorqueTerm(body_torque, (0.0, 0.0, 30.0), depends_on_omega=False)
+        >>> with warnings.catch_warnings(record=True) as caught:
+        ...     warnings.simplefilter("always")
+        ...     r = get("rk4").run_watched(Problem((1.0, 1.5, 2.0), (spin,)), "quaternion",
+        ...                                (1.0, 0, 0, 0), (0.0, 0.0, 10.0), 0.0, 0.01, 2000,
+        ...                                10, where="mine")
+        >>> str(caught[0].message).startswith("mine: rk4 crosses its step limit at t = ")
+        True
+        """
+        self.check_once(problem, path)
+        limit = self.check_step(problem, w0, h, nsteps, where=where, stacklevel=stacklevel + 1)
+        result = self.integrate(problem, path, x0, w0, t0, h, nsteps, every, progress)
+        if limit is not None and not limit.exceeded:
+            self.watch_step(problem, result.t, result.w, h, nsteps, where, stacklevel + 1)
+        return result
+
     def check_once(self, problem: Problem, path: str) -> None:
         """:meth:`check`, remembered by the problem: a problem and path that passed are
         not checked again (the problem is immutable).
@@ -349,11 +381,15 @@ class Integrator(ABC):
                     key="integrator",
                 )
 
-    def check_step(self, problem: Problem, w0, h: float, nsteps: int, where: str = "step"):
+    def check_step(
+        self, problem: Problem, w0, h: float, nsteps: int, where: str = "step",
+        stacklevel: int = 3,
+    ):  # fmt: skip
         """Evaluate the declared step limit on the initial state; past it, warn
-        (:class:`~ga_rotors.errors.StepLimitWarning`) or raise InputError, the message
-        starting with ``where``. Returns the evaluated limit (None: no limit, or a
-        prescribed-ω problem). A torqued problem is judged by its torque-free ν.
+        (:class:`~ga_rotors.errors.StepLimitWarning`, ``stacklevel`` as seen from here:
+        3, this method's caller's caller) or raise InputError, the message starting with
+        ``where``. Returns the evaluated limit (None: no limit, or a prescribed-ω problem).
+        A torqued problem is judged by its torque-free ν.
 
         Examples
         --------
@@ -368,15 +404,18 @@ class Integrator(ABC):
         """
         if self.step_limit is None or problem.inertia is None or w0 is None:
             return None
+        w = np.asarray(w0, dtype=np.float64)
+        if w.shape != (3,):  # as a run says it (the limit's kernel reads three numbers)
+            raise InputError(f"expected shape (3,), got {w.shape}", key="w0")
         # The verdicts of the last few (ω₀, h, N) are kept by the problem: a repeated run
         # (repeats of a sweep, a benchmark, one start over many spans) looks it up.
-        key = (id(self), w0.tobytes() if isinstance(w0, np.ndarray) else tuple(w0), h, nsteps)
+        key = (id(self), w.tobytes(), h, nsteps)
         seen = problem.derived("step limits", dict)
         found = seen.get(key)  # (self, limit): holding self, its id is never reused
         if found is None:
             if len(seen) >= 16:
                 seen.clear()
-            found = seen[key] = (self, self.step_limit(problem.inertia, w0, h, nsteps))
+            found = seen[key] = (self, self.step_limit(problem.inertia, w, h, nsteps))
         limit = found[1]
         if not limit.exceeded:
             return limit
@@ -389,10 +428,13 @@ class Integrator(ABC):
             raise InputError(detail, key=where)
         from ..errors import StepLimitWarning
 
-        warnings.warn(f"{where}: {detail}", StepLimitWarning, stacklevel=3)
+        warnings.warn(f"{where}: {detail}", StepLimitWarning, stacklevel=stacklevel)
         return limit
 
-    def watch_step(self, problem: Problem, t, w, h: float, nsteps: int, where: str = "step"):
+    def watch_step(
+        self, problem: Problem, t, w, h: float, nsteps: int, where: str = "step",
+        stacklevel: int = 3,
+    ):  # fmt: skip
         """After a run: the first stored sample whose ω is past the declared step limit,
         warned about (:class:`~ga_rotors.errors.StepLimitWarning`, naming its time), or None.
 
@@ -401,8 +443,9 @@ class Integrator(ABC):
         principal frame) where |ω| or |L| first exceeds every earlier sample's by
         :data:`WATCH_GROWTH` (the limits' quantities grow with them; other samples are not
         evaluated, which keeps the watch cheap on long runs): with ``sample_every = 1``
-        that is every step that sets such a high. ``where`` starts the message, as in
-        :meth:`check_step`. Runs past the limit from the start are :meth:`check_step`'s.
+        that is every step that sets such a high. ``where`` starts the message and
+        ``stacklevel`` places it, as in :meth:`check_step`. Runs past the limit from the
+        start are :meth:`check_step`'s.
 
         Examples
         --------
@@ -433,7 +476,7 @@ class Integrator(ABC):
                     f"{limit.quantity} = {limit.value:.3g} (limit {limit.limit:g}) at that "
                     f"sample's ω: {limit.effect}; take a smaller step",
                     StepLimitWarning,
-                    stacklevel=3,
+                    stacklevel=stacklevel,
                 )
                 return float(t[k]), limit
         return None

@@ -31,6 +31,7 @@ from typing import NamedTuple
 import numpy as np
 
 from .._jit import jit
+from ..errors import InputError
 from ._rigid import symmetric_pair
 
 __all__ = [
@@ -266,7 +267,7 @@ def wobble_damping(coeffs: Sequence[float], steps_q: bool, phase_on_q: bool | No
 
     @measured(_wobble_measure, (coeffs, steps_q, on_q))
     def limit(inertia, w, h, nsteps) -> StepLimit:
-        inertia, w, h, nsteps = _floats(inertia), _floats(w), float(h), int(nsteps)
+        inertia, w, h, nsteps = _floats(inertia, "inertia"), _floats(w, "w"), float(h), int(nsteps)
         value, bound = _wobble_measure(inertia, w, h, nsteps, coeffs, steps_q, on_q)
         if bound == 1.0:
 
@@ -295,11 +296,14 @@ def wobble_damping(coeffs: Sequence[float], steps_q: bool, phase_on_q: bool | No
     return limit
 
 
-def _floats(v) -> np.ndarray:
-    """``v`` as a float64 array (one compiled signature for tuples, lists and arrays)."""
-    if type(v) is np.ndarray and v.dtype == np.float64:
-        return v
-    return np.asarray(v, dtype=np.float64)
+def _floats(v, name: str) -> np.ndarray:
+    """``v`` as a float64 array of three numbers (one compiled signature for tuples, lists
+    and arrays; a compiled kernel must never read past the end of a shorter one)."""
+    if type(v) is not np.ndarray or v.dtype != np.float64:
+        v = np.asarray(v, dtype=np.float64)
+    if v.shape != (3,):
+        raise InputError(f"expected 3 numbers, got shape {v.shape}", key=name)
+    return v
 
 
 @jit
@@ -319,7 +323,7 @@ def fixed_point_sweep(inertia, w, h, nsteps) -> StepLimit:
     >>> fixed_point_sweep((1.0, 1.0, 1.0), (0.0, 0.0, 3.0), 1.0, 10).value
     1.5
     """
-    y, bound = _sweep_measure(_floats(inertia), _floats(w), float(h), int(nsteps))
+    y, bound = _sweep_measure(_floats(inertia, "inertia"), _floats(w, "w"), float(h), int(nsteps))
     return StepLimit(
         "h·ν",
         y,
@@ -347,7 +351,7 @@ def moser_veselov(inertia, w, h, nsteps) -> StepLimit:
     >>> moser_veselov((1.0, 2.0, 3.0), (0.0, 0.0, 2.0), 0.5, 1).exceeded
     True
     """
-    y, bound = _speed_measure(_floats(inertia), _floats(w), float(h), int(nsteps))
+    y, bound = _speed_measure(_floats(inertia, "inertia"), _floats(w, "w"), float(h), int(nsteps))
     return StepLimit(
         "h·|ω|",
         y,
@@ -382,7 +386,9 @@ def principal_rotation_angle(inertia, w, h, nsteps) -> StepLimit:
     >>> principal_rotation_angle((1.0, 1.0, 1e-6), (1.0, 0.5, 0.3), 0.01, 1000).exceeded
     True
     """
-    y, bound = _principal_measure(_floats(inertia), _floats(w), float(h), int(nsteps))
+    y, bound = _principal_measure(
+        _floats(inertia, "inertia"), _floats(w, "w"), float(h), int(nsteps)
+    )
     return StepLimit(
         "h·|L|/I_min",
         y,
@@ -412,7 +418,9 @@ def symmetric_remainder_angle(inertia, w, h, nsteps) -> StepLimit:
     >>> symmetric_remainder_angle((1.0, 1.0, 2.0), (0.0, 0.0, 1000.0), 1e-3, 1000).value
     0.0
     """
-    y, bound = _remainder_measure(_floats(inertia), _floats(w), float(h), int(nsteps))
+    y, bound = _remainder_measure(
+        _floats(inertia, "inertia"), _floats(w, "w"), float(h), int(nsteps)
+    )
     return StepLimit(
         "h·|L|·|1/I_r − 1/I_p|",
         y,
@@ -471,4 +479,4 @@ def watch_candidates(w, inertia) -> np.ndarray:
     [0, 2]
     """
     w = np.ascontiguousarray(w, dtype=np.float64).reshape(-1, 3)
-    return _watch_candidates(w, w.shape[0], _floats(inertia))
+    return _watch_candidates(w, w.shape[0], _floats(inertia, "inertia"))

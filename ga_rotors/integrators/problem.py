@@ -226,7 +226,10 @@ def problem_for(inertia, torques=(), accept_lower_order: bool = False) -> Proble
     True
     """
     try:
-        key = (tuple(float(i) for i in inertia), tuple(torques), accept_lower_order)
+        if not (type(inertia) is tuple and len(inertia) == 3 and type(inertia[0]) is float
+                and type(inertia[1]) is float and type(inertia[2]) is float):  # fmt: skip
+            inertia = tuple(float(i) for i in inertia)
+        key = (inertia, torques if type(torques) is tuple else tuple(torques), accept_lower_order)
         found = _PROBLEMS.get(key)
     except TypeError:  # something unhashable: let Problem say what is wrong with it
         return Problem(inertia, tuple(torques), accept_lower_order=accept_lower_order)

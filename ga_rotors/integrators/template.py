@@ -11,7 +11,7 @@ from __future__ import annotations
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 
-from . import _codegen
+from . import _codegen, loops
 from .base import ANY_TORQUE, Integrator
 
 __all__ = ["TemplateIntegrator"]
@@ -105,6 +105,40 @@ class TemplateIntegrator(Integrator):
             self.check_step(problem, w0, h, nsteps, where="h")
             if result is None:  # refused, yet check_step let it pass: run it unjudged
                 result = _codegen.run_prepared(prep, x0, w0, t0, h, nsteps, every)[0]
+        return result
+
+    def run_watched(
+        self, problem, path, x0, w0, t0, h, nsteps, every, progress=None, *, where="step",
+        stacklevel=2,
+    ):  # fmt: skip
+        """See :meth:`Integrator.run_watched`: as :meth:`run`, the watch over the stored
+        samples done in the same compiled call; only a limit past (at the start, or at a
+        sample) comes back to :meth:`check_step` or :meth:`watch_step` for the words.
+
+        Examples
+        --------
+        >>> from ga_rotors.integrators import Problem, get
+        >>> r = get("rk4").run_watched(Problem((1.0, 2.0, 3.0)), "quaternion",
+        ...                            (1.0, 0, 0, 0), (0.0, 0.0, 2.0), 0.0, 0.01, 100, 50)
+        >>> r.t.tolist()
+        [0.0, 0.5, 1.0]
+        """
+        prep = _codegen.prepared(self, problem, path, checked=True)
+        if progress is not None or prep.python_limit:
+            return super().run_watched(
+                problem, path, x0, w0, t0, h, nsteps, every, progress, where=where,
+                stacklevel=stacklevel + 1,
+            )  # fmt: skip
+        flags = prep.flags | loops.WATCH if prep.flags else 0
+        result, value, bound, crossing = _codegen.run_prepared(
+            prep, x0, w0, t0, h, nsteps, every, flags
+        )
+        if not value < bound:
+            self.check_step(problem, w0, h, nsteps, where, stacklevel + 1)
+            if result is None:  # refused, yet check_step let it pass: run it unjudged
+                result = _codegen.run_prepared(prep, x0, w0, t0, h, nsteps, every)[0]
+        elif crossing >= 0:
+            self.watch_step(problem, result.t, result.w, h, nsteps, where, stacklevel + 1)
         return result
 
     def integrate(self, problem, path, x0, w0, t0, h, nsteps, every, progress=None):

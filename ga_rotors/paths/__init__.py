@@ -14,6 +14,7 @@ supports, so the paths differ only in their kinematics.
 from __future__ import annotations
 
 import importlib
+import sys
 from dataclasses import dataclass
 from types import ModuleType
 
@@ -67,7 +68,8 @@ class OrientationPath:
 
     def load(self) -> ModuleType:
         """The kernel module."""
-        return importlib.import_module(self.module)
+        # sys.modules first: a run loads its path's module several times
+        return sys.modules.get(self.module) or importlib.import_module(self.module)
 
 
 #: path name -> OrientationPath, in order of precedence for a simulation's primary path.
