@@ -134,14 +134,24 @@ def test_undeclared_effects_are_never_evaluated_uncompiled(tmp_path):
 
 
 def test_undeclared_paths_are_never_integrated(monkeypatch):
-    ran = []
-    original = TemplateIntegrator.integrate
+    ran, inside = [], []
 
-    def recording(self, problem, path, *args, **kwargs):
-        ran.append(path)
-        return original(self, problem, path, *args, **kwargs)
+    def recorder(original):
+        # a path is run by integrate, or by run_watched (simulate's primary path), which
+        # may itself call integrate: the outermost call is the one recorded
+        def recording(self, problem, path, *args, **kwargs):
+            if not inside:
+                ran.append(path)
+            inside.append(path)
+            try:
+                return original(self, problem, path, *args, **kwargs)
+            finally:
+                inside.pop()
 
-    monkeypatch.setattr(TemplateIntegrator, "integrate", recording)
+        return recording
+
+    for name in ("integrate", "run_watched"):
+        monkeypatch.setattr(TemplateIntegrator, name, recorder(getattr(TemplateIntegrator, name)))
     for paths in (["quaternion"], ["euler", "rotor"]):
         ran.clear()
         s = load_scene("spinning_disk").replace(
