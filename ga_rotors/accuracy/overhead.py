@@ -2,8 +2,9 @@
 
 The overhead of a call is its time minus the time of its compiled loop alone (called
 directly with its arrays allocated beforehand,
-:func:`ga_rotors.integrators._codegen.bare_loop`): what the Python around the loop costs
-— the checks, the step limit, allocating the samples, building the result. Three calls
+:func:`ga_rotors.integrators._codegen.bare_loop`): what the call costs around the loop
+— the checks, the step limit (judged in the same compiled call as the loop), allocating
+the samples, building the result. Three calls
 are timed interleaved (loop, ``Integrator.run``, ``simulate``), repeated, and reported as
 medians with min–max; ``benchmarks/bench_overhead.py`` prints the same table.
 """
