@@ -93,7 +93,8 @@ def test_cheapest_picks_the_fastest_run_that_reaches_each_target():
 
 def test_study_stops_at_round_off_and_tables_render():
     case = A.cases()["asymmetric_far"]
-    st = A.study(case, ["split6"], factor=4.0, repeats=1, max_seconds=0.05, peers=False)
+    st = A.study(case, ["split6"], factor=4.0, repeats=1, max_seconds=0.05, peers=False,
+                 between=0)  # fmt: skip
     errors = [p.error for p in st.points]
     assert np.all(np.diff(errors[:3]) < 0)  # order 6: refinement helps until round-off
     assert min(errors) < 1e-12 and len(errors) <= 8  # the sweep stops once round-off wins
@@ -248,3 +249,23 @@ def test_goal_cells_compare_interleaved_medians():
     assert cell.ours_times[1] <= cell.ours_times[0] <= cell.ours_times[2]
     assert cell.ratio == pytest.approx(cell.peer_times[0] / cell.ours_times[0])
     assert "| asymmetric_far | 1e-6 | dp8: " in A.goal_table([cell])
+
+
+def test_refine_looks_between_the_grid_for_ours_and_the_compiled_peers_alike():
+    # The same rule for both families: runs between the coarsest run reaching the target
+    # and the next coarser one; a contender only (scipy_njit, ~100x slower than
+    # njit_dop853, is not refined); below the grid when its coarsest run already reaches it.
+    case = A.cases()["asymmetric_far"]
+    st = A.Study(case, [A.measure(case, "dp8", n, repeats=1) for n in (16, 32)])
+    st.points += [C.run_peer(case, "njit_dop853", n, 1, 0.1) for n in (16, 32)]
+    st.points += [C.run_peer(case, "scipy_njit", tol, 1, 0.1) for tol in (1e-5, 1e-8)]
+    S.refine(st, targets=(1e-6,), between=1, repeats=1)
+    added = [(p.method, p.setting) for p in st.points[6:]]
+    assert added == [("dp8", 24.0), ("njit_dop853", 24.0)]
+
+    alone = A.Study(case, [C.run_peer(case, "scipy_njit", tol, 1, 0.1) for tol in (1e-5, 1e-8)])
+    S.refine(alone, targets=(1e-6,), between=1, repeats=1)  # now the contender: tolerances
+    assert [p.setting for p in alone.points[2:]] == [pytest.approx(10**-6.5)]
+    coarse = A.Study(case, [A.measure(case, "dp8", 64, repeats=1)])
+    S.refine(coarse, targets=(1e-3,), between=1, repeats=1)
+    assert [p.setting for p in coarse.points] == [64.0, 32.0]  # reaches it too: no further

@@ -212,3 +212,20 @@ def test_separatrix_state_raises_where_its_bound_crosses_max_error():
     top.state(inside, max_error=limit)
     with pytest.raises(PrecisionError, match="exceeds max_error"):
         top.state(times, max_error=limit)
+
+
+def test_gravity_torque_kernel_is_the_scene_engines_gravity_for_its_weight():
+    # gravity_torque's kernel multiplies out the zeros of the one weight and lever it has;
+    # for every unit q it agrees with the general kernel of ga_rotors.effects to rounding.
+    from ga_rotors.effects import gravity
+    from ga_rotors.reference.heavy_top import axial_gravity, gravity_torque
+
+    rng = np.random.default_rng(7)
+    for mgl in (1.0, 2.5, -0.3):
+        term = gravity_torque(mgl)
+        general = np.array([0.0, 0.0, -mgl, 0.0, 0.0, 1.0])
+        for q in rng.normal(size=(50, 4)):
+            q = tuple(q / np.linalg.norm(q))
+            mine = axial_gravity(0.0, q, (0.0, 0.0, 0.0), np.array(term.params))
+            theirs = gravity(0.0, q, (0.0, 0.0, 0.0), general)
+            assert np.allclose(mine, theirs, rtol=0, atol=8e-16 * abs(mgl)), (q, mine, theirs)

@@ -14,7 +14,8 @@ Modules, one job each:
   MuJoCo);
 * :mod:`~ga_rotors.accuracy.compiled_peers` — peers a user who wants speed writes or picks
   (``@njit`` RK4 and DOP853, scipy with an ``@njit`` right-hand side, numbalsoda, diffrax);
-* :mod:`~ga_rotors.accuracy.sweeps` — the sweeps (:func:`study`);
+* :mod:`~ga_rotors.accuracy.sweeps` — the sweeps (:func:`study`), refined near the goal's
+  targets (:func:`refine`);
 * :mod:`~ga_rotors.accuracy.tables` — the cheapest-method, per-method and goal tables;
 * :mod:`~ga_rotors.accuracy.plots` — the work-precision figures;
 * :mod:`~ga_rotors.accuracy.report` — ``ga-rotors bench accuracy``: the whole study as text,
@@ -37,7 +38,7 @@ Examples
 from .cases import Case, cases
 from .measuring import SAMPLES, Point, measure
 from .plots import plot
-from .sweeps import Study, methods_for, study
+from .sweeps import Study, methods_for, refine, study
 from .tables import (
     GOAL_RATIO,
     GOAL_TARGETS,
@@ -67,6 +68,7 @@ __all__ = [
     "method_table",
     "methods_for",
     "plot",
+    "refine",
     "study",
     "summary_table",
 ]

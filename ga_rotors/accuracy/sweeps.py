@@ -5,6 +5,11 @@ round-off or at a time budget), then each peer: the casual ones of
 :mod:`~ga_rotors.accuracy.peers` and the compiled ones of
 :mod:`~ga_rotors.accuracy.compiled_peers`. Missing peers are skipped with a notice in
 :attr:`Study.notices`; a method that refuses a step is a point marked "not run there".
+
+The grids are coarse (steps ×√2, tolerances ×√10), so the cheapest run reaching a target
+can cost up to √2 times what the method needs there. :func:`refine` then looks between
+the run that misses each goal target and the one that reaches it, for ours and for every
+compiled peer alike, so the goal table compares each side's cheapest run, not the grid's.
 """
 
 from __future__ import annotations
@@ -16,9 +21,9 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from .cases import Case
-from .measuring import Point, measure
+from .measuring import SAMPLES, Point, measure, round_steps
 
-__all__ = ["Study", "methods_for", "study"]
+__all__ = ["REFINE_TARGETS", "Study", "methods_for", "refine", "study"]
 
 
 def methods_for(case: Case) -> list[str]:
@@ -84,9 +89,11 @@ def study(
     max_seconds: float = 0.3,
     repeats: int = 5,
     peers: bool = True,
+    between: int = 3,
     log: Callable[[str], None] | None = None,
 ) -> Study:
-    """Sweep every method (step counts ×``factor`` from ``case.steps``) and every peer.
+    """Sweep every method (step counts ×``factor`` from ``case.steps``) and every peer,
+    then :func:`refine` near the goal targets with ``between`` runs per bracket (0: none).
 
     A method's sweep stops once its error is below ``floor``, or grows again past 4× its
     best below 1e-9 (round-off), or one run takes longer than ``max_seconds``; a tolerance
@@ -101,7 +108,7 @@ def study(
     >>> import dataclasses
     >>> from ga_rotors.accuracy import cases
     >>> case = dataclasses.replace(cases()["asymmetric_far"], steps=(100, 200))
-    >>> st = study(case, ["split4"], factor=2.0, repeats=1, peers=False)
+    >>> st = study(case, ["split4"], factor=2.0, repeats=1, peers=False, between=0)
     >>> [p.setting for p in st.points]
     [100.0, 200.0]
     >>> round(st.points[0].error / st.points[1].error)
@@ -123,12 +130,94 @@ def study(
                 break
             best = min(best, p.error)
         say(f"  {case.name}: {method} done")
-    if not peers:
-        return out
-    tolerances = TOLERANCES[::2] if factor >= 2.0 else TOLERANCES
-    _compiled_sweeps(case, out, factor, tolerances, repeats, max_seconds, say)
-    _casual_sweeps(case, out, factor, tolerances, repeats, max_seconds, say)
+    if peers:
+        tolerances = TOLERANCES[::2] if factor >= 2.0 else TOLERANCES
+        _compiled_sweeps(case, out, factor, tolerances, repeats, max_seconds, say)
+        _casual_sweeps(case, out, factor, tolerances, repeats, max_seconds, say)
+    if between:
+        refine(out, between=between, repeats=repeats, budget=max(0.2, 3 * max_seconds))
+        say(f"  {case.name}: refined near the goal targets")
     return out
+
+
+#: The targets :func:`refine` looks near: the goal table's (tables.GOAL_TARGETS is this).
+REFINE_TARGETS = (1e-3, 1e-6, 1e-9, 1e-12)
+#: A method is refined at a target when its cheapest run there is within this factor of
+#: its family's cheapest: a finer grid saves at most the grid's factor (√2), so a method
+#: further behind cannot become the cheapest.
+_CONTENDER = 1.5
+
+
+def _fineness(p: Point) -> float:
+    """Orders one method's runs from coarse to fine: step counts up, tolerances down."""
+    return p.setting if p.setting >= 1 else 1.0 / p.setting
+
+
+def refine(
+    st: Study, targets=REFINE_TARGETS, *, between: int = 3, repeats: int = 5, budget: float = 0.9
+) -> None:
+    """Add ``between`` runs, evenly spaced in log(setting), between each contending
+    method's coarsest run that reaches a target and the next coarser run (which misses
+    it); where the grid's coarsest run already reaches it, one coarser run first (half the
+    steps, or ten times the tolerance up to 1e-2) to bracket it. Ours and the compiled
+    peers alike (the casual peers are 30–5000× slower: no finer grid changes what they
+    show).
+
+    Examples
+    --------
+    dp8 misses 1e-6 with 16 steps and reaches it with 32; three runs between find that
+    20 steps reach it too:
+
+    >>> from ga_rotors.accuracy import cases, measure
+    >>> case = cases()["asymmetric_far"]
+    >>> st = Study(case, [measure(case, "dp8", n, repeats=1) for n in (16, 32)])
+    >>> refine(st, targets=(1e-6,), between=3, repeats=1)
+    >>> [(p.setting, p.error <= 1e-6) for p in st.points]
+    [(16.0, False), (32.0, True), (20.0, True), (24.0, True), (28.0, True)]
+    """
+    from . import compiled_peers
+
+    for target in targets:
+        for family in ("ga_rotors", "compiled"):
+            mine = [p for p in st.points if p.family == family and not p.note]
+            reached = [p for p in mine if p.error <= target]
+            if not reached:
+                continue
+            best = min(p.seconds for p in reached)
+            for method in dict.fromkeys(p.method for p in reached):
+                runs = sorted((p for p in mine if p.method == method), key=_fineness)
+                first = next(k for k, p in enumerate(runs) if p.error <= target)
+                cheapest = min(p.seconds for p in runs[first:] if p.error <= target)
+                if cheapest > _CONTENDER * best:
+                    continue
+                fixed = family == "ga_rotors" or method in compiled_peers.FIXED
+                hi = runs[first].setting
+                if first > 0:
+                    lo = runs[first - 1].setting
+                else:  # the grid's coarsest run reaches it: one run coarser, if it exists
+                    lo = float(max(SAMPLES, round_steps(hi / 2))) if fixed else min(1e-2, hi * 10)
+                    if lo == hi or _run(st, method, lo, repeats, budget).error <= target:
+                        continue
+                done = {p.setting for p in runs} | {lo}
+                for k in range(1, between + 1):
+                    setting = lo * (hi / lo) ** (k / (between + 1))
+                    if fixed:
+                        setting = float(round_steps(setting))
+                    if setting not in done and min(lo, hi) < setting < max(lo, hi):
+                        done.add(setting)
+                        _run(st, method, setting, repeats, budget)
+
+
+def _run(st: Study, method: str, setting: float, repeats: int, budget: float) -> Point:
+    """One more run of ``method`` (ours or a compiled peer) at ``setting``, added to ``st``."""
+    from . import compiled_peers
+
+    if method in compiled_peers.FIXED or method in compiled_peers.ADAPTIVE:
+        p = compiled_peers.run_peer(st.case, method, setting, repeats, budget)
+    else:
+        p = measure(st.case, method, int(setting), repeats, budget=budget)
+    st.points.append(p)
+    return p
 
 
 def _compiled_sweeps(case, out, factor, tolerances, repeats, max_seconds, say):
