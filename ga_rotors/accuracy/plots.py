@@ -41,13 +41,15 @@ def plot(st: Study, path) -> None:
     for p in st.points:
         if p.method not in methods:
             methods.append(p.method)
-    # ga_rotors' methods take tab20's colours in turn; peers, told apart by their dotted
-    # (compiled) or dashed (casual) lines, take tab10's, so no two lines of one family
-    # share a colour.
+    # ga_rotors' methods take tab20's colours in turn; the peers (dotted: compiled, dashed:
+    # casual) take tab20b's, a palette tab20 does not share, so no peer has the colour of
+    # one of ours (dp8 and njit_dop853 lie on each other).
     ours = [m for m in methods if _family(st, m) == "ga_rotors"]
     colours = {m: plt.get_cmap("tab20")(k % 20) for k, m in enumerate(ours)}
     peers = [m for m in methods if m not in colours]
-    colours |= {m: plt.get_cmap("tab10")(k % 10) for k, m in enumerate(peers)}
+    # tab20b in four shades of five hues: the darkest and the middle shade of each first
+    order = (0, 4, 8, 12, 16, 2, 6, 10, 14, 18, 1, 5, 9, 13, 17, 3, 7, 11, 15, 19)
+    colours |= {m: plt.get_cmap("tab20b")(order[k % 20]) for k, m in enumerate(peers)}
     for m in methods:
         # From coarse to fine (step counts up, tolerances down), so a line doubles back
         # only where a finer run was timed faster: timing noise, shown as it was measured.
