@@ -181,15 +181,16 @@ def reproduce(
 
 
 def _write_all(stage: Path, figures: bool, data: bool, parallel: bool, fmt: str = "png"):
-    if parallel:  # the first run after an install or upgrade compiles, and says so
-        from ..warmup import paper_tasks, warm
-
-        warm(paper_tasks(), processes=1)
     drawers = []
     if figures and parallel and hasattr(os, "fork"):
         drawers = _start_drawers(_SHARES)
     sent = 0
     try:
+        if parallel:  # the first run after an install or upgrade compiles, and says so,
+            # while the figure processes import matplotlib
+            from ..warmup import paper_tasks, warm
+
+            warm(paper_tasks(), processes=1)
         from ..files import write_text
         from . import figures as paper_figures
         from .digest import data_digest
