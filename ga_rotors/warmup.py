@@ -229,7 +229,7 @@ def _start(task: Task) -> tuple[int, int]:
             _become_worker(parent)
             took, error = _run_one(task)
             # small enough for the pipe's buffer: the write never waits for the parent
-            os.write(write, repr((took, None if error is None else error[:2000])).encode())
+            os.write(write, repr((took, None if error is None else error[:500])).encode())
             status = 0
         finally:
             os._exit(status)
@@ -242,7 +242,10 @@ def _result(text: bytes, status: int) -> tuple[float, str | None]:
     import ast
 
     if text:
-        return ast.literal_eval(text.decode())
+        try:
+            return ast.literal_eval(text.decode())
+        except (ValueError, SyntaxError, UnicodeDecodeError):  # killed while writing it
+            return 0.0, "the worker ended while reporting its result"
     if os.WIFSIGNALED(status):
         return 0.0, f"the worker was killed (signal {os.WTERMSIG(status)})"
     return 0.0, f"the worker ended without a result (exit status {os.WEXITSTATUS(status)})"

@@ -214,3 +214,37 @@ def test_a_warm_up_killed_while_compiling_leaves_a_usable_cache(tmp_path):
     )  # fmt: skip
     assert run.returncode == 0, run.stderr
     assert "compiling" not in run.stderr
+
+
+class _Dies(warmup.Task):
+    """A task whose worker is killed (out of memory, a user's kill -9) before it reports."""
+
+    def run(self):
+        os.kill(os.getpid(), signal.SIGKILL)
+
+
+class _Quick(warmup.Task):
+    def run(self):
+        pass
+
+
+def test_a_worker_killed_before_reporting_is_a_failed_task_not_an_error(cache):
+    class Key:
+        def __init__(self, text):
+            self.text = text
+
+        def to_toml(self):
+            return self.text
+
+    log = io.StringIO()
+    failed = warmup.warm([_Quick("quick", Key("q")), _Dies("dies", Key("d"))], 2, stream=log)
+    assert [(t.label, e) for t, e in failed] == [("dies", "the worker was killed (signal 9)")]
+    assert "dies (0.0 s) failed: the worker was killed" in log.getvalue()
+
+
+def test_a_result_cut_short_is_reported_as_such():
+    assert warmup._result(b"(1.5, None)", 0) == (1.5, None)
+    assert warmup._result(b"(1.5, 'Type", 0) == (
+        0.0,
+        "the worker ended while reporting its result",
+    )
