@@ -194,7 +194,7 @@ def _run_one(task: Task) -> tuple[float, str | None]:
     return time.perf_counter() - start, None
 
 
-def _become_worker(parent: int) -> None:
+def _become_worker(parent: int, unblock) -> None:
     """In a forked worker: die at once on SIGTERM or Ctrl-C, and with the parent.
 
     The parent's handlers (SIGTERM raised as an exception, SIGINT as KeyboardInterrupt)
@@ -206,6 +206,7 @@ def _become_worker(parent: int) -> None:
 
     signal.signal(signal.SIGTERM, signal.SIG_DFL)
     signal.signal(signal.SIGINT, signal.SIG_DFL)
+    _block(False, unblock)
     if sys.platform.startswith("linux"):  # the kernel ends the worker if the parent dies
         try:
             import ctypes
@@ -217,8 +218,22 @@ def _become_worker(parent: int) -> None:
         os._exit(1)
 
 
-def _start(task: Task) -> tuple[int, int]:
-    """Fork a worker for ``task``; return its pid and the pipe its result comes through."""
+def _block(block: bool, previous=None):
+    """Hold back (or let through again) Ctrl-C and SIGTERM; returns the mask to restore."""
+    import signal
+
+    if not hasattr(signal, "pthread_sigmask"):
+        return None
+    if block:
+        return signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGINT, signal.SIGTERM})
+    if previous is not None:
+        signal.pthread_sigmask(signal.SIG_SETMASK, previous)
+    return None
+
+
+def _start(task: Task, unblock=None) -> tuple[int, int]:
+    """Fork a worker for ``task``; return its pid and the pipe its result comes through.
+    ``unblock``: the signal mask the worker restores once its handlers are the defaults."""
     parent = os.getpid()
     read, write = os.pipe()
     pid = os.fork()
@@ -226,7 +241,7 @@ def _start(task: Task) -> tuple[int, int]:
         status = 1
         try:
             os.close(read)
-            _become_worker(parent)
+            _become_worker(parent, unblock)
             took, error = _run_one(task)
             # small enough for the pipe's buffer: the write never waits for the parent
             os.write(write, repr((took, None if error is None else error[:500])).encode())
@@ -271,8 +286,14 @@ def _in_workers(todo: list[Task], n: int, done) -> None:
             # warm-up 12.5 s CPU instead of 16.4 s with all at once; 9.7 s in one process)
             while waiting and len(running) < (1 if len(waiting) == len(todo) - 1 else n):
                 task = waiting.pop(0)
-                pid, read = _start(task)
-                running[read] = (pid, task)
+                # Ctrl-C or SIGTERM between the fork and this record would leave the new
+                # worker out of the clean-up below: they wait until it is recorded
+                blocked = _block(True)
+                try:
+                    pid, read = _start(task, blocked)
+                    running[read] = (pid, task)
+                finally:
+                    _block(False, blocked)
             # a pipe is ready when its worker wrote its result and ended (or just ended)
             ready, _, _ = select.select(list(running), [], [])
             for read in ready:

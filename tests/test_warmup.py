@@ -160,13 +160,18 @@ def _children(pid: int) -> list[int]:
     return [int(p) for p in path.read_text().split()] if path.exists() else []
 
 
-def _start_warm(which: str, env: dict, workers: int) -> tuple[subprocess.Popen, list[int]]:
-    """``cache --warm`` in a subprocess, once ``workers`` of its workers run."""
+def _start_warm(
+    which: str, env: dict, workers: int, after: str | None = None
+) -> tuple[subprocess.Popen, list[int]]:
+    """``cache --warm`` in a subprocess, once ``workers`` of its workers run (after the
+    progress line of the task ``after``, whose worker has then been reaped)."""
     proc = subprocess.Popen(
         [sys.executable, "-c", _WARM, which], env=env, text=True,
         stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
     )  # fmt: skip
     assert "compiling" in proc.stdout.readline()
+    if after is not None:
+        assert f"] {after} (" in proc.stdout.readline()
     deadline = time.monotonic() + 60
     while len(kids := _children(proc.pid)) < workers and time.monotonic() < deadline:
         time.sleep(0.05)
@@ -187,9 +192,9 @@ needs_proc = pytest.mark.skipif(
 )
 def test_stopping_a_warm_up_stops_its_workers(tmp_path, signum, status, line):
     env = {**os.environ, "GA_ROTORS_CACHE_DIR": str(tmp_path)}
-    proc, workers = _start_warm("two waiting", env, workers=2)
+    proc, workers = _start_warm("two waiting", env, workers=2, after="quick")
     proc.send_signal(signum)
-    assert proc.wait(timeout=30) == status
+    assert proc.wait(timeout=30) == status, proc.stdout.read()
     assert line in proc.stdout.read()
     assert not [pid for pid in workers if Path(f"/proc/{pid}").exists()]
 
