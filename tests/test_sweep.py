@@ -19,7 +19,7 @@ distributed = pytest.importorskip("distributed")
 from ga_rotors.cli import main  # noqa: E402
 from ga_rotors.ensemble import run_samples, scene_samples  # noqa: E402
 from ga_rotors.optional import MissingExtraError  # noqa: E402
-from ga_rotors.sweep import BLOCK, histogram, load_sweep, open_sweep, run_sweep  # noqa: E402
+from ga_rotors.sweep import BLOCK, histogram, load_sweep, open_sweep, run_sweep, summary  # noqa: E402
 
 SWEEP = """
 [sweep]
@@ -240,3 +240,19 @@ def test_a_sample_that_blows_up_is_nan_and_the_others_are_kept(tmp_path):
     drifted = np.linalg.norm(ds["q"].values[2, -1])
     assert abs(drifted - 1) > 1e-6 and 0 < angle[2, -1] <= np.pi
     assert np.all(np.isfinite(angle[0])) and np.all(np.isfinite(angle[2]))
+    assert histogram(ds, bins=4)["count"].values.sum(axis=1).tolist() == [2, 2]  # NaN skipped
+    assert "(3 samples)" in summary(ds) and "nan" not in summary(ds)
+
+
+def test_a_store_made_again_by_another_sweep_gets_its_own_chunks(tmp_path, reference):
+    # Same samples in chunks of 3 instead of 4, into the path of a deleted store: what a
+    # process remembered of the first store's layout must not shape the second's chunks.
+    import shutil
+
+    out = tmp_path / "s.zarr"
+    run_sweep(SWEEP, out, client="sync")
+    shutil.rmtree(out)
+    again = open_sweep(run_sweep(SWEEP.replace("chunk = 4", "chunk = 3"), out, client="sync"))
+    assert again["q"].encoding["chunks"][0] == 3
+    for name in ("q", "w", "angle_from_nominal", "value_0", "value_1", "value_2"):
+        assert np.array_equal(again[name].values, reference[name].values, equal_nan=True), name

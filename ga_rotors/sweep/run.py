@@ -173,44 +173,29 @@ def flush_writes() -> None:
         _wait_pending()
 
 
-_GROUPS: dict = {}
-
-
-def _group(store: str):
-    """The store's zarr group, opened once per process."""
-    if store not in _GROUPS:
-        zarr = require("zarr", "results")
-        _GROUPS[store] = zarr.open_group(store, mode="r+", zarr_format=2)
-    return _GROUPS[store]
-
-
 def _layout(store: str, name: str):
     """(chunk shape, dtype, fill, separator) of a variable stored as raw chunks, or None.
 
     The sweep creates every variable uncompressed, unfiltered, C-ordered (zarr format 2),
     so a chunk file is exactly the bytes of the chunk's C-ordered array (an edge chunk
-    padded to the full chunk shape): see the Zarr v2 storage specification.
+    padded to the full chunk shape): see the Zarr v2 storage specification. Read for
+    every chunk, not remembered: a store deleted and made again under the same name by
+    another sweep may have other chunks (and one small file is nothing beside a chunk).
     """
-    key = (store, name)
-    if key not in _LAYOUTS:
-        import json
+    import json
 
-        try:
-            meta = json.loads((Path(store) / name / ".zarray").read_text(encoding="utf-8"))
-        except (OSError, ValueError):
-            meta = {}
-        raw = (
-            meta.get("zarr_format") == 2 and meta.get("compressor") is None
-            and not meta.get("filters") and meta.get("order") == "C"
-        )  # fmt: skip
-        _LAYOUTS[key] = None if not raw else (
-            tuple(meta["chunks"]), np.dtype(meta["dtype"]), meta["fill_value"],
-            meta.get("dimension_separator", "."),
-        )  # fmt: skip
-    return _LAYOUTS[key]
-
-
-_LAYOUTS: dict = {}
+    try:
+        meta = json.loads((Path(store) / name / ".zarray").read_text(encoding="utf-8"))
+    except (OSError, ValueError):
+        return None
+    raw = (
+        meta.get("zarr_format") == 2 and meta.get("compressor") is None
+        and not meta.get("filters") and meta.get("order") == "C"
+    )  # fmt: skip
+    if not raw:
+        return None
+    sep = meta.get("dimension_separator", ".")
+    return tuple(meta["chunks"]), np.dtype(meta["dtype"]), meta["fill_value"], sep
 
 
 def _write_block(store: str, name: str, block: np.ndarray, *, c: int, lo: int) -> None:
@@ -222,7 +207,8 @@ def _write_block(store: str, name: str, block: np.ndarray, *, c: int, lo: int) -
     """
     layout = _layout(store, name)
     if layout is None:
-        _group(store)[name][lo : lo + block.shape[0]] = block
+        zarr = require("zarr", "results")
+        zarr.open_group(store, mode="r+", zarr_format=2)[name][lo : lo + block.shape[0]] = block
         return
     chunks, dtype, fill, sep = layout
     data = np.ascontiguousarray(block, dtype=dtype)
