@@ -196,7 +196,7 @@ def main() -> None:
     _warm()
     t0 = time.perf_counter()
     cluster = distributed.LocalCluster(
-        n_workers=os.cpu_count(), threads_per_worker=1, processes=True, dashboard_address=None
+        n_workers=os.cpu_count(), threads_per_worker=1, processes=True, dashboard_address=":0"
     )
     client = distributed.Client(cluster)
     client.run(_warm)

@@ -5,6 +5,8 @@ from __future__ import annotations
 import contextlib
 import io
 import itertools
+import socket
+import warnings
 
 import numpy as np
 import pytest
@@ -172,9 +174,20 @@ def test_the_command_runs_resumes_and_prints_the_spread(tmp_path):
 def test_the_command_on_a_local_cluster(tmp_path):
     spec = tmp_path / "dispersion.toml"
     spec.write_text(SWEEP)
-    with contextlib.redirect_stdout(io.StringIO()) as out:
+    # Dask's default HTTP port held by someone else (another cluster on the machine) is no
+    # concern of the sweep's: no "Port 8787 is already in use" warning.
+    with (
+        socket.socket() as busy,
+        warnings.catch_warnings(record=True) as seen,
+        contextlib.redirect_stdout(io.StringIO()) as out,
+    ):
+        warnings.simplefilter("always")
+        with contextlib.suppress(OSError):  # already taken: the same situation
+            busy.bind(("", 8787))
+            busy.listen()
         status = main(["sweep", str(spec), "--out", str(tmp_path / "d.zarr"), "--workers", "2"])
     assert status == 0 and "(10 samples)" in out.getvalue()
+    assert not [w for w in seen if "already in use" in str(w.message)]
 
 
 def test_the_command_names_the_extra_when_dask_is_missing(tmp_path, monkeypatch):

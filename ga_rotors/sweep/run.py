@@ -319,7 +319,9 @@ def _client(client, scheduler: str | None, workers: int | None):
         threads_per_worker=1,
         processes=True,
         silence_logs=logging.ERROR,  # Dask's own start/stop chatter is not the user's news
-        dashboard_address=None,
+        # The scheduler serves HTTP whatever the dashboard setting, on 8787 unless told
+        # otherwise: a free port, so a second cluster on the machine prints no warning.
+        dashboard_address=":0",
     )
     return distributed.Client(cluster), True
 
