@@ -62,6 +62,14 @@ def test_api_reference_is_generated_from_the_docstrings(site):
     assert "cos(α/2) − I u sin(α/2)" in html  # the module docstring, rendered
 
 
+def test_module_constants_are_documented_by_their_comments(site):
+    # ga_rotors.euler: "#: The 24 valid sequences ..." above SEQUENCES (griffe-sphinx), so
+    # the constant has its entry and :data:`SEQUENCES` elsewhere links to it.
+    html = (site / "api" / "rotations" / "index.html").read_text(encoding="utf-8")
+    assert 'id="ga_rotors.euler.SEQUENCES"' in html
+    assert 'href="#ga_rotors.euler.SEQUENCES"' in html
+
+
 def test_every_public_module_is_in_the_api_reference():
     """Every module a user can import by a public name (no ``_`` in its path) has its
     section in docs/api/, except the command-line modules (``--help`` and the guides)."""
