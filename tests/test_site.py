@@ -126,15 +126,18 @@ ROLE_TEXT = ("`:func:", ":func:`", ":mod:`", ":class:`", ":data:`", ":meth:`", "
 
 def test_sphinx_roles_in_docstrings_become_links_or_code(site):
     # ga_rotors.scene.run's docstring: :func:`ga_rotors.simulation.simulate`, rendered on
-    # the dynamics page, and :data:`ga_rotors.scene.budget.DEFAULT`, rendered nowhere.
+    # the dynamics page, and :data:`ga_rotors.scene.budget.DEFAULT` on this one; the
+    # Scene's :attr:`exact_reason` (set in __init__, no entry of its own) is code.
     html = (site / "api" / "scenes" / "index.html").read_text(encoding="utf-8")
-    assert (
+    simulate = (
         'href="../dynamics/#ga_rotors.simulation.simulate"><code>ga_rotors.simulation.simulate()'
-        in html
+    )
+    assert simulate in html
+    assert (
+        'href="#ga_rotors.scene.budget.DEFAULT"><code>ga_rotors.scene.budget.DEFAULT</code>' in html
     )
     assert (
-        '<span title="ga_rotors.scene.budget.DEFAULT"><code>ga_rotors.scene.budget.DEFAULT</code>'
-        in html
+        '<span title="ga_rotors.scene.model.Scene.exact_reason"><code>exact_reason</code>' in html
     )
     for page in site.rglob("*.html"):
         text = page.read_text(encoding="utf-8")
