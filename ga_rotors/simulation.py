@@ -427,10 +427,6 @@ def _pieces(plan: _Plan, chunk: int | None, progress):
     watching = initial_limit is not None and not initial_limit.exceeded
     for lo in range(0, nsteps, span):
         hi = min(nsteps, lo + span)
-        marks = np.arange(lo if lo == 0 else lo + every, hi + 1, every)
-        if hi == nsteps and nsteps % every:
-            marks = np.concatenate([marks, [nsteps]])
-        grid = t0 + h * marks
         results = {}
         for p in requested:
             result = next(live[p], None) if p in live else None
@@ -457,6 +453,14 @@ def _pieces(plan: _Plan, chunk: int | None, progress):
                     IntegrationStoppedWarning,
                     stacklevel=3,
                 )
+        primary = results.get(requested[0])
+        if chunk is None and primary is not None and primary.complete:
+            grid = primary.t  # one call's times are t0 + k·h: the grid itself, bit for bit
+        else:
+            marks = np.arange(lo if lo == 0 else lo + every, hi + 1, every)
+            if hi == nsteps and nsteps % every:
+                marks = np.concatenate([marks, [nsteps]])
+            grid = t0 + h * marks
         piece = _derive(plan, grid, results, status)
         if watching:
             # a torque may carry ω past the limit the start was within: judged on the samples

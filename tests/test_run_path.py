@@ -272,12 +272,13 @@ def test_what_simulate_remembers_never_lets_a_bad_argument_pass_twice():
 @pytest.mark.parametrize("t0", [0.0, -0.0, 0.37, -2.5])
 @pytest.mark.parametrize("every", [1, 3, 7])
 @pytest.mark.parametrize("progress", [None, lambda done, total: None], ids=["one call", "chunks"])
-def test_simulates_times_are_the_grid_t0_plus_k_h(t0, every, progress):
+@pytest.mark.parametrize("method", ["rk4", "dop853"])
+def test_simulates_times_are_the_grid_t0_plus_k_h(t0, every, progress, method):
     from ga_rotors import simulate
 
     h, n = 1e-3, 20
     tr = simulate(BODY, Q0, W0, duration=n * h, step=h, sample_every=every, t0=t0,
-                  paths="quaternion", progress=progress)  # fmt: skip
+                  paths="quaternion", progress=progress, integrator=method)  # fmt: skip
     k = np.concatenate([np.arange(0, n + 1, every), [n] if n % every else []])
     assert np.array_equal(tr.t, t0 + h * k)
     assert np.signbit(tr.t[0]) == (t0 < 0)  # -0.0 starts at +0.0, as the grid does
