@@ -252,19 +252,26 @@ def test_a_zarr_store_replaces_the_previous_runs(tmp_path):
 
 def test_streamed_memory_does_not_grow_with_the_run(tmp_path):
     """Ten times the steps, the same peak of traced allocations (within 2x): the samples
-    are written as they come (no time is measured)."""
+    are written as they come (no time is measured). Both runs are many pieces long, so
+    each meets the worst moment (a piece written while the next is computed) at least
+    once; a short run of three pieces could miss it and halve its peak. (The NPZ archive
+    is copied from its row files through a buffer of at most 4 MiB: bounded, and the
+    larger run's peak holds more of it.)"""
     import tracemalloc
 
     # no figure: its copy of a short run is every sample (bounded apart, above)
     scene = load_scene("heavy_top").replace({"output.data": ["csv", "npz"], "output.plots": []})
     peaks = []
-    for duration in (0.5, 5.0):
+    for duration in (2.0, 20.0):
         s = scene.replace({"time.duration": duration})
         stream_scene(s, tmp_path / "warm", chunk_steps=2000)  # compiled, imported
-        tracemalloc.start()
-        stream_scene(s, tmp_path / str(duration), chunk_steps=2000)
-        peaks.append(tracemalloc.get_traced_memory()[1])
-        tracemalloc.stop()
+        runs = []
+        for repeat in range(2):  # the lower: another thread of the process may allocate
+            tracemalloc.start()
+            stream_scene(s, tmp_path / f"{duration}-{repeat}", chunk_steps=2000)
+            runs.append(tracemalloc.get_traced_memory()[1])
+            tracemalloc.stop()
+        peaks.append(min(runs))
     assert peaks[1] < 2 * peaks[0], peaks
 
 
