@@ -3,8 +3,9 @@
 The first run of a loop compiles it (numba, seconds of CPU per loop) and stores the machine
 code (see docs/cache.md); every later process loads it. :func:`warm` moves that first
 compilation out of the command a user is waiting for: each :class:`Task` is a tiny run of
-the real work (one scene on one orientation path, 2 output steps; the paper's
-computations on 10 steps) that leaves the compiled code in the cache, run here or in
+the real work (one scene on one orientation path, 2 output steps, run in pieces and its
+data written as ``ga-rotors run`` does; the paper's computations and CSV files on 10
+steps) that leaves the compiled code in the cache, run here or in
 forked worker processes. A task that succeeded is remembered by a marker file under the
 cache directory, named by the package version and the task, so a warm cache costs a few
 file checks.
@@ -74,13 +75,33 @@ class Task:
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")  # a 2-sample run may trip checks the real one won't
             if self.scene is None:
-                from .paper.runs import run_all, summary
+                _paper_computations()
+            else:  # the way ``ga-rotors run`` runs it: in pieces, its files written
+                import tempfile
 
-                summary(run_all(steps=10))
-            else:
-                from .scene import run_scene
+                from .scene import stream_scene
 
-                run_scene(self.scene)
+                with tempfile.TemporaryDirectory() as tmp:
+                    stream_scene(self.scene, Path(tmp) / "out")
+
+
+def _paper_computations() -> None:
+    """What ``ga-rotors paper`` computes and writes, on 10 steps, its files discarded: the
+    summary, the figures' data and digest (not drawn: the figure processes only import
+    matplotlib) and the CSV files, whose compiled number formatting is cached too."""
+    import tempfile
+
+    from .paper.digest import data_digest
+    from .paper.figures import figure_data
+    from .paper.runs import run_all, summary
+
+    runs = run_all(steps=10)
+    summary(runs)
+    figure_data(runs)
+    data_digest(runs)
+    with tempfile.TemporaryDirectory() as tmp:
+        for run in runs:
+            run.trajectory.to_csv(Path(tmp) / f"{run.key}.csv")
 
 
 def scene_tasks(scene) -> list[Task]:
@@ -95,7 +116,7 @@ def scene_tasks(scene) -> list[Task]:
 
     scene = load_scene(scene)
     span = TASK_SAMPLES * scene.sample_every * scene.step
-    changes = {"time.duration": span, "output.data": [], "output.plots": []}
+    changes = {"time.duration": span, "output.plots": []}
     return [
         Task(f"{scene.name}: {path} path", scene.replace({**changes, "integrator.paths": [path]}))
         for path in scene.paths

@@ -24,7 +24,9 @@ def test_scene_tasks_are_the_scene_on_each_path_for_two_samples():
     for t in tasks:
         assert t.scene.steps == warmup.TASK_SAMPLES * scene.sample_every
         assert t.scene.method is scene.method and t.scene.data["effects"] == scene.data["effects"]
-        assert t.scene.data["output"]["data"] == [] and t.scene.data["output"]["plots"] == []
+        # the scene's own data formats (their writers compile too), no figure to draw
+        assert t.scene.data["output"]["data"] == scene.data["output"]["data"]
+        assert t.scene.data["output"]["plots"] == []
 
 
 def test_all_tasks_cover_the_paper_and_every_bundled_scene_and_path():
@@ -253,3 +255,26 @@ def test_a_result_cut_short_is_reported_as_such():
         0.0,
         "the worker ended while reporting its result",
     )
+
+
+def test_paper_and_run_compile_nothing_after_cache_warm(tmp_path):
+    """README command 1: ``cache --warm`` then ``paper``; and ``run``, in pieces. Every
+    kernel they call (loops, conversions, figure data, the CSV number formatting) must be
+    cached by the warm-up, or the first run after install pays the compiling the warm-up
+    was for. numba reports each function it compiles and saves (NUMBA_DEBUG_CACHE): none."""
+    env = {**os.environ, "GA_ROTORS_CACHE_DIR": str(tmp_path / "loops"),
+           "NUMBA_CACHE_DIR": str(tmp_path / "numba")}  # fmt: skip
+    warm = subprocess.run(
+        [sys.executable, "-m", "ga_rotors", "cache", "--warm"], env=env,
+        capture_output=True, text=True,
+    )  # fmt: skip
+    assert warm.returncode == 0, warm.stdout + warm.stderr
+    for command in (["paper"], ["run", "heavy_top", "--no-progress"]):  # run: in pieces
+        done = subprocess.run(
+            [sys.executable, "-m", "ga_rotors", *command, "--out", str(tmp_path / command[0])],
+            env={**env, "NUMBA_DEBUG_CACHE": "1"}, capture_output=True, text=True,
+        )  # fmt: skip
+        assert done.returncode == 0, done.stderr
+        text = done.stdout + done.stderr
+        compiled = [line for line in text.splitlines() if "data saved" in line]
+        assert not compiled, "\n".join(compiled)
