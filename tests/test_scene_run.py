@@ -281,3 +281,31 @@ def test_an_exact_reference_that_refuses_the_state_names_the_file_and_key(tmp_pa
     assert info.value.key == "initial.orientation"
     assert "symmetry axis is vertical" in info.value.detail
     assert "\n" not in str(info.value)
+
+
+def test_a_run_longer_than_the_references_default_span_reports_its_bound():
+    """Past ~560 s the heavy-top reference's rounding bound passes its default 1e-10 rad and
+    the reference called directly refuses; a scene run of 800 s asking for ``error`` still
+    runs, its error columns are the reference's values, and the summary and the data
+    attributes state the bound (which grows with time) instead of aborting the run."""
+    from ga_rotors import quaternion as Q
+    from ga_rotors.errors import PrecisionError
+    from ga_rotors.results.dataset import exact_bound_at
+    from ga_rotors.scene.summary import report
+
+    s = load_scene("heavy_top").replace({
+        "time.duration": 800.0, "time.output_step": 1.0, "integrator.step": 0.001,
+        "output.quantities": ["error", "omega_error"],
+    })  # fmt: skip
+    exact = s.exact_solution
+    with pytest.raises(PrecisionError):
+        exact.model.state([800.0])  # the reference's own default refuses this span
+    tr = run_scene(s)
+    q_ref, w_ref, bound = exact.state(tr.t)
+    assert 1e-10 < bound[-1] < 1e-8 and bound[0] < 1e-13
+    assert np.array_equal(tr.error_rotor, Q.distance(q_ref, Q.normalize(tr.quaternions("rotor"))))
+    rep = report(s, tr)
+    assert 1e-10 < rep.values["exact_bound"] < 1e-8
+    assert f"rounding bound {rep.values['exact_bound']:.1e} rad" in str(rep)
+    assert rep.values["error_rotor"] == tr.error_rotor.max()
+    assert exact_bound_at(s, tr.t) == pytest.approx(rep.values["exact_bound"], rel=0.05)

@@ -92,10 +92,7 @@ def exact_bound_at(scene, times: np.ndarray) -> float | None:
     True
     """
     exact = scene.exact_solution if scene.exact else None
-    if exact is None or not hasattr(exact.model, "state") or times.size == 0:
-        return None
-    error = getattr(exact.model.state(times - exact.t0), "error", None)
-    return None if error is None else float(np.max(error))
+    return None if exact is None else exact.bound(times)
 
 
 def to_dataset(trajectory, scene=None):
