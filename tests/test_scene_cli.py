@@ -238,3 +238,39 @@ def test_run_prints_the_packages_warnings_as_one_line_each(tmp_path, capsys):
     lines = [line for line in err.splitlines() if "gimbal" in line.lower()]
     assert lines and all(line.startswith("ga-rotors: warning: ") for line in lines)
     assert "warnings.warn" not in err and ".py:" not in err
+
+
+@pytest.mark.parametrize(("fmt", "missing"), [("netcdf", "h5netcdf"), ("zarr", "zarr")])
+def test_a_data_format_without_its_extra_is_refused_before_anything_runs(
+    short, tmp_path, monkeypatch, capsys, fmt, missing
+):
+    """A scene asking for netCDF or zarr without the ``results`` extra gets one line naming
+    the file, the key and the install command before the warm-up or the run starts (it
+    used to integrate a first piece, and the warm-up reported each path as failed)."""
+    import ga_rotors.optional as optional
+    import ga_rotors.warmup as warmup
+
+    real = optional.importlib.import_module
+
+    def fake(name, *args):
+        if name == missing:
+            raise ModuleNotFoundError(f"No module named {name!r}", name=name)
+        return real(name, *args)
+
+    monkeypatch.setattr(optional.importlib, "import_module", fake)
+    monkeypatch.setattr(warmup, "warm", lambda *a, **k: pytest.fail("the warm-up ran"))
+    path = tmp_path / "wants.toml"
+    path.write_text(SHORT.replace('data = ["csv", "npz"]', f'data = ["csv", "{fmt}"]'))
+    out = tmp_path / "out"
+    assert main(["run", str(path), "--out", str(out), "--no-progress"]) == 2
+    err = capsys.readouterr().err.strip()
+    assert err == (
+        f"ga-rotors: error: {path}: output.data[1]: '{fmt}': {missing} is not installed; it "
+        'comes with pip install "ga-rotors[results]"'
+    )
+    assert not out.exists()
+    from ga_rotors.errors import SceneError
+    from ga_rotors.scene import stream_scene
+
+    with pytest.raises(SceneError, match=r"output\.data\[1\]"):  # the API refuses too
+        stream_scene(load_scene(path), out)

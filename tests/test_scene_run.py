@@ -303,7 +303,9 @@ def test_a_run_longer_than_the_references_default_span_reports_its_bound():
     tr = run_scene(s)
     q_ref, w_ref, bound = exact.state(tr.t)
     assert 1e-10 < bound[-1] < 1e-8 and bound[0] < 1e-13
-    assert np.array_equal(tr.error_rotor, Q.distance(q_ref, Q.normalize(tr.quaternions("rotor"))))
+    q_rotor = Q.normalize(tr.quaternions("rotor"))
+    assert np.array_equal(tr.error_rotor, Q.distance(q_ref, q_rotor))
+    assert np.array_equal(tr.omega_error, np.linalg.norm(tr.w - w_ref, axis=-1))
     rep = report(s, tr)
     assert 1e-10 < rep.values["exact_bound"] < 1e-8
     assert f"rounding bound {rep.values['exact_bound']:.1e} rad" in str(rep)

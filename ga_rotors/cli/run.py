@@ -202,6 +202,7 @@ def run(args: argparse.Namespace) -> int:
     from ..errors import GimbalLockWarning, IntegrationStoppedWarning, StepLimitWarning
     from ..scene import load_scene, stream_scene
     from ..scene.budget import check
+    from ..scene.formats import require_formats
     from ..warmup import scene_tasks, warm
 
     start = time.perf_counter()
@@ -212,6 +213,7 @@ def run(args: argparse.Namespace) -> int:
     estimate = check(scene, budget, streamed=True)
     if estimate.steps > SHOW_ESTIMATE_STEPS:
         print(f"{scene.name}: {estimate} (streamed)", file=sys.stderr)
+    require_formats(scene)  # before the warm-up and the run: one line, nothing compiled
     if not any(e["type"] == "user" for e in scene.data["effects"]):
         # A scene's first run compiles, and says so where the progress bar shows; user
         # code is left to the run itself, which checks the opt-in and reports on one line.

@@ -15,7 +15,7 @@ from dataclasses import dataclass, field
 
 from ..errors import InputError
 
-__all__ = ["FORMATS", "DataFormat", "register"]
+__all__ = ["FORMATS", "DataFormat", "register", "require_formats"]
 
 
 @dataclass(frozen=True)
@@ -39,6 +39,8 @@ class DataFormat:
     doc: str
     write: Callable = field(repr=False)
     stream: Callable | None = field(default=None, repr=False)
+    #: (module, extra) pairs the format imports: checked before a run starts
+    needs: tuple[tuple[str, str], ...] = ()
 
     def open(self, path, scene=None):
         """A writer of this format at ``path`` for the pieces of a run.
@@ -58,6 +60,27 @@ class DataFormat:
         if self.stream is not None:
             return self.stream(path, scene)
         return _Whole(self, path)
+
+
+def require_formats(scene) -> None:
+    """Refuse, before anything runs, a scene whose ``output.data`` names a format whose
+    optional packages are not installed: one line naming the file, the key and the
+    ``pip install`` command (not a failure after the run's first piece).
+
+    Examples
+    --------
+    >>> from ga_rotors.scene import load_scene
+    >>> require_formats(load_scene("heavy_top"))   # CSV: nothing to install
+    """
+    from ..errors import SceneError
+    from ..optional import MissingExtraError, require
+
+    for i, name in enumerate(scene.data["output"]["data"]):
+        for module, extra in FORMATS[name].needs:
+            try:
+                require(module, extra)
+            except MissingExtraError as exc:
+                raise SceneError(scene.file, f"output.data[{i}]", f"{name!r}: {exc}") from None
 
 
 class _Whole:
@@ -142,12 +165,12 @@ register(
 register(
     DataFormat(
         "netcdf", ".nc", "every array with its unit and the run's settings (ga-rotors[results])",
-        _store, _stream("NetcdfStream"),
+        _store, _stream("NetcdfStream"), (("xarray", "results"), ("h5netcdf", "results")),
     )
 )  # fmt: skip
 register(
     DataFormat(
         "zarr", ".zarr", "a zarr store: the netCDF content, chunked (ga-rotors[results])",
-        _store, _stream("ZarrStream"),
+        _store, _stream("ZarrStream"), (("xarray", "results"), ("zarr", "results")),
     )
 )  # fmt: skip

@@ -210,10 +210,12 @@ def stream_scene(scene, out_dir, *, progress=None, budget=None, chunk_steps: int
     """
     from ..files import output_set
     from . import budget as _budget
+    from .formats import require_formats
     from .run import run_pieces
 
     scene = load_scene(scene)
     _budget.check(scene, _budget.DEFAULT if budget is None else budget, streamed=True)
+    require_formats(scene)
     pieces = run_pieces(scene, chunk_steps=chunk_steps, progress=progress)
     if not _declared(scene):
         return [], _write(scene, pieces, None, True)
