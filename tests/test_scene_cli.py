@@ -274,3 +274,37 @@ def test_a_data_format_without_its_extra_is_refused_before_anything_runs(
 
     with pytest.raises(SceneError, match=r"output\.data\[1\]"):  # the API refuses too
         stream_scene(load_scene(path), out)
+
+
+@pytest.mark.parametrize("fmt", [None, "svg", "pdf"])
+def test_scenes_figures_writes_the_bundled_scenes_figures(tmp_path, monkeypatch, capsys, fmt):
+    """``ga-rotors scenes --figures DIR [--format F]`` as docs/scenes.md shows it, on two of
+    the bundled scenes (tests/test_scenes_bundled.py checks every committed figure's data):
+    the PNGs carry the digest of the data the committed figures show."""
+    import ga_rotors.scene as scene_pkg
+    from ga_rotors.paper.figures import read_digest
+    from ga_rotors.scene.figures import DIGEST_PREFIX
+
+    two = {n: d for n, d in bundled().items() if n in ("damped_top", "heavy_top")}
+    monkeypatch.setattr(scene_pkg, "bundled", lambda: two)
+    argv = ["scenes", "--figures", str(tmp_path)] + ([] if fmt is None else ["--format", fmt])
+    assert main(argv) == 0
+    suffix = fmt or "png"
+    assert sorted(p.name for p in tmp_path.iterdir()) == [f"{n}.{suffix}" for n in sorted(two)]
+    assert capsys.readouterr().out.count("wrote ") == 2
+    committed = Path(__file__).resolve().parent.parent / "docs" / "figures" / "scenes"
+    for name in two:
+        data = (tmp_path / f"{name}.{suffix}").read_bytes()
+        if suffix == "png":
+            written = read_digest(tmp_path / f"{name}.png", DIGEST_PREFIX)
+            assert written is not None
+            assert written == read_digest(committed / f"{name}.png", DIGEST_PREFIX)
+        else:
+            assert (b"<svg" in data[:400]) if suffix == "svg" else data.startswith(b"%PDF-")
+
+
+def test_scenes_format_without_figures_is_one_line(capsys):
+    assert main(["scenes", "--format", "svg"]) == 2
+    assert capsys.readouterr().err.strip() == (
+        "ga-rotors: error: --format: only with --figures DIR (the figures' format)"
+    )

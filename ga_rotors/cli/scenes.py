@@ -2,12 +2,14 @@
 
 The scenes are TOML files shipped in ga_rotors/scene/bundled/; their schema
 is in docs/scenes.md. With --figures DIR every bundled scene is run and its figure written
-to DIR/<name>.png (how docs/figures/scenes/ is made).
+to DIR/<name>.png (how docs/figures/scenes/ is made), or .svg / .pdf with --format.
 """
 
 from __future__ import annotations
 
 import argparse
+
+from ..paper.reproduce import FORMATS  # as ga-rotors paper and run --format
 
 __all__ = ["add_arguments", "run"]
 
@@ -19,6 +21,12 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         default=None,
         help="run every bundled scene and write its figure to DIR/<name>.png",
     )
+    parser.add_argument(
+        "--format",
+        choices=FORMATS,
+        default="png",
+        help="with --figures: PNG at 150 dpi (default), or vector SVG or PDF for print",
+    )
 
 
 def run(args: argparse.Namespace) -> int:
@@ -26,6 +34,10 @@ def run(args: argparse.Namespace) -> int:
 
     names = bundled()
     if args.figures is None:
+        if args.format != "png":
+            from ..errors import InputError
+
+            raise InputError("--format: only with --figures DIR (the figures' format)")
         width = max(map(len, names))
         for name, description in names.items():
             print(f"{name:<{width}}  {description}")
@@ -34,7 +46,8 @@ def run(args: argparse.Namespace) -> int:
 
     from ..errors import InputError
     from ..files import output_set
-    from ..scene import figure_png, load_scene, run_scene
+    from ..scene import load_scene, run_scene
+    from ..scene.figures import render
 
     out = Path(args.figures)
     if not out.is_dir():
@@ -45,9 +58,9 @@ def run(args: argparse.Namespace) -> int:
             scene = load_scene(name)
             if not scene.data["output"]["plots"]:
                 continue
-            png = figure_png(scene, run_scene(scene))
-            (stage / f"{name}.png").write_bytes(png)
-            written.append((out / f"{name}.png", len(png)))
+            figure = render(scene, run_scene(scene), args.format)
+            (stage / f"{name}.{args.format}").write_bytes(figure)
+            written.append((out / f"{name}.{args.format}", len(figure)))
     for path, size in written:
         print(f"wrote {path} ({size // 1024} KiB)")
     return 0
