@@ -190,6 +190,22 @@ def test_the_command_on_a_local_cluster(tmp_path):
     assert not [w for w in seen if "already in use" in str(w.message)]
 
 
+def test_the_command_on_an_existing_scheduler_writes_what_a_plain_run_writes(tmp_path, reference):
+    """``ga-rotors sweep --scheduler ADDRESS`` (docs/ensembles.md): the sweep runs on a
+    cluster someone else started, here two workers in this process, and leaves it running."""
+    spec = tmp_path / "dispersion.toml"
+    spec.write_text(SWEEP)
+    with distributed.LocalCluster(
+        n_workers=2, threads_per_worker=1, processes=False, dashboard_address=None
+    ) as cluster:
+        with contextlib.redirect_stdout(io.StringIO()) as out:
+            argv = ["sweep", str(spec), "--out", str(tmp_path / "d.zarr")]
+            status = main([*argv, "--scheduler", cluster.scheduler_address])
+        assert status == 0 and "(10 samples)" in out.getvalue()
+        assert len(cluster.workers) == 2  # the user's cluster is still there
+    xr.testing.assert_identical(open_sweep(tmp_path / "d.zarr").load(), reference)
+
+
 def test_the_command_names_the_extra_when_dask_is_missing(tmp_path, monkeypatch):
     real = optional.importlib.import_module
 
