@@ -530,14 +530,35 @@ def zyz_omega(angles, rates):
 
 
 @jit
+def euler_coefficients(inertia):
+    """What Euler's equations divide by: ((I₂ − I₃)/I₁, (I₃ − I₁)/I₂, (I₁ − I₂)/I₃) and
+    (1/I₁, 1/I₂, 1/I₃), from the principal moments.
+
+    The one place these six numbers are computed. A single run's loop computes them once
+    (they depend on loop invariants only); a batched loop with one inertia per body
+    computes them once per body with this same function and keeps them, instead of six
+    divisions per body and step (:mod:`ga_rotors.ensemble`); :func:`free_euler_rates` and
+    :func:`euler_rates` take them from here, so both give the same numbers bit for bit.
+
+    Examples
+    --------
+    >>> euler_coefficients((1.0, 2.0, 4.0))
+    (-2.0, 1.5, -0.25, 1.0, 0.5, 0.25)
+    """
+    i1, i2, i3 = inertia[0], inertia[1], inertia[2]
+    return ((i2 - i3) / i1, (i3 - i1) / i2, (i1 - i2) / i3, 1.0 / i1, 1.0 / i2, 1.0 / i3)
+
+
+@jit
 def free_euler_rates(inertia, w):
     """ω̇ of the torque-free body: I ω̇ = (I ω) × ω, principal frame, tuples in and out.
 
     Unchecked (compiled loops call it); the checked form is
     :meth:`ga_rotors.body.RigidBody.angular_acceleration`.
 
-    Written ((I₂ − I₃)/I₁)·ω₂·ω₃ so the inertia ratios depend on loop invariants only: a
-    compiled loop computes them once instead of dividing in every stage.
+    Written ((I₂ − I₃)/I₁)·ω₂·ω₃ so the inertia ratios (:func:`euler_coefficients`)
+    depend on loop invariants only: a compiled loop computes them once instead of
+    dividing in every stage.
 
     Examples
     --------
@@ -549,13 +570,9 @@ def free_euler_rates(inertia, w):
     >>> free_euler_rates((1.0, 2.0, 3.0), (0.0, 5.0, 0.0))
     (0.0, 0.0, 0.0)
     """
-    i1, i2, i3 = inertia
+    c = euler_coefficients(inertia)
     w1, w2, w3 = w
-    return (
-        (i2 - i3) / i1 * w2 * w3,
-        (i3 - i1) / i2 * w3 * w1,
-        (i1 - i2) / i3 * w1 * w2,
-    )
+    return (c[0] * w2 * w3, c[1] * w3 * w1, c[2] * w1 * w2)
 
 
 @jit
@@ -572,8 +589,5 @@ def euler_rates(inertia, w, tau):
     (0.0, 2.0, 0.6666666666666667)
     """
     g = free_euler_rates(inertia, w)
-    return (
-        g[0] + tau[0] * (1.0 / inertia[0]),
-        g[1] + tau[1] * (1.0 / inertia[1]),
-        g[2] + tau[2] * (1.0 / inertia[2]),
-    )
+    c = euler_coefficients(inertia)
+    return (g[0] + tau[0] * c[3], g[1] + tau[1] * c[4], g[2] + tau[2] * c[5])

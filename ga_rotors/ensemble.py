@@ -29,7 +29,7 @@ import numpy as np
 from numba import prange
 
 from ._jit import jit
-from ._kernels import free_euler_rates
+from ._kernels import euler_coefficients, free_euler_rates
 from .errors import InputError
 from .integrators._arith import axpy3, axpy4, rk4_sum3, rk4_sum4
 from .paths.quaternion import rate
@@ -49,27 +49,46 @@ __all__ = [
 CHUNK = 256
 
 
-def inline_copy(kernel):
+def inline_copy(kernel, replace: tuple = ()):
     """The same Python function as ``kernel``, compiled with ``inline="always"``, its calls to
     other compiled kernels rebound to their inline copies too.
 
     numba optimises each compiled function on its own and links callees afterwards, so a
     loop that calls kernels makes real calls and LLVM cannot vectorise across bodies; an
     inline copy puts the *same formula* (the same source, not a rewrite) into the loop.
+    ``replace``: pairs (kernel, stand-in) — wherever the copies would call that kernel
+    they call the stand-in (the batched loops replace :func:`~ga_rotors._kernels.
+    euler_coefficients` by a look-up of the values that function computed beforehand).
     """
-    found = _INLINE.get(kernel)
+    key = (kernel, replace)
+    found = _INLINE.get(key)
     if found is not None:
         return found
+    for old, new in replace:
+        if kernel is old:
+            return new
     func = kernel.py_func
     scope = dict(func.__globals__)
     for name in func.__code__.co_names:
         obj = scope.get(name)
         if isinstance(obj, numba.core.registry.CPUDispatcher):
-            scope[name] = inline_copy(obj)
+            scope[name] = inline_copy(obj, replace)
     copy = types.FunctionType(func.__code__, scope, func.__name__, func.__defaults__)
     found = numba.njit(inline="always", error_model="numpy")(copy)
-    _INLINE[kernel] = found
+    _INLINE[key] = found
     return found
+
+
+@numba.njit(inline="always", error_model="numpy")
+def stored_coefficients(inertia):
+    """:func:`~ga_rotors._kernels.euler_coefficients` of a body, stored beside its moments
+    in the batched loops' 9-tuple ``inertia`` (moments, then the six coefficients)."""
+    return inertia[3:9]
+
+
+#: What a batched loop's step calls instead of computing the coefficients (see
+#: :func:`inline_copy`): each body's are computed once, by euler_coefficients itself.
+STORED = ((euler_coefficients, stored_coefficients),)
 
 
 _INLINE: dict = {}
@@ -199,12 +218,30 @@ def benchmark(bodies: int = 10_000, steps: int = 1000, repeats: int = 5) -> str:
 # and torque parameters are stored one row per component (structure of arrays, params
 # of shape (P, n)) and read per body; the inner loop runs over the bodies of one
 # L1-sized chunk, as in rk4_free above.
+#
+# Two things keep that inner loop vectorised (a stand-alone copy of this loop, one thread,
+# heavy top with the general gravity kernel: 87 -> 104 M body-steps/s for the two):
+# * each body's Euler coefficients (six divisions: euler_coefficients) are computed once
+#   per call, by the same compiled function, and kept in a chunk-sized scratch array; the
+#   step reads them back through ``stored_coefficients`` (see STORED) instead of dividing
+#   in every stage of every step, where a single run's loop computes them once because
+#   its inertia is a loop invariant. ``inertia`` is then a 9-tuple (moments first, so a
+#   template reading inertia[0..2] reads the moments);
+# * the parameters are read from one row slice per parameter taken per chunk
+#   (``chunk_params``): indexing params[j, lo + i] made LLVM gather them one by one.
 
 
 def _scene_chunk(q, w, inertia, params, lo, hi, t0, h, marks, out_q, out_w):
     q0, q1, q2, q3 = q[0, lo:hi], q[1, lo:hi], q[2, lo:hi], q[3, lo:hi]
     w0, w1, w2 = w[0, lo:hi], w[1, lo:hi], w[2, lo:hi]
     i0, i1, i2 = inertia[0, lo:hi], inertia[1, lo:hi], inertia[2, lo:hi]
+    c = np.empty((6, hi - lo))
+    for i in range(hi - lo):
+        e = euler_coefficients((i0[i], i1[i], i2[i]))
+        for j in range(6):
+            c[j, i] = e[j]
+    c0, c1, c2, c3, c4, c5 = c[0], c[1], c[2], c[3], c[4], c[5]
+    rows = chunk_params(params, lo, hi)  # noqa: F821 (bound when compiled)
     done = 0
     for m in range(marks.shape[0]):
         for k in range(done, marks[m]):
@@ -212,7 +249,8 @@ def _scene_chunk(q, w, inertia, params, lo, hi, t0, h, marks, out_q, out_w):
             for i in range(hi - lo):
                 x, v = step(  # noqa: F821 (step, body_params: bound when compiled)
                     t, (q0[i], q1[i], q2[i], q3[i]), (w0[i], w1[i], w2[i]), h,
-                    (i0[i], i1[i], i2[i]), body_params(params, lo + i),  # noqa: F821
+                    body_inertia(i0[i], i1[i], i2[i], (c0[i], c1[i], c2[i], c3[i], c4[i], c5[i])),  # noqa: F821
+                    body_params(rows, i),  # noqa: F821
                 )  # fmt: skip
                 q0[i] = x[0]
                 q1[i] = x[1]
@@ -243,7 +281,7 @@ def _scene_soa(q, w, inertia, params, t0, h, marks, out_q, out_w, chunk):
 _SCENE_LOOPS: dict = {}
 
 
-def _compiled_scene_loop(integrator, problem, path: str, parallel: bool = True):
+def _compiled_scene_loop(integrator, problem, path: str, parallel: bool = True, stored=True):
     """The batched loop for one specialisation, compiled once per installation.
 
     Written as a module next to the generated single-run module (same cache directory,
@@ -252,6 +290,9 @@ def _compiled_scene_loop(integrator, problem, path: str, parallel: bool = True):
     ``parallel=False`` runs the chunks one after the other in the calling thread: for
     callers that run several loops at once in one process (threads of a Dask worker),
     which numba's default threading layer does not allow for parallel loops.
+    ``stored=False`` passes each body's moments alone as ``inertia`` (the coefficients
+    divided out in every stage): for a step template that unpacks ``inertia`` into three
+    names, which a 9-tuple cannot be.
     """
     import importlib.util
     import inspect
@@ -262,21 +303,27 @@ def _compiled_scene_loop(integrator, problem, path: str, parallel: bool = True):
 
     spec = specialise(integrator, problem, path)
     gen = spec.module.__name__
-    body_params = _body_params_source(problem)
+    chunk_params, body_params = _params_source(problem)
     # gen_batch-<the single-run module's stem without gen_>: the cache's own naming
     # (version and digest last), so `ga-rotors cache` lists, prunes and clears it too.
     stem = gen.removeprefix("_ga_rotors_gen_")
-    name = f"_ga_rotors_gen_batch{'par' if parallel else ''}-{stem}"
+    kind = ("par" if parallel else "") + ("" if stored else "div")
+    name = f"_ga_rotors_gen_batch{kind}-{stem}"
     found = _SCENE_LOOPS.get(name)
     if found is not None:
         return found
 
     def text(cache: bool) -> str:
+        replace = "STORED" if stored else "()"
         return (
             f'"""Generated by ga_rotors.ensemble for {gen}; do not edit."""\n\n'
-            "import sys\n\nfrom numba import prange\n\nfrom ga_rotors._jit import jit\n"
-            "from ga_rotors.ensemble import inline_copy\n\n"
-            f"step = inline_copy(sys.modules[{gen!r}].step)\n\n\n"
+            "import sys\n\nimport numpy as np\nfrom numba import prange\n\n"
+            "from ga_rotors._jit import jit\n"
+            "from ga_rotors._kernels import euler_coefficients\n"
+            "from ga_rotors.ensemble import STORED, inline_copy\n\n"
+            f"step = inline_copy(sys.modules[{gen!r}].step, {replace})\n\n\n"
+            f"@jit(cache={cache}, inline='always')\n{_body_inertia_source(stored)}\n\n"
+            f"@jit(cache={cache}, inline='always')\n{chunk_params}\n\n"
             f"@jit(cache={cache}, inline='always')\n{body_params}\n\n"
             f"@jit(cache={cache})\n{inspect.getsource(_scene_chunk)}\n\n"
             "chunk_loop = _scene_chunk\n\n\n"
@@ -306,18 +353,27 @@ def _compiled_scene_loop(integrator, problem, path: str, parallel: bool = True):
 
 #: The built-in torque kernels: each reads its parameters p[j] one by one, so it runs the
 #: same on a tuple as on an array. A registered or user kernel may use array operations.
-_INDEXING_KERNELS = ("body_torque", "damping", "gravity", "isotropic_damping", "space_torque")
+_INDEXING_KERNELS = (
+    "body_torque",
+    "damping",
+    "gravity",
+    "isotropic_damping",
+    "space_torque",
+    "vertical_gravity",
+)
 
 
-def _body_params_source(problem) -> str:
-    """``body_params(params, i)``: sample i's torque parameters, from params of shape (P, n).
+def _params_source(problem) -> tuple[str, str]:
+    """``chunk_params(params, lo, hi)`` and ``body_params(rows, i)``: one chunk's torque
+    parameters from params of shape (P, n), and sample lo + i's among them.
 
     A tuple of the P numbers when every declared torque is a built-in kernel: a tuple
     lives in registers, so the loop over bodies vectorises (an array view per body
     would be an object LLVM cannot keep in SIMD lanes: the gravity loop ran 5-7x slower
-    per body-step than the free one). A kernel that may use array operations gets
-    sample i's column as an array. Either way the values, and so the arithmetic, are
-    the single run's.
+    per body-step than the free one), read from one row slice per parameter (indexing
+    params[j, lo + i] made LLVM gather them). A kernel that may use array operations
+    gets sample i's column as an array. Either way the values, and so the arithmetic,
+    are the single run's.
     """
     size = int(problem.params().size)
     tuples = all(
@@ -325,10 +381,20 @@ def _body_params_source(problem) -> str:
         for term in problem.torques
     )
     if tuples:
-        value = "(" + "".join(f"params[{j}, i], " for j in range(size)).rstrip(" ") + ")"
+        rows = "(" + "".join(f"params[{j}, lo:hi], " for j in range(size)).rstrip(" ") + ")"
+        value = "(" + "".join(f"rows[{j}][i], " for j in range(size)).rstrip(" ") + ")"
     else:
-        value = "params[:, i]"
-    return f"def body_params(params, i):\n    return {value}\n"
+        rows, value = "params[:, lo:hi]", "rows[:, i]"
+    return (
+        f"def chunk_params(params, lo, hi):\n    return {rows}\n",
+        f"def body_params(rows, i):\n    return {value}\n",
+    )
+
+
+def _body_inertia_source(stored: bool) -> str:
+    """``body_inertia(i1, i2, i3, c)``: what a batched loop passes its step as ``inertia``."""
+    value = "(i1, i2, i3, c[0], c[1], c[2], c[3], c[4], c[5])" if stored else "(i1, i2, i3)"
+    return f"def body_inertia(i1, i2, i3, c):\n    return {value}\n"
 
 
 @dataclass
@@ -338,7 +404,12 @@ class SceneSamples:
     ``inertia`` (n, 3) principal moments, ``orientation`` (n, 4) and ``angular_velocity``
     (n, 3) the initial state, ``params`` (n, P) the packed parameters of the declared
     torques, ``principal`` (n, 4) the rotation P from principal to the scene's body axes
-    (identity unless the scene gives a full inertia tensor).
+    (identity unless the scene gives a full inertia tensor). ``torques``: the torque
+    terms the batch runs — the scene's, unless its samples' terms of one effect have
+    different kernels (a heavy top whose lever leaves the symmetry axis in some samples
+    only, :func:`ga_rotors.effects.gravity_kernel`): then the one kernel computing them
+    all (:func:`ga_rotors.effects.shared_kernel`), which gives the same numbers but for
+    the sign of a zero.
 
     Examples
     --------
@@ -353,6 +424,11 @@ class SceneSamples:
     angular_velocity: np.ndarray
     params: np.ndarray
     principal: np.ndarray
+    torques: tuple = None
+
+    def __post_init__(self):
+        if self.torques is None:
+            self.torques = tuple(self.scene.torques())
 
     def __len__(self) -> int:
         return self.inertia.shape[0]
@@ -462,11 +538,15 @@ def scene_samples(scene, changes=None, n: int | None = None) -> SceneSamples:
         )
     inertia, q0, w0 = np.empty((count, 3)), np.empty((count, 4)), np.empty((count, 3))
     params, principal = np.empty((count, base_params.size)), np.empty((count, 4))
-    names = [t.name for t in scene.torques()]
+    terms = tuple(scene.torques())
+    names = [t.name for t in terms]
+    kernels = [{t.kernel} for t in terms]
     for i in range(count):
         one = _sample_scene(scene, changes, i)
         if [t.name for t in one.torques()] != names:
             raise InputError(f"sample {i}: changes the scene's declared effects {names}")
+        for found, t in zip(kernels, one.torques(), strict=True):
+            found.add(t.kernel)
         for shared in ("time", "integrator"):
             if one.data[shared] != scene.data[shared]:
                 raise InputError(
@@ -475,7 +555,25 @@ def scene_samples(scene, changes=None, n: int | None = None) -> SceneSamples:
                 )
         inertia[i], q0[i], w0[i] = one.body.moments, one.orientation, one.angular_velocity
         params[i], principal[i] = _params(one), one.principal_rotation
-    return SceneSamples(scene, inertia, q0, w0, params, principal)
+    return SceneSamples(scene, inertia, q0, w0, params, principal, _shared(terms, kernels))
+
+
+def _shared(terms: tuple, kernels: list) -> tuple:
+    """The scene's terms, each with the one kernel its samples' kernels share."""
+    from dataclasses import replace
+
+    from .effects import shared_kernel
+
+    out = []
+    for term, found in zip(terms, kernels, strict=True):
+        kernel = shared_kernel(found)
+        if kernel is None:
+            raise InputError(
+                f"{term.name}: the samples' values give this effect different torque kernels "
+                f"({', '.join(sorted(k.__name__ for k in found))}), which one batch cannot run"
+            )
+        out.append(term if kernel is term.kernel else replace(term, kernel=kernel))
+    return tuple(out)
 
 
 def _sample_scene(scene, changes: dict, i: int):
@@ -565,7 +663,7 @@ def run_samples(
         )
     problem = base.Problem(
         scene.body.moments,
-        scene.torques(),
+        samples.torques,
         accept_lower_order=spec_method.get("accept_lower_order", False),
     )
     t0, h, nsteps = scene.data["time"]["start"], scene.step, scene.steps
@@ -577,8 +675,11 @@ def run_samples(
     inertia = np.ascontiguousarray(samples.inertia.T)
     params = np.ascontiguousarray(samples.params.T)
     out_x, out_w = np.empty((marks.size, 4, n)), np.empty((marks.size, 3, n))
-    loop = _compiled_scene_loop(method, problem, path, parallel)
-    loop(x, w, inertia, params, float(t0), float(h), marks, out_x, out_w, int(chunk))
+    args = (x, w, inertia, params, float(t0), float(h), marks, out_x, out_w, int(chunk))
+    try:
+        _compiled_scene_loop(method, problem, path, parallel)(*args)
+    except numba.core.errors.TypingError:  # a step that unpacks inertia: see stored=False
+        _compiled_scene_loop(method, problem, path, parallel, stored=False)(*args)
     q = module.quaternions(out_x.transpose(0, 2, 1))
     w = out_w.transpose(0, 2, 1)
     return EnsembleRun(t0 + marks * h, np.ascontiguousarray(q), np.ascontiguousarray(w))

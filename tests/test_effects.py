@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from hypothesis import given
+from hypothesis import strategies as st
 from scipy.spatial.transform import Rotation
 
 from ga_rotors import effects, shapes
@@ -47,6 +49,41 @@ def test_kernels_match_numpy_oracles(compiled):
             f = kernel if compiled else kernel.py_func
             got = np.array(f(0.0, q, w, np.ascontiguousarray(params)))
             assert np.allclose(got, expected, rtol=0, atol=1e-14), name
+
+
+# Finite inputs whose products cannot overflow (subnormals included): there
+# vertical_gravity's claim is exact, bit for bit but for the sign of a zero.
+_COMPONENT = st.floats(-1e10, 1e10, allow_nan=False, allow_infinity=False)
+_LEVEL = st.floats(-1e50, 1e50, allow_nan=False, allow_infinity=False)
+
+
+@given(q=st.tuples(_COMPONENT, _COMPONENT, _COMPONENT, _COMPONENT), fz=_LEVEL, rz=_LEVEL)
+def test_vertical_gravity_is_gravity_with_its_products_with_zero_left_out(q, fz, rz):
+    # == on floats: equal values, and -0.0 == 0.0 (the one difference the kernel allows)
+    p = np.array([0.0, 0.0, fz, 0.0, 0.0, rz])
+    w = (0.0, 0.0, 0.0)
+    for kernel, general in (
+        (effects.vertical_gravity, effects.gravity),
+        (effects.vertical_gravity.py_func, effects.gravity.py_func),
+    ):
+        assert kernel(0.0, q, w, p) == general(0.0, q, w, p)
+
+
+def test_a_scene_runs_the_specialised_gravity_kernel_only_where_it_applies():
+    from ga_rotors.scene import load_scene
+
+    top = load_scene("heavy_top").replace({"output.quantities": ["angles"], "output.plots": []})
+    changed = {
+        "heavy top": {},
+        "lever off the axis": {"effects[0].pivot_to_com": [0.01, 0.0, 0.04]},
+        "tilted gravity": {"effects[0].g": [0.5, 0.0, -9.8]},
+    }
+    got = {k: top.replace(c).torques()[0].kernel for k, c in changed.items()}
+    assert got == {
+        "heavy top": effects.vertical_gravity,
+        "lever off the axis": effects.gravity,
+        "tilted gravity": effects.gravity,
+    }
 
 
 def test_parallel_axis_theorem_against_point_masses():

@@ -192,3 +192,61 @@ def test_a_user_kernel_gets_its_parameters_as_an_array_and_follows_the_single_ru
         changes = {"effects[0].params": [[0.5, 0.25, 9.0], [1.0, 0.0, 9.0], [0.0, 2.0, 9.0]]}
         run = check_samples_follow_single_runs(scene, changes, [0.05])
     assert not np.array_equal(run.q[-1, 0], run.q[-1, 2])
+
+
+def test_samples_whose_gravity_kernels_differ_run_one_kernel_and_follow_their_single_runs():
+    # A lever on the symmetry axis runs vertical_gravity in a single run, a lever off it
+    # the general gravity; one batch runs the general one for all, which gives the same
+    # numbers (it differs at most in the sign of a zero).
+    from ga_rotors import effects
+
+    scene = load_scene("heavy_top").replace(
+        {"time.duration": 0.02, "output.quantities": ["angles"], "output.plots": []}
+    )
+    pivots = [[0.0, 0.0, 0.03], [0.002, 0.0, 0.04], [0.0, 0.0, 0.05]]
+    changes = {"effects[0].pivot_to_com": pivots}
+    assert scene_samples(scene, changes).torques[0].kernel is effects.gravity
+    assert scene.torques()[0].kernel is effects.vertical_gravity
+    check_samples_follow_single_runs(scene, changes, [0.01, 0.02])
+    same = {"effects[0].pivot_to_com": [pivots[0], pivots[2]]}
+    assert scene_samples(scene, same).torques[0].kernel is effects.vertical_gravity
+
+
+@pytest.mark.parametrize("method", ["lgvi", "cf4", "dp8"])
+def test_samples_of_other_fixed_step_methods_follow_single_runs_bit_for_bit(method):
+    # Their steps read the 9-tuple inertia the batch passes (moments, then each body's
+    # stored Euler coefficients): lgvi indexes the moments, cf4 and dp8 go through accel.
+    scene = load_scene("heavy_top").replace(
+        {"time.duration": 0.005, "integrator.method": method, "integrator.paths": ["quaternion"]}
+    )
+    changes = {"effects[0].pivot_to_com[2]": [0.03, 0.04, 0.05],
+               "initial.angular_velocity.body[2]": [60.0, 55.0, 70.0]}  # fmt: skip
+    check_samples_follow_single_runs(scene, changes, [0.005])
+
+
+from ga_rotors.integrators.rk4 import RK4, rk4_step  # noqa: E402
+
+
+def _unpacking_step(t, x, w, h, inertia, params):
+    """rk4_step for a template that unpacks inertia into three names."""
+    i1, i2, i3 = inertia
+    return rk4_step(t, x, w, h, (i1, i2, i3), params)
+
+
+def test_a_step_that_unpacks_inertia_gets_the_moments_alone(monkeypatch):
+    # The batch's 9-tuple cannot be unpacked into three names: such a template is
+    # compiled again with the moments alone (each stage divides; same numbers).
+    from ga_rotors.integrators import TemplateIntegrator, base
+
+    mine = TemplateIntegrator(
+        name="rk4_unpacking", order=4, description="rk4 unpacking its inertia",
+        conserves=(), paths=("quaternion",), steps={"torqued": _unpacking_step},
+        helpers=(rk4_step,), step_limit=RK4.step_limit, evaluations=4,
+    )  # fmt: skip
+    monkeypatch.setitem(base._REGISTRY, mine.name, mine)
+    scene = load_scene("heavy_top").replace(
+        {"time.duration": 0.003, "integrator.method": mine.name,
+         "integrator.paths": ["quaternion"]}
+    )  # fmt: skip
+    changes = {"initial.angular_velocity.body[2]": [60.0, 55.0]}
+    check_samples_follow_single_runs(scene, changes, [0.003])

@@ -59,7 +59,9 @@ RESIDUAL_ROUNDING = 64 * 2.220446049250313e-16
 def discrete_rotation(g, inertia, guess):
     """Unit quaternion F = (s, v) with 2 (s I v + v × I v) = g, by Newton's method."""
     v = guess
-    i1, i2, i3 = inertia
+    # indexed, not unpacked: a batched loop passes a body's moments followed by more
+    # numbers (ga_rotors.ensemble); the first three are the moments either way
+    i1, i2, i3 = inertia[0], inertia[1], inertia[2]
     best, best_v, best_scale = math.inf, v, 0.0
     for _ in range(30):
         s = sqrt(1.0 - (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]))
