@@ -22,7 +22,8 @@ ROOT = Path(__file__).resolve().parent.parent
 
 #: One scene entry per effect type, and the kernel each must put in the generated loop.
 ENTRIES = {
-    "gravity": ({"type": "gravity", "pivot_to_com": [0.0, 0.0, 0.1]}, "gravity"),
+    "gravity": ({"type": "gravity", "pivot_to_com": [0.0, 0.0, 0.1]}, "vertical_gravity"),
+    "gravity_off_axis": ({"type": "gravity", "pivot_to_com": [0.01, 0.0, 0.1]}, "gravity"),
     "damping": ({"type": "damping", "coefficient": 1e-3}, "isotropic_damping"),
     "damping3": ({"type": "damping", "coefficient": [1e-3, 2e-3, 3e-3]}, "damping"),
     "body_torque": ({"type": "body_torque", "torque": [0.0, 0.0, 1e-3]}, "body_torque"),
@@ -69,7 +70,7 @@ def test_only_the_declared_effect_is_in_the_generated_loop(name, tests_code):
 def test_two_effects_make_a_sum_of_exactly_two_terms():
     s = scene_with(ENTRIES["gravity"][0], ENTRIES["space_torque"][0])
     text = generated_source(s, "rotor")
-    assert imported_kernels(text) == {"gravity", "space_torque"}
+    assert imported_kernels(text) == {"vertical_gravity", "space_torque"}
     assert "params[0:6]" in text and "params[6:9]" in text
 
 
@@ -104,7 +105,7 @@ def test_undeclared_effects_are_never_evaluated_uncompiled(tmp_path):
             return declared(t, q, w, p)
         space_torque.__module__ = "ga_rotors.effects"
 
-        for name in ("gravity", "isotropic_damping", "damping", "body_torque"):
+        for name in ("gravity", "vertical_gravity", "isotropic_damping", "damping", "body_torque"):
             setattr(E, name, tripwire(name))
         E.space_torque = space_torque
         s = Scene({
