@@ -268,10 +268,8 @@ class AsymmetricTop:
         """
         return self.body.from_principal(None, self._angular_velocity(_times(t)))[1]
 
-    def _angular_velocity(self, t):
-        """ω(t) in the principal frame, shape (n, 3)."""
-        if self._steady:
-            return np.tile(self._w0, (t.size, 1))
+    def _argument(self, u):
+        """The Jacobi arguments u, reduced (:class:`elliptic.JacobiArgument`)."""
         if self.m1 < elliptic.MIN_M1:
             raise PrecisionError(
                 f"asymmetric top reference: 1 − m = {self.m1:.3g} is below "
@@ -279,7 +277,17 @@ class AsymmetricTop:
                 "accuracy; the motion is too close to the separatrix for double precision "
                 "(move the initial ω off it by more than ~1e-77 relative)"
             )
-        sn, cn, dn = elliptic.jacobi(self.rate * t + self._u0, self.m, self.m1)
+        return elliptic.JacobiArgument(u, self.m, self.m1)
+
+    def _angular_velocity(self, t, arg=None):
+        """ω(t) in the principal frame, shape (n, 3) (``arg``: the Jacobi arguments of
+        ``t``, :class:`~ga_rotors.reference.elliptic.JacobiArgument`, when the caller has
+        them)."""
+        if self._steady:
+            return np.tile(self._w0, (t.size, 1))
+        if arg is None:
+            arg = self._argument(self.rate * t + self._u0)
+        sn, cn, dn = arg.jacobi()
         a, b, c = self._axes
         out = np.empty((t.size, 3))
         out[:, a] = self._amp[0] * dn
@@ -307,15 +315,17 @@ class AsymmetricTop:
         True
         """
         t = _times(t)
-        w = self._angular_velocity(t)
         if self._steady:
+            w = self._angular_velocity(t)
             half = 0.5 * t[:, None] * np.asarray(self._w0)
             rot = Q.exp(np.concatenate([np.zeros((t.size, 1)), half], axis=1))
             q = Q.multiply(self._q0, rot)
             err = 8.0 * _EPS * (1.0 + np.abs(t) * np.abs(self._w0).max())
             return self._checked(self._user_frame(State(q, w, err)), max_error)
         u = self.rate * t + self._u0
-        pi = elliptic.pi_integral(u, self._n, self.m, self.m1)
+        arg = self._argument(u)  # reduced once for ω and Π
+        w = self._angular_velocity(t, arg)
+        pi = arg.pi_integral(self._n)
         psi = self.momentum * t / self.moments[self._axes[0]] + self._coef * (pi - self._pi0)
         e = self._direction(w)
         q = Q.multiply(

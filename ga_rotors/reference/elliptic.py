@@ -16,6 +16,9 @@ uses m₁ wherever 1 − m would appear.
 * :func:`pi_integral` — ∫₀ᵘ dτ / (1 − n sn²τ), the elliptic integral of the third kind in
   Jacobi's argument, via Carlson's R_J (DLMF 19.25.14), quasi-periodic continuation with
   the complete integral.
+* :class:`JacobiArgument` — arguments u reduced once, for :func:`jacobi` and any number of
+  :func:`pi_integral` characteristics at the same u and m (an exact reference evaluates
+  all three at every sample: the reduction and the Gauss transformation are done once).
 """
 
 from __future__ import annotations
@@ -28,6 +31,7 @@ from scipy.special import ellipkm1, elliprf, elliprj
 
 __all__ = [
     "MIN_M1",
+    "JacobiArgument",
     "complete_first",
     "incomplete_first",
     "jacobi",
@@ -138,14 +142,70 @@ def jacobi(u, m: float, m1: float):
     >>> bool(np.isclose(sn, np.tanh(0.7)) and np.isclose(cn, 1 / np.cosh(0.7)))
     True
     """
-    u = np.asarray(u, dtype=float)
-    if m1 == 0.0:
-        sech = 1.0 / np.cosh(u)
-        return np.tanh(u), sech, sech.copy()
-    j, r, _ = _reduce(u, m, m1)
-    sn, cn, dn = _jacobi_reduced(r, m, m1)
-    sign = 1.0 - 2.0 * np.mod(j, 2.0)  # sn(u + 2K) = −sn u, cn(u + 2K) = −cn u
-    return sign * sn, sign * cn, dn
+    return JacobiArgument(u, m, m1).jacobi()
+
+
+class JacobiArgument:
+    """Jacobi arguments u reduced once: u = 2jK + r, r ∈ [−K, K], with sn, cn, dn of r.
+
+    :func:`jacobi` and :func:`pi_integral` both start from this reduction and from the
+    descending Gauss transformation of r; a caller that needs sn, cn, dn and Π for one or
+    more characteristics at the same arguments (the heavy top's state: Π for n₊ and n₋)
+    builds one and asks it for each, with the same results as the separate functions.
+
+    Parameters
+    ----------
+    u : array_like
+        Argument(s).
+    m, m1 : float
+        Parameter and complementary parameter, as in :func:`jacobi`.
+
+    Examples
+    --------
+    >>> arg = JacobiArgument([0.4, 5.0], 0.3, 0.7)
+    >>> sn, cn, dn = arg.jacobi()
+    >>> bool(np.array_equal(sn, jacobi([0.4, 5.0], 0.3, 0.7)[0]))
+    True
+    >>> bool(np.array_equal(arg.pi_integral(-0.5), pi_integral([0.4, 5.0], -0.5, 0.3, 0.7)))
+    True
+    """
+
+    def __init__(self, u, m: float, m1: float):
+        self.u = np.asarray(u, dtype=float)
+        self.m, self.m1 = m, m1
+        if m1 == 0.0:  # the separatrix limit: closed forms, nothing to reduce
+            self.j = self.r = self.k = self.reduced = None
+            return
+        self.j, self.r, self.k = _reduce(self.u, m, m1)
+        self.reduced = _jacobi_reduced(self.r, m, m1)
+
+    def jacobi(self):
+        """sn(u|m), cn(u|m), dn(u|m) (:func:`jacobi`)."""
+        if self.reduced is None:
+            sech = 1.0 / np.cosh(self.u)
+            return np.tanh(self.u), sech, sech.copy()
+        sn, cn, dn = self.reduced
+        sign = 1.0 - 2.0 * np.mod(self.j, 2.0)  # sn(u + 2K) = −sn u, cn(u + 2K) = −cn u
+        return sign * sn, sign * cn, dn
+
+    def pi_integral(self, n: float, n1: float | None = None):
+        """Π(n; am u | m) (:func:`pi_integral`, which see for ``n`` and ``n1``)."""
+        if not n < 1.0:
+            raise ValueError(f"n: expected n < 1, got {n!r}")
+        if n1 is None:
+            n1 = 1.0 - n
+        if self.reduced is None:
+            if n > 0.0:
+                raise ValueError("pi_integral: m = 1 is implemented for n ≤ 0 only")
+            u, nu = self.u, -n  # ∫ dτ/(1 + ν tanh²τ) = (τ + √ν atan(√ν tanh τ)) / (1 + ν)
+            return (u + np.sqrt(nu) * np.arctan(np.sqrt(nu) * np.tanh(u))) / (1.0 + nu)
+        s, c, d = self.reduced
+        p = n1 + n * c * c if n > 0.0 else 1.0 - n * s * s
+        part = self.r + (n / 3.0) * s**3 * elliprj(c * c, d * d, 1.0, p)
+        if not np.any(self.j):
+            return part
+        complete = self.k + (n / 3.0) * elliprj(0.0, self.m1, 1.0, n1)
+        return 2.0 * self.j * complete + part
 
 
 def incomplete_first(phi, m: float, m1: float):
@@ -243,21 +303,6 @@ def pi_integral(u, n: float, m: float, m1: float, n1: float | None = None):
     ...      np.arctan(np.sqrt(1.5) * np.tan(0.4)) / np.sqrt(1.5)))
     True
     """
-    if not n < 1.0:
+    if not n < 1.0:  # before any work
         raise ValueError(f"n: expected n < 1, got {n!r}")
-    if n1 is None:
-        n1 = 1.0 - n
-    u = np.asarray(u, dtype=float)
-    if m1 == 0.0:
-        if n > 0.0:
-            raise ValueError("pi_integral: m = 1 is implemented for n ≤ 0 only")
-        nu = -n  # ∫ dτ/(1 + ν tanh²τ) = (τ + √ν atan(√ν tanh τ)) / (1 + ν)
-        return (u + np.sqrt(nu) * np.arctan(np.sqrt(nu) * np.tanh(u))) / (1.0 + nu)
-    j, r, k = _reduce(u, m, m1)
-    s, c, d = _jacobi_reduced(r, m, m1)
-    p = n1 + n * c * c if n > 0.0 else 1.0 - n * s * s
-    part = r + (n / 3.0) * s**3 * elliprj(c * c, d * d, 1.0, p)
-    if not np.any(j):
-        return part
-    complete = k + (n / 3.0) * elliprj(0.0, m1, 1.0, n1)
-    return 2.0 * j * complete + part
+    return JacobiArgument(u, m, m1).pi_integral(n, n1)

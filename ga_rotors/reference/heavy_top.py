@@ -380,12 +380,15 @@ class HeavyTop:
                 "~1e-154 of the unstable vertical separatrix)"
             )
         r = self.rate * t + self._r0
-        sn, cn, dn = elliptic.jacobi(r, self.m, self.m1)
+        arg = elliptic.JacobiArgument(r, self.m, self.m1)  # reduced once for sn, Π₊, Π₋
+        sn, cn, dn = arg.jacobi()
         one_minus = self._om1 * (self._n1_plus + self._n_plus * cn * cn)
         one_plus = self._op1 * (1.0 - self._n_minus * sn * sn)
         theta = 2.0 * np.arctan2(np.sqrt(one_minus), np.sqrt(one_plus))
-        p_plus = (self._pi_plus(r) - self._p0[0]) / (self.rate * self._om1)
-        p_minus = (self._pi_minus(r) - self._p0[1]) / (self.rate * self._op1)
+        pi_plus = arg.pi_integral(self._n_plus, self._n1_plus)
+        pi_minus = arg.pi_integral(self._n_minus, self._n1_minus)
+        p_plus = (pi_plus - self._p0[0]) / (self.rate * self._om1)
+        p_minus = (pi_minus - self._p0[1]) / (self.rate * self._op1)
         half_bma, half_bpa = 0.5 * self._b_minus_a, 0.5 * self._b_plus_a
         psi = self._psi0 + half_bma * p_plus + half_bpa * p_minus
         phi = self._phi0 + (self._w3 - self._a) * t - half_bma * p_plus + half_bpa * p_minus
