@@ -45,8 +45,16 @@ class PathComparison:
         )
 
 
-def cross_check(trajectory: Trajectory) -> list[PathComparison]:
+def cross_check(trajectory: Trajectory, normalised=None) -> list[PathComparison]:
     """Compare every pair of orientation paths present in ``trajectory``.
+
+    Parameters
+    ----------
+    trajectory : Trajectory
+    normalised : dict, optional
+        path -> its orientations already normalised (``quaternion.normalize`` of
+        ``trajectory.quaternions(path)``), for a caller that has them (a run's summary
+        uses them for its exact errors too); the others are computed here.
 
     Returns
     -------
@@ -69,7 +77,8 @@ def cross_check(trajectory: Trajectory) -> list[PathComparison]:
     if len(present) < 2:
         raise InputError(f"trajectory: cross-checking needs two paths, it has {present}")
     # Between rotations: each path's own norm drift is not a disagreement.
-    quats = {p: normalize(trajectory.quaternions(p)) for p in present}
+    given = normalised or {}
+    quats = {p: given[p] if p in given else normalize(trajectory.quaternions(p)) for p in present}
     out = []
     for a, b in combinations(present, 2):
         n = min(quats[a].shape[0], quats[b].shape[0])

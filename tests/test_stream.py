@@ -209,6 +209,35 @@ def test_a_stopped_path_streams_as_it_stops(tmp_path):
     _compare_files(scene, tmp_path / "streamed", tmp_path / "whole")
 
 
+def test_the_summary_evaluates_the_reference_once_for_every_path_and_omega(monkeypatch):
+    """One evaluation of the exact solution per piece serves the ω error and each path's
+    orientation error, a stopped path reading only its own rows: the same numbers as each
+    error computed on its own from the reference."""
+    scene = load_scene("spinning_disk").replace(
+        {"initial.orientation.euler": [0.0, 0.0, 0.0], "time.duration": 0.5,
+         "output.quantities": []}
+    )  # fmt: skip
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        tr = run_scene(scene)
+    exact = scene.exact_solution
+    assert tr["euler"].shape[0] < len(tr)  # the Euler path stopped: fewer rows
+    calls = []
+    evaluate = type(exact).state
+    monkeypatch.setattr(
+        type(exact), "state", lambda self, t: calls.append(len(t)) or evaluate(self, t)
+    )
+    rep = report(scene, tr)
+    assert calls.count(len(tr)) == 1
+    monkeypatch.undo()
+    for path in scene.paths:
+        q = Q.normalize(tr.quaternions(path))
+        alone = exact.orientation_error(tr.t[: q.shape[0]], q).max()
+        assert rep.values[f"error_{path}"] == alone, path
+    omega = np.linalg.norm(tr.w - exact.angular_velocity(tr.t[: tr.w.shape[0]]), axis=-1)
+    assert rep.values["omega_error"] == omega.max()
+
+
 def test_a_long_runs_figure_keeps_every_samples_extremes():
     """Beyond KEEP_ALL samples the figure's copy is thinned: bounded, and each column's
     smallest and largest value (spikes) survive."""

@@ -308,7 +308,10 @@ class RunSummary:
         if n == 0:
             return
         t = piece.t[:n]
-        q = Q.normalize(piece.quaternions())[:n]
+        # each path's orientations normalised once, for the invariants, the cross-check
+        # and the exact errors alike
+        unit = {path: Q.normalize(piece.quaternions(path)) for path in piece.paths}
+        q = unit[piece.paths[0]][:n]
         if self.first is None:
             t_end = float(piece.t[0]) + piece.meta["steps"] * piece.meta["step"]
             self.first = (float(t[0]), w[0].copy(), q[0].copy(), t_end)
@@ -316,13 +319,13 @@ class RunSummary:
             self.labels[key] = (label, scale)
             self._max(f"drift_{key}", deviation)
         if len(self.scene.paths) > 1:
-            self._cross(piece)
+            self._cross(piece, unit)
         if self.scene.exact is not None and self.exact_failure is None:
-            self._exact(piece, t, w, q)
+            self._exact(piece, t, w, q, unit)
         self.last = (t[-1:].copy(), w[-1:].copy(), q[-1:].copy())
         self.final = (float(t[-1]), w[-1].copy())
 
-    def _cross(self, piece: Trajectory) -> None:
+    def _cross(self, piece: Trajectory, unit: dict) -> None:
         from .. import paths as _paths
         from ..crosscheck import cross_check
 
@@ -333,13 +336,13 @@ class RunSummary:
         if ended:
             keep = [n for n in piece.names if n not in ended]
             piece = Trajectory({n: piece[n] for n in keep}, piece.components, piece.meta)
-        for c in cross_check(piece):
+        for c in cross_check(piece, unit):
             old = self.cross.setdefault(c.paths, [c.max_angle, c.at_time, 0])
             if c.max_angle > old[0]:
                 old[0], old[1] = c.max_angle, c.at_time
             old[2] += c.samples
 
-    def _exact(self, piece: Trajectory, t, w, q) -> None:
+    def _exact(self, piece: Trajectory, t, w, q, unit: dict) -> None:
         from .. import quaternion as Q
         from ..errors import GaRotorsError
 
@@ -353,7 +356,9 @@ class RunSummary:
             if exact.has_orientation:
                 for path in scene.paths:
                     if f"error_{path}" not in piece:
-                        quats[path] = Q.normalize(piece.quaternions(path))
+                        quats[path] = (
+                            unit[path] if path in unit else Q.normalize(piece.quaternions(path))
+                        )
             rows = max([w.shape[0] if need_w else 0] + [qp.shape[0] for qp in quats.values()])
             q_ref = w_ref = None
             if rows:
