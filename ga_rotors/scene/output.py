@@ -60,30 +60,39 @@ def _write(scene: Scene, pieces, stage: Path | None, summarise: bool):
     (``summarise``) the summary; write the figure, summary and scene files; return the
     Report (None unless ``summarise``).
 
-    A piece is consumed (written, measured, thinned) in a second thread while the next
-    one is integrated: the compiled loops and the CSV formatting release the GIL, so on
-    two cores they overlap. One piece is consumed at a time, in order, and every
-    consumer has finished before this returns or raises: nothing writes into the staging
-    folder after a failure or an interrupt.
+    A piece is consumed in two more threads while the next one is integrated: one writes
+    it to the data files, the other measures it (summary) and thins it (figure). The
+    compiled loops, the CSV formatting and numpy's array loops release the GIL, so on two
+    cores the three overlap; each consumer takes the pieces one at a time, in order, and
+    both have finished with a piece before the next is handed over. Every consumer has
+    finished before this returns or raises: nothing writes into the staging folder after
+    a failure or an interrupt.
     """
     from concurrent.futures import ThreadPoolExecutor
 
     out = scene.data["output"]
     sink = _Sink(scene, stage, summarise)
     try:
-        with ThreadPoolExecutor(max_workers=1, thread_name_prefix="ga_rotors-writer") as pool:
-            pending = None
+        with (
+            ThreadPoolExecutor(max_workers=1, thread_name_prefix="ga_rotors-writer") as files,
+            ThreadPoolExecutor(max_workers=1, thread_name_prefix="ga_rotors-summary") as measures,
+        ):
+            pending = []
             try:
                 for piece in pieces:  # integrated here, consumed there
-                    if pending is not None:
-                        pending.result()  # the previous piece is done (or its error raised)
-                    pending = pool.submit(sink.add, piece)
+                    for future in pending:
+                        future.result()  # the previous piece is done (or its error raised)
+                    sink.meta = piece.meta
+                    pending = [
+                        files.submit(sink.write, piece),
+                        measures.submit(sink.measure, piece),
+                    ]
             except BaseException:
-                if pending is not None:
-                    pending.cancel()  # not started: dropped; started: the pool waits for it
+                for future in pending:
+                    future.cancel()  # not started: dropped; started: its pool waits for it
                 raise
-            if pending is not None:
-                pending.result()
+            for future in pending:
+                future.result()
         sink.close()
     except BaseException:
         sink.abort()
@@ -119,7 +128,13 @@ class _Sink:
         self.figure = stage is not None and bool(out["plots"])
         self.thin = self.balance = None
 
-    def add(self, piece: Trajectory) -> None:
+    def write(self, piece: Trajectory) -> None:
+        """Append ``piece`` to the data files."""
+        for writer in self.writers:
+            writer.append(piece)
+
+    def measure(self, piece: Trajectory) -> None:
+        """Add ``piece`` to the summary and the figure's thinned copy."""
         from .figures import energy_balance_drawn
         from .thinning import ThinnedCopy
 
@@ -131,13 +146,10 @@ class _Sink:
             self.thin = ThinnedCopy(float(piece.t[0]), t_end, count)
             if not self.thin.keep_all and energy_balance_drawn(self.scene):
                 self.balance = _Balance(self.scene)
-        for writer in self.writers:
-            writer.append(piece)
         if self.summary is not None:
             self.summary.add(piece)
         if self.thin is not None:
             self.thin.add(piece if self.balance is None else self.balance.add(piece))
-        self.meta = piece.meta
 
     def close(self) -> None:
         for writer in self.writers:
