@@ -230,28 +230,73 @@ def test_the_command_names_the_extra_when_dask_is_missing(tmp_path, monkeypatch)
 def test_chunks_go_through_zarr_when_a_store_is_not_laid_out_raw(tmp_path, reference, monkeypatch):
     # Chunks are written as raw bytes into the store's files (the layout the sweep creates:
     # uncompressed, unfiltered, C order); any other layout is left to zarr's own writes.
-    from ga_rotors.sweep import run as sweep_run
+    from ga_rotors.sweep import store
 
-    monkeypatch.setattr(sweep_run, "_layout", lambda store, name: None)
+    monkeypatch.setattr(store, "_layout", lambda store, name: None)
     out = run_sweep(SWEEP, tmp_path / "s.zarr", client="sync")
     xr.testing.assert_identical(open_sweep(out).load(), reference)
 
 
-def test_a_failed_background_write_is_raised_not_lost(tmp_path, monkeypatch):
-    from ga_rotors.sweep import run as sweep_run
+def _disk_full_at(monkeypatch, name: str, chunk: int):
+    from ga_rotors.sweep import store
 
-    def disk_full(store, name, block, *, c, lo):
-        if name == "w" and c == 1:
+    def disk_full(path, variable, block, c):
+        if variable == name and c == chunk:
             raise OSError(28, "No space left on device")
-        return real(store, name, block, c=c, lo=lo)
+        return real(path, variable, block, c)
 
-    real = sweep_run._write_block
-    monkeypatch.setattr(sweep_run, "_write_block", disk_full)
+    real = store.write_chunk
+    monkeypatch.setattr(store, "write_chunk", disk_full)
+
+
+def test_a_failed_background_write_is_raised_not_lost(tmp_path, monkeypatch):
+    _disk_full_at(monkeypatch, "w", 1)
     out = tmp_path / "s.zarr"
-    with pytest.raises(OSError, match="No space left"):
+    with pytest.raises(
+        InputError, match=r"--out: cannot write .*s\.zarr \(chunk 1 of w\): No space"
+    ):
         run_sweep(SWEEP, out, client="sync")
     with pytest.raises(InputError, match="2 of 3 chunks are not written yet"):
         open_sweep(out)  # chunk 1 lost its flag; chunk 2 stopped on chunk 1's failed write
+
+
+def test_a_full_disk_is_one_line_naming_the_store(tmp_path, monkeypatch):
+    # On the command line, run here or on a local cluster (threads, so the fault reaches
+    # the workers too: the error crosses Dask as it would from a worker process).
+    _disk_full_at(monkeypatch, "q", 2)
+    spec = tmp_path / "dispersion.toml"
+    spec.write_text(SWEEP)
+    for where, store in ((["--here"], "here.zarr"), (None, "dask.zarr")):
+        err = io.StringIO()
+        argv = ["sweep", str(spec), "--out", str(tmp_path / store), "--no-progress"]
+        with contextlib.ExitStack() as stack:
+            stack.enter_context(contextlib.redirect_stderr(err))
+            stack.enter_context(contextlib.redirect_stdout(io.StringIO()))
+            if where is None:
+                cluster = stack.enter_context(distributed.LocalCluster(
+                    n_workers=2, threads_per_worker=1, processes=False, dashboard_address=None
+                ))  # fmt: skip
+                address = cluster.scheduler_address
+                argv += ["--scheduler", address]
+            else:
+                argv += where
+            status = main(argv)
+        lines = err.getvalue().strip().splitlines()
+        assert status == 2 and len(lines) == 1, (where, err.getvalue())
+        assert lines[0].startswith("ga-rotors: error: --out: cannot write ")
+        assert f"{store} (chunk 2 of q): No space left on device" in lines[0]
+
+
+def test_a_full_disk_while_creating_the_store_is_one_line(tmp_path, monkeypatch):
+    from ga_rotors.sweep import store
+
+    def disk_full(path, data):
+        raise OSError(28, "No space left on device")
+
+    monkeypatch.setattr(store, "_write", disk_full)
+    with pytest.raises(InputError, match=r"cannot write .*s\.zarr \(creating it\): No space"):
+        run_sweep(SWEEP, tmp_path / "s.zarr", client="sync")
+    assert list(tmp_path.iterdir()) == []  # no store, no staging left
 
 
 def test_a_sample_that_blows_up_is_nan_and_the_others_are_kept(tmp_path):
@@ -285,3 +330,46 @@ def test_a_store_made_again_by_another_sweep_gets_its_own_chunks(tmp_path, refer
     assert again["q"].encoding["chunks"][0] == 3
     for name in ("q", "w", "angle_from_nominal", "value_0", "value_1", "value_2"):
         assert np.array_equal(again[name].values, reference[name].values, equal_nan=True), name
+
+
+def test_the_summary_of_a_time_where_every_sample_blew_up_is_nan_without_a_warning():
+    ds = xr.Dataset(
+        {"angle_from_nominal": (("sample", "time"), [[0.01, np.nan], [0.02, np.nan]])},
+        coords={"t": ("time", [1.0, 2.0])},
+    )
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # numpy's "All-NaN slice encountered" among them
+        lines = summary(ds).splitlines()
+    assert lines[2].split() == ["2", "nan", "nan", "nan"]
+    assert lines[1].split()[0] == "1" and "nan" not in lines[1]
+
+
+def test_the_store_reads_back_as_the_store_xarray_writes_from_the_same_template(tmp_path):
+    # The sweep writes its store's zarr metadata itself (fast); xarray writing the same
+    # template is the oracle: both read back identical, chunking and fill values alike.
+    from ga_rotors.sweep import run as sweep_run
+    from ga_rotors.sweep import store
+
+    sweep = load_sweep(SWEEP)
+    template = sweep_run._template(sweep, np.eye(4)[:2], np.array([0.01, 0.02]))
+    ours, theirs = tmp_path / "ours.zarr", tmp_path / "theirs.zarr"
+    chunked = sweep_run._chunked(template)
+    store.create(ours, template, {"sample": 4, "chunk": 1}, chunked)
+    encoding = {n: {"compressors": None, **v.encoding} for n, v in template.variables.items()}
+    lazy = template.copy()
+    for name in chunked:
+        dims = {"sample": 4, "chunk": 1}
+        lazy[name] = lazy[name].chunk({d: dims[d] for d in lazy[name].dims if d in dims})
+    lazy.to_zarr(theirs, compute=False, zarr_format=2, consolidated=True, encoding=encoding)
+    a, b = xr.open_zarr(ours, consolidated=True), xr.open_zarr(theirs, consolidated=True)
+    xr.testing.assert_identical(a.load(), b.load())
+    for name in template.variables:
+        assert a[name].encoding["chunks"] == b[name].encoding["chunks"] or name not in chunked
+        assert a[name].encoding.get("_FillValue") == b[name].encoding.get("_FillValue") or (
+            np.isnan(a[name].encoding["_FillValue"]) and np.isnan(b[name].encoding["_FillValue"])
+        ), name
+    assert a["q"].encoding["chunks"] == (4, 2, 4)
+    # and a chunk written raw reads back through zarr
+    store.write_chunk(ours, "q", np.arange(24.0).reshape(3, 2, 4), 2)
+    q = xr.open_zarr(ours)["q"].values
+    assert np.array_equal(q[8:], np.arange(16.0).reshape(2, 2, 4)) and np.isnan(q[:8]).all()

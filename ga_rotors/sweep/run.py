@@ -2,13 +2,16 @@
 
 The store is created whole first (in a staging directory, then renamed into place): every
 variable at its full size, chunked along ``sample`` as the sweep's ``chunk``, plus a
-``chunk_done`` flag per chunk. Each Dask task integrates one chunk of samples
-(:func:`ga_rotors.ensemble.run_samples`) and hands its blocks to the process's writer
-thread, which writes them (raw chunk files: nothing to encode) while the next chunk is
-integrated, and only then sets the chunk's flag. Running the same sweep into the same
-store again skips the flagged chunks: an interrupted sweep resumes from its finished
-chunks, and a chunk cut off halfway is done again. A store holds one sweep (its digest
-is an attribute); another sweep is refused.
+``chunk_done`` flag per chunk (:mod:`ga_rotors.sweep.store`). Each Dask task draws one
+chunk's values, builds its inputs and integrates it
+(:func:`ga_rotors.ensemble.run_samples`); the process's writer thread then reduces it
+(the angle from the nominal) and writes its blocks (raw chunk files: nothing to encode)
+while the next chunk is integrated, and only then sets the chunk's flag. Run in this
+process (``client="sync"``), a second thread also draws and builds the next chunk's inputs
+while the current one integrates, so the integrating thread does little else. Running the
+same sweep into the same store again skips the flagged chunks: an interrupted sweep
+resumes from its finished chunks, and a chunk cut off halfway is done again. A store holds
+one sweep (its digest is an attribute); another sweep is refused.
 
 Tasks run the serial kernel: the parallelism is Dask's (one worker process per core by
 default), and several tasks may share one process.
@@ -27,8 +30,11 @@ from pathlib import Path
 
 import numpy as np
 
+from .. import _kernels as K
+from .._jit import jit
 from ..errors import InputError
 from ..optional import require
+from . import store as zstore
 from .spec import Sweep, load_sweep
 
 __all__ = ["flush_writes", "histogram", "open_sweep", "run_chunk", "run_sweep", "summary"]
@@ -54,12 +60,18 @@ def _sweep(task: _Task) -> Sweep:
     return _SWEEPS[key]
 
 
-def _run(sweep: Sweep, lo: int, hi: int, parallel: bool):
-    from ..ensemble import run_samples, scene_samples
+def _bounds(sweep: Sweep, c: int) -> tuple[int, int]:
+    return c * sweep.chunk, min(sweep.size, (c + 1) * sweep.chunk)
 
+
+def _inputs(task: _Task, c: int):
+    """Chunk ``c``'s drawn values and its kernel inputs."""
+    from ..ensemble import scene_samples
+
+    sweep = _sweep(task)
+    lo, hi = _bounds(sweep, c)
     values = sweep.values(lo, hi)
-    samples = scene_samples(sweep.scene, values, n=hi - lo)
-    return values, run_samples(samples, sweep.times, parallel=parallel)
+    return values, scene_samples(sweep.scene, values, n=hi - lo)
 
 
 def _nominal(sweep: Sweep) -> np.ndarray:
@@ -70,14 +82,15 @@ def _nominal(sweep: Sweep) -> np.ndarray:
     return run_samples(scene_samples(sweep.scene, n=1), sweep.times, parallel=False).q[:, 0]
 
 
-def run_chunk(task: _Task, c: int, wait: bool = True) -> int:
+def run_chunk(task: _Task, c: int, wait: bool = True, inputs=None) -> int:
     """Integrate chunk ``c`` of the sweep and write it into the store; return ``c``.
 
-    ``wait=False`` returns once the chunk is integrated and leaves its writing to this
-    process's writer thread, which writes it while the next chunk is integrated (the
-    write is mostly waiting on the disk, the integration on the CPU); it first waits for
-    the previous chunk's write, so at most one chunk is pending. :func:`flush_writes`
-    waits for the last one.
+    ``wait=False`` returns once the chunk is integrated and leaves its reduction and
+    writing to this process's writer thread, which does them while the next chunk is
+    integrated (the write is mostly waiting on the disk, the integration on the CPU); it
+    first waits for the previous chunk's write, so at most one chunk is pending.
+    :func:`flush_writes` waits for the last one. ``inputs`` are the chunk's values and
+    kernel inputs when they were made beforehand (by :func:`run_sweep` in this process).
 
     Examples
     --------
@@ -88,17 +101,12 @@ def run_chunk(task: _Task, c: int, wait: bool = True) -> int:
     >>> open_sweep(run_sweep(text, out, client="sync")).sizes["sample"]
     4
     """
+    from ..ensemble import run_samples
+
     sweep = _sweep(task)
-    lo, hi = c * sweep.chunk, min(sweep.size, (c + 1) * sweep.chunk)
-    values, run = _run(sweep, lo, hi, parallel=False)
-    q = run.q.transpose(1, 0, 2)  # (sample, time, 4)
-    blocks = {
-        "q": q,
-        "w": run.w.transpose(1, 0, 2),
-        "angle_from_nominal": _angle_from_nominal(q, task.nominal),
-        **{f"value_{j}": v for j, v in enumerate(values.values())},
-    }
-    job = functools.partial(_write_chunk, task.store, c, lo, blocks)
+    values, samples = inputs if inputs is not None else _inputs(task, c)
+    run = run_samples(samples, sweep.times, parallel=False)
+    job = functools.partial(_finish, task.store, c, run, values, task.nominal)
     if wait:
         job()
     else:
@@ -106,38 +114,48 @@ def run_chunk(task: _Task, c: int, wait: bool = True) -> int:
     return c
 
 
-def _angle_from_nominal(q: np.ndarray, nominal: np.ndarray) -> np.ndarray:
-    """Geodesic angle of each sample (n, k, 4) from the nominal (k, 4); NaN where the
-    sample's state stopped being finite.
+def _finish(store: str, c: int, run, values: dict, nominal: np.ndarray) -> None:
+    """Reduce chunk ``c`` and write its blocks, then its flag.
+
+    Each block covers one whole chunk of its variable, so tasks never share a chunk; the
+    flag goes last: the chunk counts as done only once all of it is written.
+    """
+    angle = np.empty(run.q.shape[1::-1])
+    _angles(run.q, nominal, angle)
+    blocks = {
+        "q": run.q.transpose(1, 0, 2),  # (sample, time, 4)
+        "w": run.w.transpose(1, 0, 2),
+        "angle_from_nominal": angle,
+        **{f"value_{j}": v for j, v in enumerate(values.values())},
+    }
+    blocks["chunk_done"] = np.ones(1, dtype=np.int8)
+    for name, block in blocks.items():
+        try:
+            zstore.write_chunk(store, name, block, c)
+        except OSError as exc:  # a full disk, a store removed under the sweep...
+            raise _write_error(store, exc, f"chunk {c} of {name}") from None
+
+
+def _write_error(store, exc: OSError, what: str) -> InputError:
+    # One line naming the store. An InputError pickles as its message, so a Dask
+    # worker's reaches the command as it is.
+    return InputError(f"cannot write {store} ({what}): {exc.strerror or exc}", key="--out")
+
+
+@jit
+def _angles(q, nominal, out):
+    """out[i, j] = geodesic angle of sample i (q[j, i], times first) from nominal[j].
 
     The angle does not depend on the quaternions' norms, so each is normalised first: an
     integrator that lets the norm drift (RK4 over a long or fast run) still has its
-    angle, where :func:`ga_rotors.quaternion.distance` would refuse the whole chunk.
+    angle, where :func:`ga_rotors.quaternion.distance` would refuse the whole chunk. A
+    sample whose state stopped being finite gets NaN.
     """
-    from ..quaternion import distance
-
-    squares = np.einsum("...i,...i->...", q, q)
-    if np.all(np.abs(squares - 1.0) <= 1e-6):  # the usual case: finite, unit to 5e-7
-        return distance(q, nominal[None])
-
-    def unit(a):  # the same expression for both: a sample equal to the nominal is at 0
-        return a / np.linalg.norm(a, axis=-1, keepdims=True)
-
-    out = np.full(q.shape[:-1], np.nan)
-    norm = np.linalg.norm(q, axis=-1)
-    ok = np.isfinite(norm) & (norm > 0)
-    if ok.any():
-        out[ok] = distance(unit(q[ok]), np.broadcast_to(unit(nominal), q.shape)[ok])
-    return out
-
-
-def _write_chunk(store: str, c: int, lo: int, blocks: dict) -> None:
-    # Each block covers one whole chunk of its variable (lo is a chunk bound), so tasks
-    # never share a chunk; the flag goes last: the chunk counts as done only once all of
-    # it is written.
-    for name, block in blocks.items():
-        _write_block(store, name, block, c=c, lo=lo)
-    _write_block(store, "chunk_done", np.ones(1, dtype=np.int8), c=c, lo=c)
+    for j in range(q.shape[0]):
+        b = K.qnormalize((nominal[j, 0], nominal[j, 1], nominal[j, 2], nominal[j, 3]))
+        for i in range(q.shape[1]):
+            a = K.qnormalize((q[j, i, 0], q[j, i, 1], q[j, i, 2], q[j, i, 3]))
+            out[i, j] = K.geodesic_angle(a, b)
 
 
 #: This process's writer thread and the write it has pending (at most one).
@@ -173,67 +191,26 @@ def flush_writes() -> None:
         _wait_pending()
 
 
-def _layout(store: str, name: str):
-    """(chunk shape, dtype, fill, separator) of a variable stored as raw chunks, or None.
-
-    The sweep creates every variable uncompressed, unfiltered, C-ordered (zarr format 2),
-    so a chunk file is exactly the bytes of the chunk's C-ordered array (an edge chunk
-    padded to the full chunk shape): see the Zarr v2 storage specification. Read for
-    every chunk, not remembered: a store deleted and made again under the same name by
-    another sweep may have other chunks (and one small file is nothing beside a chunk).
-    """
-    import json
-
-    try:
-        meta = json.loads((Path(store) / name / ".zarray").read_text(encoding="utf-8"))
-    except (OSError, ValueError):
-        return None
-    raw = (
-        meta.get("zarr_format") == 2 and meta.get("compressor") is None
-        and not meta.get("filters") and meta.get("order") == "C"
-    )  # fmt: skip
-    if not raw:
-        return None
-    sep = meta.get("dimension_separator", ".")
-    return tuple(meta["chunks"]), np.dtype(meta["dtype"]), meta["fill_value"], sep
+def _output_times(sweep: Sweep) -> np.ndarray:
+    scene = sweep.scene
+    start, h = scene.data["time"]["start"], scene.step
+    k = np.array([scene.steps]) if sweep.times is None else np.rint((sweep.times - start) / h)
+    return start + h * k
 
 
-def _write_block(store: str, name: str, block: np.ndarray, *, c: int, lo: int) -> None:
-    """Write ``block`` as chunk ``c`` along ``sample`` of variable ``name``.
-
-    Raw bytes straight into the chunk's file (no encoding to do; zarr's own write path
-    cost about a quarter of a 10^6-sample sweep's time here); zarr's write when the
-    variable's layout is not the raw one.
-    """
-    layout = _layout(store, name)
-    if layout is None:
-        zarr = require("zarr", "results")
-        zarr.open_group(store, mode="r+", zarr_format=2)[name][lo : lo + block.shape[0]] = block
-        return
-    chunks, dtype, fill, sep = layout
-    data = np.ascontiguousarray(block, dtype=dtype)
-    if data.shape[0] < chunks[0]:  # the edge chunk is stored at the full chunk shape
-        full = np.full(chunks, np.nan if fill == "NaN" else fill, dtype=dtype)
-        full[: data.shape[0]] = data
-        data = full
-    if data.shape != chunks:
-        raise ValueError(f"{name}: block of shape {data.shape} for chunks of {chunks}")
-    path = Path(store, name, sep.join([str(c)] + ["0"] * (len(chunks) - 1)))
-    with open(path, "wb") as f:
-        f.write(data.data)
+#: Variables filled in chunk by chunk; everything else is written when the store is made.
+_CHUNKED = ("q", "w", "angle_from_nominal", "chunk_done")
 
 
 def _template(sweep: Sweep, nominal: np.ndarray, t: np.ndarray):
-    """The whole store as a lazy Dataset: what every chunk will fill in."""
+    """The whole store as a Dataset: what every chunk fills in, as fill values."""
     from ..results import provenance
 
     xr = require("xarray", "results")
-    da = require("dask.array", "dask")
-    n, k, chunk = sweep.size, t.size, sweep.chunk
+    n, k = sweep.size, t.size
 
-    def empty(*shape, dtype=np.float64):
-        fill = 0 if dtype == np.int8 else np.nan
-        return da.full(shape, fill, dtype=dtype, chunks=(chunk, *shape[1:]))
+    def empty(*shape):
+        return np.broadcast_to(np.nan, shape)
 
     data = {
         "q": (("sample", "time", "quaternion_component"), empty(n, k, 4), {
@@ -244,7 +221,7 @@ def _template(sweep: Sweep, nominal: np.ndarray, t: np.ndarray):
             "units": "rad", "description": "geodesic angle from the base scene's orientation"}),
         "q_nominal": (("time", "quaternion_component"), nominal, {
             "units": "1", "description": "orientation of the base scene (no changes)"}),
-        "chunk_done": (("chunk",), da.zeros(sweep.chunks, dtype=np.int8, chunks=1), {
+        "chunk_done": (("chunk",), np.broadcast_to(np.int8(0), (sweep.chunks,)), {
             "description": "1 once the chunk's samples are written"}),
     }  # fmt: skip
     values = sweep.values(0, min(1, n))
@@ -273,30 +250,35 @@ def _template(sweep: Sweep, nominal: np.ndarray, t: np.ndarray):
         samples_per_grid_point=sweep.samples,
         varied_keys=", ".join(sweep.keys),
     )
-    return xr.Dataset(data, coords=coords, attrs=attrs)
+    ds = xr.Dataset(data, coords=coords, attrs=attrs)
+    ds["chunk_done"].encoding["_FillValue"] = 0  # unwritten flags read as 0
+    return ds
+
+
+def _chunked(template) -> set[str]:
+    return set(_CHUNKED) | {name for name in template.data_vars if name.startswith("value_")}
 
 
 def _create(sweep: Sweep, store: Path) -> np.ndarray:
-    """Create the store (all of it, or nothing) and return the nominal orientations."""
+    """Create the store (all of it, or nothing) and return the nominal orientations.
+
+    Metadata only for the chunked variables: unwritten chunks read as the fill value (NaN,
+    and 0 for the flags). No compression: orientations and rates are full-precision noise
+    to a compressor, which would only spend the workers' time.
+    """
     nominal = _nominal(sweep)
-    t = sweep.scene.data["time"]["start"] + sweep.scene.step * (
-        np.array([sweep.scene.steps]) if sweep.times is None
-        else np.rint((sweep.times - sweep.scene.data["time"]["start"]) / sweep.scene.step)
-    )  # fmt: skip
-    template = _template(sweep, nominal, t)
-    staging = Path(tempfile.mkdtemp(dir=store.parent, prefix=f".{store.name}.staging-"))
+    template = _template(sweep, nominal, _output_times(sweep))
     try:
-        # Metadata only: unwritten chunks read as the fill value (NaN, and 0 for the flags).
-        # No compression: orientations and rates are full-precision noise to a compressor,
-        # which would only spend the workers' time.
-        encoding = {
-            name: {"compressors": None, **({"_FillValue": 0} if name == "chunk_done" else {})}
-            for name in template.data_vars
-        }
-        template.to_zarr(
-            staging / "new", compute=False, zarr_format=2, consolidated=True, encoding=encoding
+        staging = Path(tempfile.mkdtemp(dir=store.parent, prefix=f".{store.name}.staging-"))
+    except OSError as exc:
+        raise _write_error(store, exc, "creating it") from None
+    try:
+        zstore.create(
+            staging / "new", template, {"sample": sweep.chunk, "chunk": 1}, _chunked(template)
         )
         os.rename(staging / "new", store)
+    except OSError as exc:
+        raise _write_error(store, exc, "creating it") from None
     finally:
         shutil.rmtree(staging, ignore_errors=True)
     return nominal
@@ -383,13 +365,21 @@ def run_sweep(source, out, *, client=None, scheduler=None, workers=None, progres
     if progress is not None:
         progress(finished, total)
     if todo and client == "sync":
+        # The next chunk's draws and inputs are made on a second thread while this one
+        # integrates (numpy, scipy and the compiled loops release the GIL).
+        prepare = ThreadPoolExecutor(1, thread_name_prefix="ga_rotors-inputs")
         try:
-            for c in todo:
-                run_chunk(task, c, wait=False)
+            ahead = prepare.submit(_inputs, task, todo[0])
+            for i, c in enumerate(todo):
+                inputs = ahead.result()
+                if i + 1 < len(todo):
+                    ahead = prepare.submit(_inputs, task, todo[i + 1])
+                run_chunk(task, c, wait=False, inputs=inputs)
                 finished += 1
                 if progress is not None:
                     progress(finished, total)
         finally:  # an interrupted sweep keeps what it integrated
+            prepare.shutdown(wait=True, cancel_futures=True)
             flush_writes()
     elif todo:
         distributed = require("distributed", "dask")
@@ -461,7 +451,11 @@ def summary(ds) -> str:
     lines = [f"t [s]  median [deg]  95% [deg]  max [deg]  ({a.shape[0]} samples)"]
     for j, t in enumerate(ds["t"].values):
         col = a[:, j]
-        m, p95, top = np.nanmedian(col), np.nanpercentile(col, 95), np.nanmax(col)
+        col = col[~np.isnan(col)]  # samples that blew up have no angle
+        if col.size:
+            m, p95, top = np.median(col), np.percentile(col, 95), np.max(col)
+        else:  # every sample blew up by then: no spread to give
+            m = p95 = top = np.nan
         lines.append(f"{t:.6g}  {m:.4g}  {p95:.4g}  {top:.4g}")
     return "\n".join(lines)
 
