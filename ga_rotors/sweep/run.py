@@ -26,6 +26,7 @@ import tempfile
 import threading
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
+from math import atan2, inf, nan
 from pathlib import Path
 
 import numpy as np
@@ -146,16 +147,20 @@ def _write_error(store, exc: OSError, what: str) -> InputError:
 def _angles(q, nominal, out):
     """out[i, j] = geodesic angle of sample i (q[j, i], times first) from nominal[j].
 
-    The angle does not depend on the quaternions' norms, so each is normalised first: an
+    :func:`ga_rotors._kernels.geodesic_angle`'s 2·atan2(|vec d|, |scalar d|) of
+    d = a* ⊗ b, which does not depend on the norms of a and b (d scales with them): an
     integrator that lets the norm drift (RK4 over a long or fast run) still has its
     angle, where :func:`ga_rotors.quaternion.distance` would refuse the whole chunk. A
-    sample whose state stopped being finite gets NaN.
+    sample that is zero or stopped being finite gets NaN. |vec d| is ``qnorm``'s (a square root of the
+    sum of squares, scaled only where that under- or overflows) rather than two ``hypot``
+    calls: within an ulp, and 7x faster (100 ns a sample was most of a chunk's reduction).
     """
     for j in range(q.shape[0]):
-        b = K.qnormalize((nominal[j, 0], nominal[j, 1], nominal[j, 2], nominal[j, 3]))
+        b = (nominal[j, 0], nominal[j, 1], nominal[j, 2], nominal[j, 3])
         for i in range(q.shape[1]):
-            a = K.qnormalize((q[j, i, 0], q[j, i, 1], q[j, i, 2], q[j, i, 3]))
-            out[i, j] = K.geodesic_angle(a, b)
+            d = K.qmul(K.qconj((q[j, i, 0], q[j, i, 1], q[j, i, 2], q[j, i, 3])), b)
+            v, s = K.qnorm((0.0, d[1], d[2], d[3])), abs(d[0])
+            out[i, j] = 2.0 * atan2(v, s) if 0.0 < v + s < inf else nan
 
 
 #: This process's writer thread and the write it has pending (at most one).

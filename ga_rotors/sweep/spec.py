@@ -135,25 +135,37 @@ class Sweep:
         if self.draws:
             u = _uniforms(self.seed, lo, hi, len(self.draws))
             for j, (key, dist, (a, b)) in enumerate(self.draws):
+                x = u[:, j].copy()  # contiguous, and then worked on in place
                 if dist == "normal":
                     from scipy.special import ndtri
 
-                    out[key] = a + b * ndtri(u[:, j])
+                    ndtri(x, out=x)
+                    x *= b
+                    x += a
                 else:
-                    out[key] = a + (b - a) * u[:, j]
+                    x *= b - a
+                    x += a
+                out[key] = x
         return out
 
 
 def _uniforms(seed: int, lo: int, hi: int, nvars: int) -> np.ndarray:
-    """Uniforms in (0, 1) for samples lo..hi-1, from their blocks' own streams."""
+    """Uniforms in (0, 1) for samples lo..hi-1, from their blocks' own streams.
+
+    Sample s, variable j takes the (s mod BLOCK)·nvars + j-th 64-bit output x of its
+    block's PCG64 stream, as k = x >> 11 (what ``Generator.integers(0, 2**53)`` gives:
+    Lemire's method never rejects for a range of 2⁵³), then u = (k + ½)·2⁻⁵³, strictly
+    inside (0, 1) so the normal's inverse CDF stays finite.
+    """
     out = np.empty((hi - lo, nvars))
     for block in range(lo // BLOCK, -(-hi // BLOCK)):
         start = block * BLOCK
-        rng = np.random.Generator(np.random.PCG64(np.random.SeedSequence(seed, spawn_key=(block,))))
-        k = rng.integers(0, 2**53, size=(BLOCK, nvars), dtype=np.int64)
         a, b = max(lo, start), min(hi, start + BLOCK)
-        # (k + ½)·2⁻⁵³: strictly inside (0, 1), so the normal's inverse CDF stays finite
-        out[a - lo : b - lo] = (k[a - start : b - start] + 0.5) * 2.0**-53
+        bits = np.random.PCG64(np.random.SeedSequence(seed, spawn_key=(block,)))
+        raw = bits.random_raw((b - start) * nvars)[(a - start) * nvars :]
+        out[a - lo : b - lo] = (raw >> np.uint64(11)).reshape(b - a, nvars)
+    out += 0.5
+    out *= 2.0**-53
     return out
 
 
