@@ -20,7 +20,10 @@ Usage (from the repository root)::
    per repeat (each sweep against the kernel run just before it), median and range. The
    sweep's time holds the store's creation, every chunk's draws, inputs, integration,
    reduction and write, and waiting for the last write; its first repeat also each
-   worker's first use (reading the sweep, loading the compiled loop).
+   worker's first use (reading the sweep, loading the compiled loop). Beside the wall
+   time, each row's CPU time in all its processes (this one, and the Dask workers' for
+   the Dask row): on a loaded machine the wall-clock ratios mostly measure the load,
+   while the CPU overhead still says what the sweep adds to the kernel's work.
 """
 
 from __future__ import annotations
@@ -128,10 +131,19 @@ normal = [0.5236, 0.005]
 """
 
 
-def _timed(f) -> float:
-    t0 = time.perf_counter()
+def _timed(f, client=None) -> tuple[float, float]:
+    """(wall, CPU) seconds of f(): the CPU of this process, plus the Dask workers' when
+    ``client`` is given (their whole processes: tasks, writer threads, Dask's own work).
+    """
+
+    def workers() -> float:
+        return sum(client.run(time.process_time).values()) if client is not None else 0.0
+
+    w0 = workers()
+    c0, t0 = time.process_time(), time.perf_counter()
     f()
-    return time.perf_counter() - t0
+    wall, cpu = time.perf_counter() - t0, time.process_time() - c0
+    return wall, cpu + workers() - w0
 
 
 def sweep_overhead(samples: int, steps: int, repeats: int, client) -> None:
@@ -145,19 +157,19 @@ def sweep_overhead(samples: int, steps: int, repeats: int, client) -> None:
     run_samples(scene_samples(sweep.scene, n=8))  # compiled / cached
     run_samples(scene_samples(sweep.scene, n=8), parallel=False)
 
-    def swept(where):
+    def swept(where, dask=None):
         with tempfile.TemporaryDirectory() as tmp:
-            return _timed(lambda: run_sweep(text, Path(tmp) / "s.zarr", client=where))
+            return _timed(lambda: run_sweep(text, Path(tmp) / "s.zarr", client=where), dask)
 
     rows = {
         "raw kernel, every core (run_samples)": lambda: _timed(lambda: run_samples(s)),
-        "sweep on the local Dask cluster (run_sweep)": lambda: swept(client),
+        "sweep on the local Dask cluster (run_sweep)": lambda: swept(client, client),
         "raw kernel, one thread (run_samples, parallel=False)": lambda: _timed(
             lambda: run_samples(s, parallel=False)
         ),
         "sweep in this process (run_sweep, client='sync')": lambda: swept("sync"),
     }
-    times: dict[str, list[float]] = {k: [] for k in rows}
+    times: dict[str, list[tuple[float, float]]] = {k: [] for k in rows}
     for _ in range(repeats):
         for name, f in rows.items():
             times[name].append(f())
@@ -166,17 +178,25 @@ def sweep_overhead(samples: int, steps: int, repeats: int, client) -> None:
         f"{len(client.scheduler_info()['workers'])} Dask workers, {repeats} interleaved repeats "
         f"(+ {t_inputs:.2f} s drawing the values and building the raw kernel's inputs)"
     )
+    print(f"  {'':56s} {'wall':>18s}   {'CPU, all processes':>18s}")
     for name, t in times.items():
-        print(f"  {name:56s} {statistics.median(t):7.2f} s ({min(t):.2f}-{max(t):.2f})")
+        wall, cpu = [w for w, _ in t], [c for _, c in t]
+        print(
+            f"  {name:56s} {statistics.median(wall):7.2f} s ({min(wall):.2f}-{max(wall):.2f})"
+            f"   {statistics.median(cpu):7.2f} s ({min(cpu):.2f}-{max(cpu):.2f})"
+        )
     names = list(rows)
     for label, sweep_row, kernel_row in (
         ("Dask", names[1], names[0]),
         ("in this process", names[3], names[2]),
     ):
-        over = [100 * (a / b - 1) for a, b in zip(times[sweep_row], times[kernel_row], strict=True)]
+        pairs = list(zip(times[sweep_row], times[kernel_row], strict=True))
+        over = [100 * (a[0] / b[0] - 1) for a, b in pairs]
+        cpu = [100 * (a[1] / b[1] - 1) for a, b in pairs]
         print(
             f"  overhead over the raw kernel, {label + ':':16s} {statistics.median(over):6.1f} % "
-            f"({min(over):.1f} to {max(over):.1f}, each repeat against its own kernel run)"
+            f"({min(over):.1f} to {max(over):.1f}, each repeat against its own kernel run); "
+            f"CPU {statistics.median(cpu):.1f} % ({min(cpu):.1f} to {max(cpu):.1f})"
         )
 
 

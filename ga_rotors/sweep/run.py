@@ -233,8 +233,9 @@ def _template(sweep: Sweep, nominal: np.ndarray, t: np.ndarray):
     for j, (key, v) in enumerate(values.items()):
         dims = ("sample", *(f"value_{j}_component",) * (v.ndim - 1))
         data[f"value_{j}"] = (dims, empty(n, *v.shape[1:]), {"scene_key": key})
+    # No coordinate on sample: sample s is at position s (an index of 10⁶ integers would be
+    # written with the store and read back at every open, for nothing).
     coords = {
-        "sample": np.arange(n),
         "t": ("time", t, {"units": "s", "description": "output time"}),
         "quaternion_component": ["w", "x", "y", "z"],
         "body_axis": ["1", "2", "3"],
