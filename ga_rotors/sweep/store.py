@@ -141,7 +141,13 @@ def write_chunk(store, name: str, block: np.ndarray, c: int) -> None:
 
     Examples
     --------
-    See :func:`create`.
+    >>> import tempfile, pathlib, xarray as xr
+    >>> ds = xr.Dataset({"a": (("s", "k"), np.broadcast_to(np.nan, (3, 2)))})
+    >>> out = pathlib.Path(tempfile.mkdtemp()) / "x.zarr"
+    >>> create(out, ds, {"s": 2}, {"a"})
+    >>> write_chunk(out, "a", np.array([[5.0, 6.0]]), 1)  # the edge chunk: one row of two
+    >>> xr.open_zarr(out)["a"].values.tolist()
+    [[nan, nan], [nan, nan], [5.0, 6.0]]
     """
     layout = _layout(store, name)
     if layout is None:
