@@ -65,11 +65,10 @@ def _bounds(sweep: Sweep, c: int) -> tuple[int, int]:
     return c * sweep.chunk, min(sweep.size, (c + 1) * sweep.chunk)
 
 
-def _inputs(task: _Task, c: int):
+def _inputs(sweep: Sweep, c: int):
     """Chunk ``c``'s drawn values and its kernel inputs."""
     from ..ensemble import scene_samples
 
-    sweep = _sweep(task)
     lo, hi = _bounds(sweep, c)
     values = sweep.values(lo, hi)
     return values, scene_samples(sweep.scene, values, n=hi - lo)
@@ -105,7 +104,7 @@ def run_chunk(task: _Task, c: int, wait: bool = True, inputs=None) -> int:
     from ..ensemble import run_samples
 
     sweep = _sweep(task)
-    values, samples = inputs if inputs is not None else _inputs(task, c)
+    values, samples = inputs if inputs is not None else _inputs(sweep, c)
     run = run_samples(samples, sweep.times, parallel=False)
     job = functools.partial(_finish, task.store, c, run, values, task.nominal)
     if wait:
@@ -151,9 +150,10 @@ def _angles(q, nominal, out):
     d = a* ⊗ b, which does not depend on the norms of a and b (d scales with them): an
     integrator that lets the norm drift (RK4 over a long or fast run) still has its
     angle, where :func:`ga_rotors.quaternion.distance` would refuse the whole chunk. A
-    sample that is zero or stopped being finite gets NaN. |vec d| is ``qnorm``'s (a square root of the
-    sum of squares, scaled only where that under- or overflows) rather than two ``hypot``
-    calls: within an ulp, and 7x faster (100 ns a sample was most of a chunk's reduction).
+    sample that is zero or stopped being finite gets NaN. |vec d| is ``qnorm``'s (a square
+    root of the sum of squares, scaled only where that under- or overflows) rather than
+    two ``hypot`` calls: within an ulp, and 7x faster (100 ns a sample was most of a
+    chunk's reduction).
     """
     for j in range(q.shape[0]):
         b = (nominal[j, 0], nominal[j, 1], nominal[j, 2], nominal[j, 3])
@@ -265,14 +265,13 @@ def _chunked(template) -> set[str]:
     return set(_CHUNKED) | {name for name in template.data_vars if name.startswith("value_")}
 
 
-def _create(sweep: Sweep, store: Path) -> np.ndarray:
-    """Create the store (all of it, or nothing) and return the nominal orientations.
+def _create(sweep: Sweep, store: Path, nominal: np.ndarray) -> None:
+    """Create the store (all of it, or nothing) for the nominal orientations (k, 4).
 
     Metadata only for the chunked variables: unwritten chunks read as the fill value (NaN,
     and 0 for the flags). No compression: orientations and rates are full-precision noise
     to a compressor, which would only spend the workers' time.
     """
-    nominal = _nominal(sweep)
     template = _template(sweep, nominal, _output_times(sweep))
     try:
         staging = Path(tempfile.mkdtemp(dir=store.parent, prefix=f".{store.name}.staging-"))
@@ -287,7 +286,6 @@ def _create(sweep: Sweep, store: Path) -> np.ndarray:
         raise _write_error(store, exc, "creating it") from None
     finally:
         shutil.rmtree(staging, ignore_errors=True)
-    return nominal
 
 
 def _client(client, scheduler: str | None, workers: int | None):
@@ -351,7 +349,8 @@ def run_sweep(source, out, *, client=None, scheduler=None, workers=None, progres
         raise InputError(f"--out: {store}: expected a .zarr store name")
     if not store.parent.is_dir():
         raise InputError(f"--out: directory {store.parent} does not exist")
-    if store.exists():
+    created = store.exists()
+    if created:
         ds = _open(store)
         if ds.attrs.get("sweep_digest") != sweep.digest:
             raise InputError(
@@ -361,25 +360,29 @@ def run_sweep(source, out, *, client=None, scheduler=None, workers=None, progres
         done = ds["chunk_done"].values == 1  # unwritten flags read as the fill value
         nominal = ds["q_nominal"].values
     else:
-        nominal = _create(sweep, store)
+        nominal = _nominal(sweep)
         done = np.zeros(sweep.chunks, dtype=bool)
     text = sweep.text
     file = str(Path(sweep.file).resolve()) if sweep.file != "<string>" else "<string>"
+    _SWEEPS.setdefault((text, file), sweep)  # chunks run here reuse it
     task = _Task(text, file, str(store.resolve()), nominal)
     todo = [int(c) for c in np.flatnonzero(~done)]
     total, finished = sweep.chunks, int(done.sum())
-    if progress is not None:
-        progress(finished, total)
     if todo and client == "sync":
         # The next chunk's draws and inputs are made on a second thread while this one
-        # integrates (numpy, scipy and the compiled loops release the GIL).
+        # creates the store, then integrates (numpy, scipy and the compiled loops release
+        # the GIL).
         prepare = ThreadPoolExecutor(1, thread_name_prefix="ga_rotors-inputs")
         try:
-            ahead = prepare.submit(_inputs, task, todo[0])
+            ahead = prepare.submit(_inputs, sweep, todo[0])
+            if not created:
+                _create(sweep, store, nominal)
+            if progress is not None:
+                progress(finished, total)
             for i, c in enumerate(todo):
                 inputs = ahead.result()
                 if i + 1 < len(todo):
-                    ahead = prepare.submit(_inputs, task, todo[i + 1])
+                    ahead = prepare.submit(_inputs, sweep, todo[i + 1])
                 run_chunk(task, c, wait=False, inputs=inputs)
                 finished += 1
                 if progress is not None:
@@ -387,7 +390,12 @@ def run_sweep(source, out, *, client=None, scheduler=None, workers=None, progres
         finally:  # an interrupted sweep keeps what it integrated
             prepare.shutdown(wait=True, cancel_futures=True)
             flush_writes()
-    elif todo:
+        return store
+    if not created:
+        _create(sweep, store, nominal)
+    if progress is not None:
+        progress(finished, total)
+    if todo:
         distributed = require("distributed", "dask")
         dask_client, owned = _client(client, scheduler, workers)
         try:
