@@ -4,12 +4,17 @@ Usage (from the repository root)::
 
     python benchmarks/bench_ensemble.py [--bodies 100000] [--steps 200] [--repeats 5]
         [--sweep-samples 1000000] [--sweep-steps 100 1000] [--sweep-repeats 3]
+        [--kernels-only]
 
 1. Kernel throughput in million body-steps per second, RK4, rows interleaved in each
    repeat (median, min–max): ``rk4_free`` (torque-free, one inertia shared by every body:
    the old ensemble, what ``ga-rotors bench ensemble`` times), ``run_samples`` on a
    torque-free scene with per-sample inertia and initial rate, and ``run_samples`` on the
-   heavy top (gravity, per-sample torque parameters). Threads: numba's default (every core).
+   heavy top (gravity, per-sample torque parameters). Threads: numba's default (every core;
+   ``NUMBA_NUM_THREADS=1`` for one). Each row also gives its time over ``rk4_free``'s in
+   the same repeat (median, min–max): the issue's target is ≤ 1.5× — and the same ratio
+   in CPU time (``time.process_time``, every thread), which another job on the machine
+   distorts less than wall time. ``--kernels-only`` stops after this part.
 2. Sweep overhead, for each ``--sweep-steps``: one Monte-Carlo sweep of
    ``--sweep-samples`` samples run end to end with ``run_sweep`` on a LocalCluster (one
    worker process per core, started once and reported apart with the imports on its
@@ -36,6 +41,7 @@ import tempfile
 import time
 from pathlib import Path
 
+import numba
 import numpy as np
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -82,16 +88,33 @@ def kernels(bodies: int, steps: int, repeats: int) -> None:
     }
     for f in rows.values():  # compile, or load from numba's cache
         f()
-    rates: dict[str, list[float]] = {k: [] for k in rows}
+    wall: dict[str, list[float]] = {k: [] for k in rows}
+    cpu: dict[str, list[float]] = {k: [] for k in rows}
     for _ in range(repeats):
         for name, f in rows.items():
-            t0 = time.perf_counter()
+            c0, t0 = time.process_time(), time.perf_counter()
             f()
-            rates[name].append(bodies * steps / (time.perf_counter() - t0) / 1e6)
-    print(f"kernels: {bodies} bodies x {steps} RK4 steps, {repeats} interleaved repeats")
-    for name, r in rates.items():
-        print(f"  {name:62s} {statistics.median(r):7.0f} M body-steps/s "
-              f"({min(r):.0f}-{max(r):.0f})")  # fmt: skip
+            wall[name].append(time.perf_counter() - t0)
+            cpu[name].append(time.process_time() - c0)
+    print(
+        f"kernels: {bodies} bodies x {steps} RK4 steps, {repeats} interleaved repeats, "
+        f"{numba.get_num_threads()} threads"
+    )
+    first = next(iter(rows))
+    for name in rows:
+        rate = [bodies * steps / t / 1e6 for t in wall[name]]
+        over = [a / b for a, b in zip(wall[name], wall[first], strict=True)]
+        over_cpu = [a / b for a, b in zip(cpu[name], cpu[first], strict=True)]
+        print(
+            f"  {name:62s} {statistics.median(rate):7.0f} M body-steps/s "
+            f"({min(rate):.0f}-{max(rate):.0f})"
+            + (
+                ""
+                if name == first
+                else f"  {statistics.median(over):.2f}x rk4_free ({min(over):.2f}-{max(over):.2f}),"
+                f" CPU {statistics.median(over_cpu):.2f}x ({min(over_cpu):.2f}-{max(over_cpu):.2f})"
+            )
+        )
 
 
 def _warm() -> None:
@@ -210,9 +233,13 @@ def main() -> None:
     p.add_argument("--sweep-samples", type=int, default=1_000_000)
     p.add_argument("--sweep-steps", type=int, nargs="+", default=[100, 1000])
     p.add_argument("--sweep-repeats", type=int, default=3)
+    p.add_argument("--kernels-only", action="store_true", help="stop after the kernels")
     a = p.parse_args()
     print(f"load average before: {os.getloadavg()[0]:.1f}")
     kernels(a.bodies, a.steps, a.repeats)
+    if a.kernels_only:
+        print(f"load average after: {os.getloadavg()[0]:.1f}")
+        return
     _warm()
     t0 = time.perf_counter()
     cluster = distributed.LocalCluster(
