@@ -404,12 +404,12 @@ class SceneSamples:
     ``inertia`` (n, 3) principal moments, ``orientation`` (n, 4) and ``angular_velocity``
     (n, 3) the initial state, ``params`` (n, P) the packed parameters of the declared
     torques, ``principal`` (n, 4) the rotation P from principal to the scene's body axes
-    (identity unless the scene gives a full inertia tensor). ``torques``: the torque
-    terms the batch runs — the scene's, unless its samples' terms of one effect have
-    different kernels (a heavy top whose lever leaves the symmetry axis in some samples
-    only, :func:`ga_rotors.effects.gravity_kernel`): then the one kernel computing them
-    all (:func:`ga_rotors.effects.shared_kernel`), which gives the same numbers but for
-    the sign of a zero.
+    (identity unless the scene gives a full inertia tensor). ``kernels`` (n,) says which
+    of ``terms`` sample i's torques are: the samples' values may give one effect different
+    kernels (a heavy top whose lever leaves the symmetry axis in some samples only runs
+    the general gravity there, :func:`ga_rotors.effects.gravity_kernel`), and each sample
+    runs its own single run's kernels, one batch per distinct set. By default one set,
+    the scene's.
 
     Examples
     --------
@@ -424,11 +424,14 @@ class SceneSamples:
     angular_velocity: np.ndarray
     params: np.ndarray
     principal: np.ndarray
-    torques: tuple = None
+    terms: tuple = None
+    kernels: np.ndarray = None
 
     def __post_init__(self):
-        if self.torques is None:
-            self.torques = tuple(self.scene.torques())
+        if self.terms is None:
+            self.terms = (tuple(self.scene.torques()),)
+        if self.kernels is None:
+            self.kernels = np.zeros(len(self), dtype=np.int64)
 
     def __len__(self) -> int:
         return self.inertia.shape[0]
@@ -540,15 +543,19 @@ def scene_samples(scene, changes=None, n: int | None = None) -> SceneSamples:
         )
     inertia, q0, w0 = np.empty((count, 3)), np.empty((count, 4)), np.empty((count, 3))
     params, principal = np.empty((count, base_params.size)), np.empty((count, 4))
-    terms = tuple(scene.torques())
-    names = [t.name for t in terms]
-    kernels = [{t.kernel} for t in terms]
+    names = [t.name for t in scene.torques()]
+    sets: dict[tuple, int] = {}  # the samples' kernels (as a tuple) -> index in terms
+    terms, kernels = [], np.empty(count, dtype=np.int64)
     for i in range(count):
         one = _sample_scene(scene, changes, i)
-        if [t.name for t in one.torques()] != names:
+        own = tuple(one.torques())
+        if [t.name for t in own] != names:
             raise InputError(f"sample {i}: changes the scene's declared effects {names}")
-        for found, t in zip(kernels, one.torques(), strict=True):
-            found.add(t.kernel)
+        key = tuple(t.kernel for t in own)
+        if key not in sets:
+            sets[key] = len(terms)
+            terms.append(own)
+        kernels[i] = sets[key]
         for shared in ("time", "integrator"):
             if one.data[shared] != scene.data[shared]:
                 raise InputError(
@@ -557,25 +564,7 @@ def scene_samples(scene, changes=None, n: int | None = None) -> SceneSamples:
                 )
         inertia[i], q0[i], w0[i] = one.body.moments, one.orientation, one.angular_velocity
         params[i], principal[i] = _params(one), one.principal_rotation
-    return SceneSamples(scene, inertia, q0, w0, params, principal, _shared(terms, kernels))
-
-
-def _shared(terms: tuple, kernels: list) -> tuple:
-    """The scene's terms, each with the one kernel its samples' kernels share."""
-    from dataclasses import replace
-
-    from .effects import shared_kernel
-
-    out = []
-    for term, found in zip(terms, kernels, strict=True):
-        kernel = shared_kernel(found)
-        if kernel is None:
-            raise InputError(
-                f"{term.name}: the samples' values give this effect different torque kernels "
-                f"({', '.join(sorted(k.__name__ for k in found))}), which one batch cannot run"
-            )
-        out.append(term if kernel is term.kernel else replace(term, kernel=kernel))
-    return tuple(out)
+    return SceneSamples(scene, inertia, q0, w0, params, principal, tuple(terms), kernels)
 
 
 def _sample_scene(scene, changes: dict, i: int):
@@ -663,11 +652,6 @@ def run_samples(
             f"{scene.file}: integrator.paths: ensembles integrate the quaternion or rotor "
             f"path; the scene's first path is {path!r}"
         )
-    problem = base.Problem(
-        scene.body.moments,
-        samples.torques,
-        accept_lower_order=spec_method.get("accept_lower_order", False),
-    )
     t0, h, nsteps = scene.data["time"]["start"], scene.step, scene.steps
     marks = _marks(times, t0, h, nsteps, scene.file)
     module = pspec.load()
@@ -677,11 +661,22 @@ def run_samples(
     inertia = np.ascontiguousarray(samples.inertia.T)
     params = np.ascontiguousarray(samples.params.T)
     out_x, out_w = np.empty((marks.size, 4, n)), np.empty((marks.size, 3, n))
-    args = (x, w, inertia, params, float(t0), float(h), marks, out_x, out_w, int(chunk))
-    try:
-        _compiled_scene_loop(method, problem, path, parallel)(*args)
-    except numba.core.errors.TypingError:  # a step that unpacks inertia: see stored=False
-        _compiled_scene_loop(method, problem, path, parallel, stored=False)(*args)
+    lower = spec_method.get("accept_lower_order", False)
+    for k, terms in enumerate(samples.terms):  # one batch per set of kernels (usually one)
+        problem = base.Problem(scene.body.moments, terms, accept_lower_order=lower)
+        mine = None if len(samples.terms) == 1 else np.flatnonzero(samples.kernels == k)
+        ins = (x, w, inertia, params)
+        outs = (out_x, out_w)
+        if mine is not None:  # this set's samples gathered, their outputs scattered back
+            ins = tuple(np.ascontiguousarray(a[:, mine]) for a in ins)
+            outs = (np.empty((marks.size, 4, mine.size)), np.empty((marks.size, 3, mine.size)))
+        call = (*ins, float(t0), float(h), marks, *outs, int(chunk))
+        try:
+            _compiled_scene_loop(method, problem, path, parallel)(*call)
+        except numba.core.errors.TypingError:  # a step that unpacks inertia: see stored=False
+            _compiled_scene_loop(method, problem, path, parallel, stored=False)(*call)
+        if mine is not None:
+            out_x[:, :, mine], out_w[:, :, mine] = outs
     q = module.quaternions(out_x.transpose(0, 2, 1))
     w = out_w.transpose(0, 2, 1)
     return EnsembleRun(t0 + marks * h, np.ascontiguousarray(q), np.ascontiguousarray(w))

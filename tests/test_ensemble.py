@@ -194,22 +194,23 @@ def test_a_user_kernel_gets_its_parameters_as_an_array_and_follows_the_single_ru
     assert not np.array_equal(run.q[-1, 0], run.q[-1, 2])
 
 
-def test_samples_whose_gravity_kernels_differ_run_one_kernel_and_follow_their_single_runs():
+def test_samples_whose_gravity_kernels_differ_each_run_their_single_runs_kernel():
     # A lever on the symmetry axis runs vertical_gravity in a single run, a lever off it
-    # the general gravity; one batch runs the general one for all, which gives the same
-    # numbers (it differs at most in the sign of a zero).
+    # the general gravity: the batch runs each sample with its own (one batch per set).
     from ga_rotors import effects
 
     scene = load_scene("heavy_top").replace(
         {"time.duration": 0.02, "output.quantities": ["angles"], "output.plots": []}
     )
-    pivots = [[0.0, 0.0, 0.03], [0.002, 0.0, 0.04], [0.0, 0.0, 0.05]]
+    pivots = [[0.0, 0.0, 0.03], [0.002, 0.0, 0.04], [0.0, 0.0, 0.05], [0.0, 0.001, 0.05]]
     changes = {"effects[0].pivot_to_com": pivots}
-    assert scene_samples(scene, changes).torques[0].kernel is effects.gravity
-    assert scene.torques()[0].kernel is effects.vertical_gravity
-    check_samples_follow_single_runs(scene, changes, [0.01, 0.02])
-    same = {"effects[0].pivot_to_com": [pivots[0], pivots[2]]}
-    assert scene_samples(scene, same).torques[0].kernel is effects.vertical_gravity
+    samples = scene_samples(scene, changes)
+    kernels = [samples.terms[k][0].kernel for k in samples.kernels]
+    assert kernels == [effects.vertical_gravity, effects.gravity] * 2
+    run = run_samples(samples, [0.01, 0.02])
+    for i in range(4):
+        q, w = single_run(scene.replace({"effects[0].pivot_to_com": pivots[i]}), [0.01, 0.02])
+        assert np.array_equal(run.q[:, i], q) and np.array_equal(run.w[:, i], w), i
 
 
 @pytest.mark.parametrize("method", ["lgvi", "cf4", "dp8"])
