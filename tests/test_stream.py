@@ -263,6 +263,41 @@ def test_a_long_runs_figure_keeps_every_samples_extremes():
     assert thin.t[0] == pieces[0].t[0] and thin.t[-1] == pieces[-1].t[-1]
 
 
+@pytest.mark.parametrize("seed", range(24))
+def test_the_thinned_rows_are_each_slices_ends_and_first_extremes(seed):
+    """Per slice (the rows in one pixel column): its first and last row, and for each
+    column of each array the first row holding its smallest and its largest value, or the
+    slice's first row when it holds a NaN; a stopped path's array has fewer rows."""
+    from ga_rotors.scene.thinning import ThinnedCopy
+    from ga_rotors.trajectory import Trajectory
+
+    rng = np.random.default_rng(seed)
+    n, columns = int(rng.integers(1, 400)), int(rng.integers(1, 40))
+    t = np.sort(rng.uniform(0.0, 1.0, n))
+    arrays = {"t": t}
+    for k, rows in enumerate((n, int(rng.integers(0, n + 1)))):
+        a = rng.integers(-2, 3, (rows, 2)).astype(float)  # ties
+        if rows and seed % 3 == 0:
+            a[rng.integers(0, rows, 2), rng.integers(0, 2, 2)] = np.nan
+        arrays[f"x{k}"] = a
+    copy = ThinnedCopy(0.0, 1.0, 10**6, columns)
+    copy.add(Trajectory(arrays))
+    expected = set()
+    slices = np.clip(np.floor(t * columns), 0, columns - 1)
+    for s in np.unique(slices):
+        run = np.flatnonzero(slices == s)
+        expected |= {run[0], run[-1]}
+        for a in (arrays["x0"], arrays["x1"]):
+            inside = run[run < a.shape[0]]
+            for j in range(a.shape[1] if inside.size else 0):
+                v = a[inside, j]
+                if np.isnan(v).any():
+                    expected.add(inside[0])
+                else:
+                    expected |= {inside[np.argmin(v)], inside[np.argmax(v)]}
+    assert copy.trajectory().t.tolist() == t[sorted(expected)].tolist()
+
+
 def test_a_zarr_store_replaces_the_previous_runs(tmp_path):
     from ga_rotors.results import read
 

@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from .._jit import jit
 from ..trajectory import Trajectory
 
 __all__ = ["COLUMNS", "KEEP_ALL", "ThinnedCopy"]
@@ -73,24 +74,15 @@ class ThinnedCopy:
         t = piece.t
         where = np.floor((t - self.t_start) / self.span * self.columns)
         slices = np.clip(where, 0, self.columns - 1).astype(np.int64)
-        # times increase, so each slice is a run of consecutive rows: reduceat per run
-        starts = np.flatnonzero(np.diff(slices, prepend=-1))
-        keep = [starts, np.append(starts[1:] - 1, t.shape[0] - 1)]  # each slice's ends
+        keep = np.zeros(t.shape[0], dtype=np.bool_)
         for name in piece.names:
             a = piece[name]
-            if name == "t" or a.shape[0] == 0:
-                continue
-            n = a.shape[0]
-            runs = starts[starts < n]
-            sizes = np.diff(np.append(runs, n))
-            run_of = np.repeat(np.arange(runs.shape[0]), sizes)
-            for column in a.reshape(n, -1).T:
-                for reduce in (np.minimum, np.maximum):  # NaN, if any, is the extreme
-                    extreme = np.repeat(reduce.reduceat(column, runs), sizes)
-                    hits = np.flatnonzero((column == extreme) | (extreme != extreme))
-                    first = np.concatenate([[True], run_of[hits][1:] != run_of[hits][:-1]])
-                    keep.append(hits[first])  # the first row of each run reaching it
-        return np.unique(np.concatenate(keep))
+            if name != "t" and a.shape[0]:
+                _extremes(
+                    slices, np.ascontiguousarray(a.reshape(a.shape[0], -1), dtype=float), keep
+                )
+        _slice_ends(slices, keep)
+        return np.flatnonzero(keep)
 
     def trajectory(self, meta: dict | None = None) -> Trajectory:
         """The kept rows as one Trajectory (``meta``: the run's final one, by default the
@@ -108,3 +100,49 @@ class ThinnedCopy:
         first = self.kept[0]
         arrays = {n: np.concatenate([p[n] for p in self.kept]) for n in first.names}
         return Trajectory(arrays, first.components, meta or self.kept[-1].meta)
+
+
+# Times increase, so each slice is a run of consecutive rows; one compiled pass per array
+# marks each run's extremes (about 10x the speed of numpy's reduceat per column, which
+# made the thinning a tenth of a streamed run's output work).
+
+
+@jit
+def _slice_ends(slices, keep):
+    """Mark the first and last row of each run of equal ``slices``."""
+    n = slices.shape[0]
+    for i in range(n):
+        if i == 0 or slices[i] != slices[i - 1] or i == n - 1 or slices[i + 1] != slices[i]:
+            keep[i] = True
+
+
+@jit
+def _extremes(slices, a, keep):
+    """Mark, in each run of equal ``slices`` (rows of ``a``, which may have fewer rows than
+    ``slices``: a path that stopped), the first row where each column of ``a`` is
+    smallest and the first where it is largest; a run holding a NaN marks its first row
+    (NaN is the extreme)."""
+    n, m = a.shape
+    start = 0
+    while start < n:
+        end = start + 1
+        while end < n and slices[end] == slices[start]:
+            end += 1
+        for j in range(m):
+            lo = hi = start
+            low = high = a[start, j]
+            nan = low != low
+            for i in range(start + 1, end):
+                v = a[i, j]
+                if v != v:
+                    nan = True
+                elif v < low or low != low:
+                    low, lo = v, i
+                elif v > high or high != high:
+                    high, hi = v, i
+            if nan:
+                keep[start] = True
+            else:
+                keep[lo] = True
+                keep[hi] = True
+        start = end
