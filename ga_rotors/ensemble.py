@@ -409,7 +409,9 @@ class SceneSamples:
     kernels (a heavy top whose lever leaves the symmetry axis in some samples only runs
     the general gravity there, :func:`ga_rotors.effects.gravity_kernel`), and each sample
     runs its own single run's kernels, one batch per distinct set. By default one set,
-    the scene's.
+    the scene's. :func:`scene_samples` stores each array one row per component (the
+    transpose of a C-contiguous (k, n) array, the layout the batched loops read), so
+    :func:`run_samples` hands them over without copying.
 
     Examples
     --------
@@ -452,8 +454,8 @@ def _fast(scene, changes: dict, n: int):
     d = scene.data
     if scene.principal_rotation != (1.0, 0.0, 0.0, 0.0) or scene.gravity_index is not None:
         return None
-    moments = np.tile(np.array(scene.body.moments), (n, 1))
-    omega = np.tile(np.asarray(scene.angular_velocity, dtype=np.float64), (n, 1))
+    moments = _repeat(scene.body.moments, n)
+    omega = _repeat(scene.angular_velocity, n)
     av = d["initial"]["angular_velocity"]
     for key, values in changes.items():
         m = _ELEMENT.match(key)
@@ -531,18 +533,18 @@ def scene_samples(scene, changes=None, n: int | None = None) -> SceneSamples:
         else:
             _CHECKED[checked] = scene  # once per scene and keys: chunks of a sweep reuse it
     if fast is not None or not changes:
-        moments, omega = fast or (np.tile(np.array(scene.body.moments), (count, 1)),
-                                  np.tile(scene.angular_velocity, (count, 1)))  # fmt: skip
+        moments, omega = fast or (_repeat(scene.body.moments, count),
+                                  _repeat(scene.angular_velocity, count))  # fmt: skip
         return SceneSamples(
             scene,
-            np.ascontiguousarray(moments),
-            np.tile(scene.orientation, (count, 1)),
-            np.ascontiguousarray(omega),
-            np.tile(base_params, (count, 1)),
-            np.tile(np.array(scene.principal_rotation), (count, 1)),
+            moments,
+            _repeat(scene.orientation, count),
+            omega,
+            _repeat(base_params, count),
+            _repeat(scene.principal_rotation, count),
         )
-    inertia, q0, w0 = np.empty((count, 3)), np.empty((count, 4)), np.empty((count, 3))
-    params, principal = np.empty((count, base_params.size)), np.empty((count, 4))
+    inertia, q0, w0 = _columns(count, 3), _columns(count, 4), _columns(count, 3)
+    params, principal = _columns(count, base_params.size), _columns(count, 4)
     names = [t.name for t in scene.torques()]
     sets: dict[tuple, int] = {}  # the samples' kernels (as a tuple) -> index in terms
     terms, kernels = [], np.empty(count, dtype=np.int64)
@@ -565,6 +567,17 @@ def scene_samples(scene, changes=None, n: int | None = None) -> SceneSamples:
         inertia[i], q0[i], w0[i] = one.body.moments, one.orientation, one.angular_velocity
         params[i], principal[i] = _params(one), one.principal_rotation
     return SceneSamples(scene, inertia, q0, w0, params, principal, tuple(terms), kernels)
+
+
+def _repeat(values, n: int) -> np.ndarray:
+    """``values`` once per sample, shape (n, k), stored one row per component: the
+    layout the batched loops read (run_samples then passes each row without a copy)."""
+    return np.repeat(np.asarray(values, dtype=np.float64).reshape(-1, 1), n, axis=1).T
+
+
+def _columns(n: int, k: int) -> np.ndarray:
+    """An uninitialised (n, k) array stored as _repeat's."""
+    return np.empty((k, n)).T
 
 
 def _sample_scene(scene, changes: dict, i: int):
