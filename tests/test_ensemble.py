@@ -121,6 +121,24 @@ def test_a_bad_sample_is_named_by_the_scene_key():
         scene_samples(scene, {"body.moments": [[1.0, 2.0, 3.0], [1.0, -2.0, 3.0]]})
 
 
+@pytest.mark.parametrize(
+    ("moments", "message"),
+    [
+        ([2.0, 2.0, 1e-13], "too thin a body"),
+        ([1e-310, 2.0, 2.0], "normal floats"),
+        ([1.0, 2.0, 3.5], "triangle inequality"),
+    ],
+)
+def test_a_bad_sample_between_the_first_and_the_last_is_named_too(moments, message):
+    # The vectorised mapping checks its first and last sample against a Scene; the others
+    # must not slip past the body's checks (a too thin body passed the old gate and ran).
+    scene = load_scene("intermediate_axis_flip").replace({"body": {"moments": [1, 2, 2.5]}})
+    values = np.tile([1.0, 2.0, 2.5], (5, 1))
+    values[2] = moments
+    with pytest.raises(SceneError, match=rf"body\.moments: sample 2: .*{message}"):
+        scene_samples(scene, {"body.moments": values})
+
+
 def test_ensembles_refuse_what_they_cannot_run_exactly():
     scene = load_scene("intermediate_axis_flip").replace({"time.duration": 0.01})
     samples = scene_samples(scene, n=2)
