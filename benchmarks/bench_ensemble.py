@@ -16,19 +16,20 @@ Usage (from the repository root)::
    in CPU time (``time.process_time``, every thread), which another job on the machine
    distorts less than wall time. ``--kernels-only`` stops after this part.
 2. Sweep overhead, for each ``--sweep-steps``: one Monte-Carlo sweep of
-   ``--sweep-samples`` samples run end to end with ``run_sweep`` on a LocalCluster (one
-   worker process per core, started once and reported apart with the imports on its
-   workers) into a zarr store, against the raw batched kernel on the same samples
-   (``run_samples`` on every core, the draws made beforehand); and the same sweep in this
-   process (``client="sync"``) against the serial kernel, which separates the sweep's own
-   work from Dask's. The four rows are interleaved in each repeat; the overhead is taken
-   per repeat (each sweep against the kernel run just before it), median and range. The
-   sweep's time holds the store's creation, every chunk's draws, inputs, integration,
-   reduction and write, and waiting for the last write; its first repeat also each
-   worker's first use (reading the sweep, loading the compiled loop). Beside the wall
-   time, each row's CPU time in all its processes (this one, and the Dask workers' for
-   the Dask row): on a loaded machine the wall-clock ratios mostly measure the load,
-   while the CPU overhead still says what the sweep adds to the kernel's work.
+   ``--sweep-samples`` samples run end to end with ``run_sweep`` on the local cluster it starts by
+   default (``local_cluster``: one worker process per core; started once here and reported
+   apart with the imports on its workers) into a zarr store, against the raw batched
+   kernel on the same samples (``run_samples`` on every core, the draws made beforehand);
+   and the same sweep in this process (``client="sync"``) against the serial kernel, which
+   separates the sweep's own work from Dask's. The four rows are interleaved in each
+   repeat; the overhead is taken per repeat (each sweep against the kernel run just before
+   it), median and range. The sweep's time holds the store's creation, every chunk's
+   draws, inputs, integration, reduction and write, and waiting for the last write; its
+   first repeat also each worker's first use (reading the sweep, loading the compiled
+   loop). Beside the wall time, each row's CPU time in all its processes (this one, and
+   the Dask workers' for the Dask row): on a loaded machine the wall-clock ratios mostly
+   measure the load, while the CPU overhead still says what the sweep adds to the kernel's
+   work.
 """
 
 from __future__ import annotations
@@ -226,6 +227,8 @@ def sweep_overhead(samples: int, steps: int, repeats: int, client) -> None:
 def main() -> None:
     import distributed
 
+    from ga_rotors.sweep import local_cluster
+
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("--bodies", type=int, default=100_000)
     p.add_argument("--steps", type=int, default=200)
@@ -242,9 +245,7 @@ def main() -> None:
         return
     _warm()
     t0 = time.perf_counter()
-    cluster = distributed.LocalCluster(
-        n_workers=os.cpu_count(), threads_per_worker=1, processes=True, dashboard_address=":0"
-    )
+    cluster = local_cluster()  # what run_sweep starts when given no client
     client = distributed.Client(cluster)
     client.run(_warm)
     print(

@@ -1,7 +1,8 @@
 """Sweeps and Monte-Carlo dispersion studies of a scene, on Dask, into a zarr store.
 
 * :func:`load_sweep` — a sweep file: the scene, grid keys, random draws and seed;
-* :func:`run_sweep` — run (or resume) it chunk by chunk on Dask into a ``.zarr`` store;
+* :func:`run_sweep` — run (or resume) it chunk by chunk on Dask into a ``.zarr`` store, on
+  :func:`local_cluster` by default;
 * :func:`open_sweep` — the finished store as an xarray Dataset; :func:`summary` and
   :func:`histogram` its spread from the base scene, reduced chunk by chunk.
 
@@ -11,14 +12,24 @@ command; docs/ensembles.md a worked study.
 
 from __future__ import annotations
 
-from .run import histogram, open_sweep, run_chunk, run_sweep, summary
+from .run import (
+    LOCAL_CLUSTER_CONFIG,
+    histogram,
+    local_cluster,
+    open_sweep,
+    run_chunk,
+    run_sweep,
+    summary,
+)
 from .spec import BLOCK, Sweep, load_sweep
 
 __all__ = [
     "BLOCK",
+    "LOCAL_CLUSTER_CONFIG",
     "Sweep",
     "histogram",
     "load_sweep",
+    "local_cluster",
     "open_sweep",
     "run_chunk",
     "run_sweep",
