@@ -441,8 +441,9 @@ def run_sweep(source, out, *, client=None, scheduler=None, workers=None, progres
         dask_client, owned = _client(client, scheduler, workers)
         try:
             futures = dask_client.map(run_chunk, [task] * len(todo), todo, wait=False, pure=False)
-            for future in distributed.as_completed(futures):
-                future.result()
+            # results come with the completions (a failed chunk raises here), rather than
+            # one round trip to the client's event loop per future
+            for _ in distributed.as_completed(futures, with_results=True):
                 finished += 1
                 if progress is not None:
                     progress(finished, total)
