@@ -483,7 +483,7 @@ def _fast(scene, changes: dict, n: int):
     lo, hi = np.minimum(np.minimum(a, b), c), np.maximum(np.maximum(a, b), c)
     tiny = np.finfo(float).tiny
     if np.any(
-        (lo < tiny) | (hi > 1.0 / tiny) | (lo < MIN_MOMENT_RATIO * hi)
+        (lo < tiny) | (hi > 1.0 / tiny) | (lo / hi < MIN_MOMENT_RATIO)  # as the body's
         | (a > s - a) | (b > s - b) | (c > s - c)
     ):  # fmt: skip
         return None
