@@ -206,6 +206,25 @@ def test_the_command_on_an_existing_scheduler_writes_what_a_plain_run_writes(tmp
     xr.testing.assert_identical(open_sweep(tmp_path / "d.zarr").load(), reference)
 
 
+def test_an_unreachable_scheduler_is_one_line(tmp_path, capsys, monkeypatch):
+    """Refused within SCHEDULER_TIMEOUT (10 s; 1 s here), in one line, before the store is
+    created (it used to wait 30 s, print Dask's multi-line message and leave a store)."""
+    import ga_rotors.sweep.run as sweep_run
+
+    monkeypatch.setattr(sweep_run, "SCHEDULER_TIMEOUT", 1)
+    spec = tmp_path / "dispersion.toml"
+    spec.write_text(SWEEP)
+    with socket.socket() as free:  # a port nobody listens on
+        free.bind(("127.0.0.1", 0))
+        port = free.getsockname()[1]
+    argv = ["sweep", str(spec), "--out", str(tmp_path / "d.zarr")]
+    with contextlib.redirect_stdout(io.StringIO()):
+        status = main([*argv, "--scheduler", f"tcp://127.0.0.1:{port}"])
+    err = capsys.readouterr().err.strip()
+    assert status == 2 and err.startswith("ga-rotors: error: --scheduler: cannot reach tcp://")
+    assert "\n" not in err and not (tmp_path / "d.zarr").exists()
+
+
 def test_the_command_names_the_extra_when_dask_is_missing(tmp_path, monkeypatch):
     real = optional.importlib.import_module
 

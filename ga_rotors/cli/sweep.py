@@ -29,7 +29,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     where = parser.add_mutually_exclusive_group()
     where.add_argument(
         "--scheduler", metavar="ADDRESS", default=None,
-        help="an existing Dask scheduler (tcp://host:8786); default: a local cluster",
+        help="an existing Dask scheduler (tcp://host:8786), given 10 s to answer; default: a "
+        "local cluster",
     )  # fmt: skip
     where.add_argument(
         "--workers", metavar="N", type=int, default=None,

@@ -297,6 +297,10 @@ def _create(sweep: Sweep, store: Path, nominal: np.ndarray) -> None:
         shutil.rmtree(staging, ignore_errors=True)
 
 
+#: Seconds to wait for a ``--scheduler`` to answer before saying it cannot be reached.
+SCHEDULER_TIMEOUT = 10
+
+
 def _client(client, scheduler: str | None, workers: int | None):
     """(client, owned): an explicit client, "sync" (no Dask), a scheduler or a LocalCluster."""
     if client is not None:
@@ -304,9 +308,11 @@ def _client(client, scheduler: str | None, workers: int | None):
     distributed = require("distributed", "dask")
     if scheduler:
         try:
-            return distributed.Client(scheduler, timeout=30), True
+            return distributed.Client(scheduler, timeout=SCHEDULER_TIMEOUT), True
         except (OSError, TimeoutError) as exc:
-            raise InputError(f"--scheduler: cannot reach {scheduler}: {exc}") from None
+            text = str(exc).strip()
+            first = text.splitlines()[0] if text else type(exc).__name__
+            raise InputError(f"--scheduler: cannot reach {scheduler}: {first}") from None
     return distributed.Client(local_cluster(workers)), True
 
 
@@ -437,28 +443,32 @@ def run_sweep(source, out, *, client=None, scheduler=None, workers=None, progres
             prepare.shutdown(wait=True, cancel_futures=True)
             flush_writes()
         return store
-    if not created:
-        _create(sweep, store, nominal)
-    if progress is not None:
-        progress(finished, total)
-    if todo:
-        distributed = require("distributed", "dask")
-        dask_client, owned = _client(client, scheduler, workers)
-        try:
-            futures = dask_client.map(run_chunk, [task] * len(todo), todo, wait=False, pure=False)
-            # results come with the completions (a failed chunk raises here), rather than
-            # one round trip to the client's event loop per future
-            for _ in distributed.as_completed(futures, with_results=True):
-                finished += 1
-                if progress is not None:
-                    progress(finished, total)
-            dask_client.run(flush_writes)  # every worker's last chunk
-        finally:
-            if owned:
-                cluster = dask_client.cluster
-                dask_client.close()
-                if cluster is not None:
-                    cluster.close()
+    if not todo:
+        if progress is not None:
+            progress(finished, total)
+        return store
+    distributed = require("distributed", "dask")
+    # connected before anything is written: an unreachable scheduler leaves no store
+    dask_client, owned = _client(client, scheduler, workers)
+    try:
+        if not created:
+            _create(sweep, store, nominal)
+        if progress is not None:
+            progress(finished, total)
+        futures = dask_client.map(run_chunk, [task] * len(todo), todo, wait=False, pure=False)
+        # results come with the completions (a failed chunk raises here), rather than
+        # one round trip to the client's event loop per future
+        for _ in distributed.as_completed(futures, with_results=True):
+            finished += 1
+            if progress is not None:
+                progress(finished, total)
+        dask_client.run(flush_writes)  # every worker's last chunk
+    finally:
+        if owned:
+            cluster = dask_client.cluster
+            dask_client.close()
+            if cluster is not None:
+                cluster.close()
     return store
 
 
