@@ -515,3 +515,30 @@ def test_adaptive_methods_take_a_tolerance_and_fixed_step_methods_refuse_one():
     for integrator, key, message in cases:
         err = scene_error(minimal(integrator=integrator))
         assert err.key == key and message in str(err), str(err)
+
+
+@pytest.mark.parametrize(
+    ("key", "message"),
+    [
+        ("body.moments[0]", "the scene has no body.moments; set body.moments whole"),
+        ("effects[3].torque", "effects has 1 entry here; set effects whole"),
+        ("initial.angular_velocity.body[5]", "initial.angular_velocity.body has 3 entries"),
+        ("time.duration.x", "time.duration is a value, not a table"),
+        ("body.moments[x]", "expected a dotted key path"),
+        ("time..duration", "expected a dotted key path"),
+    ],
+)
+def test_replace_with_a_key_the_scene_cannot_take_is_one_line_naming_it(key, message):
+    """Scene.replace keys come from users (sweep files' [set], scripts): a path past a
+    list's end or through a value is one SceneError naming the path, not an IndexError."""
+    with pytest.raises(SceneError) as info:
+        load_scene("heavy_top").replace({key: 1.0})
+    assert info.value.key == key and message in str(info.value)
+    assert "\n" not in str(info.value)
+
+
+def test_replace_sets_list_entries_and_new_table_keys_still_validate():
+    s = load_scene("heavy_top").replace({"initial.angular_velocity.body[2]": 50.0})
+    assert s.data["initial"]["angular_velocity"]["body"][2] == 50.0
+    with pytest.raises(SceneError, match=r"output\.nope: unknown key"):
+        load_scene("heavy_top").replace({"output.nope": 1})

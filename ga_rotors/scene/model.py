@@ -47,7 +47,6 @@ from __future__ import annotations
 
 import copy
 import functools
-import itertools
 import re
 import tomllib
 from collections.abc import Mapping
@@ -192,15 +191,7 @@ class Scene:
         """
         given = copy.deepcopy(self._given)
         for path, value in changes.items():
-            node = given
-            parts = re.findall(r"[^.\[\]]+|\[\d+\]", path)
-            for part, nxt in itertools.pairwise(parts):
-                index = int(part[1:-1]) if part.startswith("[") else part
-                if isinstance(index, str) and index not in node:
-                    node[index] = [] if nxt.startswith("[") else {}
-                node = node[index]
-            last = parts[-1]
-            node[int(last[1:-1]) if last.startswith("[") else last] = value
+            _set_path(given, str(path), value, self.file)
         return Scene(given, file=self.file, base_dir=self.base_dir)
 
     # ------------------------------------------------------------------ derived values
@@ -595,3 +586,44 @@ _IDENTITY = (1.0, 0.0, 0.0, 0.0)
 
 def _fmt(v) -> str:
     return "(" + ", ".join(f"{float(x):.10g}" for x in v) + ")"
+
+
+_PATH = re.compile(r"[A-Za-z_][\w-]*(?:\.[A-Za-z_][\w-]*|\[\d+\])*")
+
+
+def _set_path(given: dict, path: str, value, file: str) -> None:
+    """Set ``path`` (``a.b[2].c``) in the scene dictionary ``given``: a missing table key
+    is created (the scene's validation then names a key that does not exist); an index
+    past a list's end, or a path through a value that is not a table or a list, is one
+    scene error naming the path.
+    """
+    from ..errors import SceneError
+
+    if not _PATH.fullmatch(path):
+        raise SceneError(file, path, "expected a dotted key path such as time.duration or "
+                         "initial.angular_velocity.body[2]")  # fmt: skip
+    parts = re.findall(r"[^.\[\]]+|\[\d+\]", path)
+    node, walked = given, ""
+    for i, part in enumerate(parts):
+        last = i == len(parts) - 1
+        if part.startswith("["):
+            index = int(part[1:-1])
+            if not isinstance(node, list):
+                raise SceneError(file, path, f"{walked or 'the scene'} is not a list")
+            if index >= len(node):
+                count = f"{len(node)} entr{'y' if len(node) == 1 else 'ies'}"
+                raise SceneError(file, path, f"{walked} has {count} here; set {walked} whole")
+        else:
+            index = part
+            if not isinstance(node, dict):
+                raise SceneError(file, path, f"{walked} is a value, not a table")
+            if index not in node and not last:
+                if parts[i + 1].startswith("["):
+                    name = f"{walked}.{part}" if walked else part
+                    raise SceneError(file, path, f"the scene has no {name}; set {name} whole")
+                node[index] = {}
+        if last:
+            node[index] = value
+        else:
+            node = node[index]
+            walked = f"{walked}{part}" if part.startswith("[") or not walked else f"{walked}.{part}"
