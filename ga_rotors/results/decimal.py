@@ -26,6 +26,7 @@ the row loop (a call passing an array costs reference counting per value).
 
 from __future__ import annotations
 
+import sys
 from fractions import Fraction
 
 import numpy as np
@@ -208,7 +209,10 @@ def _store8(typingctx, buf, at, word):
     def codegen(context, builder, sig, args):
         array = context.make_array(sig.args[0])(context, builder, args[0])
         target = builder.bitcast(builder.gep(array.data, [args[1]]), ir.IntType(64).as_pointer())
-        builder.store(args[2], target).align = 1
+        # the first digit is the word's lowest byte: first in memory only on a
+        # little-endian machine, so a big-endian one swaps the bytes before storing
+        word = args[2] if sys.byteorder == "little" else builder.bswap(args[2])
+        builder.store(word, target).align = 1
         return context.get_dummy_value()
 
     return types.void(buf, types.intp, types.uint64), codegen
