@@ -9,10 +9,10 @@ Run from the repository root::
 The scene is the bundled heavy top (RK4 at 0.1 ms on the rotor and quaternion paths, a
 sample every 5 steps: t, ω, both orientations, the ZYZ angles and the total energy),
 integrated for ``--steps`` steps per path and written as CSV with its figure (angles, ω,
-invariants) and summary (``--data`` for other formats, ``--quantities`` for others). The
-bundled scene's ``error`` quantity and panel are left out: beyond a few hundred seconds
-the exact Lagrange top cannot certify its own 1e-10 rad (it refuses, PrecisionError), and
-where it can, evaluating it at every sample costs more than the integration.
+invariants) and summary (``--data`` for other formats, ``--quantities`` for others,
+``--no-summary`` for ``output.summary = false``). The bundled scene's ``error`` quantity
+and panel are left out: the summary already evaluates the exact Lagrange top at every
+sample (its largest cost), and the error columns would evaluate it a second time.
 Each measurement is a fresh child process, the compiled loops warm (a short run of the
 same scene first, in the same child), interleaved over the repeats:
 
@@ -48,7 +48,7 @@ import json, sys, time, warnings
 from ga_rotors.scene import load_scene
 mode, steps, out, data = sys.argv[1], int(float(sys.argv[2])), sys.argv[3], sys.argv[4]
 scene = load_scene("heavy_top").replace({"output.data": data.split(",") if data else [],
-                                         "output.summary": True,
+                                         "output.summary": sys.argv[6] == "on",
                                          "output.plots": ["angles", "omega", "invariants"],
                                          "output.quantities": sys.argv[5].split(",")})
 scene = scene.replace({"time.duration": steps * scene.step})
@@ -82,7 +82,7 @@ print(json.dumps({"seconds": took}))
 """
 
 
-def _child(mode: str, steps: float, data: str, quantities: str) -> dict:
+def _child(mode: str, steps: float, data: str, quantities: str, summary: str = "on") -> dict:
     """One measurement in a fresh process: seconds (inside) and peak RSS (MB)."""
     with tempfile.TemporaryDirectory(prefix="bench_stream-") as tmp:
         env = {**os.environ, "PYTHONPATH": str(ROOT)}
@@ -90,7 +90,7 @@ def _child(mode: str, steps: float, data: str, quantities: str) -> dict:
         with open(log, "w") as sink:  # a file, not a pipe: a chatty child never blocks
             proc = subprocess.Popen(
                 [sys.executable, "-c", CHILD, mode, str(steps), str(Path(tmp) / "out"), data,
-                 quantities],
+                 quantities, summary],
                 stdout=sink, stderr=subprocess.STDOUT, env=env,
             )  # fmt: skip
             _, status, usage = os.wait4(proc.pid, 0)  # this child's own peak memory
@@ -121,6 +121,12 @@ def main(argv=None) -> int:
         default="angles,total_energy",
         help="output.quantities, comma-separated (default: angles,total_energy)",
     )
+    parser.add_argument(
+        "--no-summary",
+        action="store_true",
+        help="output.summary = false: the streamed run measures nothing (its report says only "
+        "whether the run completed)",
+    )
     parser.add_argument("--quick", action="store_true", help="a tiny run, bare and stream")
     parser.add_argument("--json", metavar="FILE", help="also write the results as JSON")
     args = parser.parse_args(argv)
@@ -130,10 +136,12 @@ def main(argv=None) -> int:
     results: dict[str, list[dict]] = {m: [] for m in modes}
     for _ in range(args.repeats):
         for mode in modes:  # interleaved: the machine's load falls on every mode alike
-            results[mode].append(_child(mode, args.steps, args.data, args.quantities))
+            summary = "off" if args.no_summary else "on"
+            results[mode].append(_child(mode, args.steps, args.data, args.quantities, summary))
     print(
         f"heavy top, {args.steps:.3g} steps per path (rotor + quaternion), a sample every 5 "
-        f"steps, quantities: {args.quantities}, data: {args.data or 'none'}; "
+        f"steps, quantities: {args.quantities}, data: {args.data or 'none'}, summary: "
+        f"{'off' if args.no_summary else 'on'}; "
         f"{args.repeats} repeat(s), fresh processes"
     )
     print(f"{'mode':<8} {'seconds: median (min–max)':<28} {'peak RSS MB':<28} files MB")

@@ -397,11 +397,11 @@ def test_the_stream_benchmark_runs_in_its_quick_mode(tmp_path):
     out = tmp_path / "bench.json"
     proc = subprocess.run(
         [sys.executable, str(root / "benchmarks" / "bench_stream.py"), "--quick", "--json",
-         str(out)],
+         str(out), "--no-summary"],
         capture_output=True, text=True, timeout=600,
     )  # fmt: skip
     assert proc.returncode == 0, proc.stderr
-    assert "stream / bare wall time" in proc.stdout
+    assert "stream / bare wall time" in proc.stdout and "summary: off" in proc.stdout
     results = json.loads(out.read_text())["results"]
     assert set(results) == {"bare", "stream"}
     assert all(r["peak_mb"] > 0 and r["seconds"] > 0 for rows in results.values() for r in rows)
@@ -426,3 +426,29 @@ def test_a_long_torqued_runs_figure_balances_energy_over_every_sample(tmp_path):
     assert (np.concatenate([p["energy_gain"] for p in kept]) == gain).all()
     stream_scene(scene.replace({"output.data": []}), tmp_path)  # the figure draws from it
     assert (tmp_path / f"{scene.name}.png").stat().st_size > 0
+
+
+def test_a_run_with_its_summary_off_measures_nothing_but_still_says_incomplete(
+    tmp_path, monkeypatch
+):
+    """``output.summary = false``: the run pays for no summary (RunSummary never built;
+    its exact reference at every sample is the streamed run's largest cost), writes no
+    summary file, and the report still carries the INCOMPLETE line of a stopped path
+    (what ``ga-rotors run`` prints and turns into exit status 3)."""
+    import ga_rotors.scene.summary as summary
+
+    monkeypatch.setattr(summary, "RunSummary", lambda *a, **k: pytest.fail("measured"))
+    scene = load_scene("spinning_disk").replace(
+        {"output.data": ["csv"], "output.summary": False, "time.duration": 0.5}
+    )
+    files, rep = stream_scene(scene, tmp_path / "ok", chunk_steps=128)
+    assert [p.name for p in files] == [
+        "spinning_disk.csv", "spinning_disk.png", "spinning_disk.scene.toml"
+    ]  # fmt: skip
+    assert rep.lines == [] and rep.values == {}
+    stopped = scene.replace({"initial.orientation.euler": [0.0, 0.0, 0.0]})
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        _, rep = stream_scene(stopped, tmp_path / "stopped", chunk_steps=128)
+    assert rep.values == {"incomplete": 1.0}
+    assert rep.lines[0].startswith("INCOMPLETE: the run stopped before t = 0.5 s (euler at")

@@ -58,7 +58,7 @@ def _names(scene: Scene, summary: bool) -> list[str]:
 def _write(scene: Scene, pieces, stage: Path | None, summarise: bool):
     """Feed ``pieces`` to the writers in ``stage`` (None: no files), the thinned copy and
     (``summarise``) the summary; write the figure, summary and scene files; return the
-    Report (None unless ``summarise``).
+    Report (with ``summarise`` off, only whether the run completed).
 
     A piece is consumed in two more threads while the next one is integrated: one writes
     it to the data files, the other measures it (summary) and thins it (figure). The
@@ -97,7 +97,12 @@ def _write(scene: Scene, pieces, stage: Path | None, summarise: bool):
     except BaseException:
         sink.abort()
         raise
-    rep = sink.summary.report() if sink.summary is not None else None
+    if sink.summary is not None:
+        rep = sink.summary.report()
+    else:
+        from .summary import status_report
+
+        rep = status_report(scene, sink.meta)
     if stage is not None:
         name = scene.name
         if sink.thin is not None:
@@ -207,7 +212,9 @@ def stream_scene(scene, out_dir, *, progress=None, budget=None, chunk_steps: int
     -------
     (list of Path, Report)
         The files written (none when the scene declares no data and no plots: then
-        nothing is created) and the run's summary.
+        nothing is created) and the run's summary (with ``output.summary`` off, nothing
+        is measured and the report says only whether the run completed:
+        :func:`ga_rotors.scene.summary.status_report`).
 
     Examples
     --------
@@ -229,10 +236,13 @@ def stream_scene(scene, out_dir, *, progress=None, budget=None, chunk_steps: int
     _budget.check(scene, _budget.DEFAULT if budget is None else budget, streamed=True)
     require_formats(scene)
     pieces = run_pieces(scene, chunk_steps=chunk_steps, progress=progress)
+    # with output.summary off nothing is measured: the report says only whether the run
+    # completed (the summary's exact reference at every sample is its largest cost)
+    summarise = scene.data["output"]["summary"]
     if not _declared(scene):
-        return [], _write(scene, pieces, None, True)
+        return [], _write(scene, pieces, None, summarise)
     with output_set(out_dir, "--out") as stage:
-        rep = _write(scene, pieces, stage, True)
+        rep = _write(scene, pieces, stage, summarise)
     return [Path(out_dir) / n for n in _names(scene, scene.data["output"]["summary"])], rep
 
 

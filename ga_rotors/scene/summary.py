@@ -37,6 +37,7 @@ __all__ = [
     "hermite_at",
     "invariant_series",
     "report",
+    "status_report",
     "zero_crossings",
 ]
 
@@ -443,16 +444,7 @@ class RunSummary:
                 rep.values[f"{pair[0]}_vs_{pair[1]}"] = angle
                 rep.lines.append(f"  {PathComparison(pair, angle, at, samples)}")
         self._exact_lines(rep)
-        stopped = {p: i for p, i in meta["paths"].items() if not i["complete"]}
-        if stopped:  # said first: every figure above covers only the steps taken
-            t_end = self.first[3] if self.first is not None else 0.0
-            where = ", ".join(f"{p} at t = {i['ended_at']:g} s" for p, i in stopped.items())
-            rep.lines.insert(
-                0,
-                f"INCOMPLETE: the run stopped before t = {t_end:g} s ({where}); the figures "
-                "below cover only the steps taken",
-            )
-            rep.values["incomplete"] = 1.0
+        _completeness(rep, meta, self.first[3] if self.first is not None else 0.0)
         return rep
 
     def _paths(self, rep: Report) -> None:
@@ -588,6 +580,43 @@ class RunSummary:
             f"  |L| at the end {measured:.10g} (exact {ref:.10g}, {diff}); "
             f"|L₀| = {np.linalg.norm(body.momentum(self.first[1])):.6g}"
         )
+
+
+def _completeness(rep: Report, meta: dict, t_end: float) -> None:
+    """Put the INCOMPLETE line first in ``rep`` (and ``values["incomplete"]``) when a path
+    stopped before ``t_end``: every figure below it covers only the steps taken."""
+    stopped = {p: i for p, i in meta["paths"].items() if not i["complete"]}
+    if stopped:
+        where = ", ".join(f"{p} at t = {i['ended_at']:g} s" for p, i in stopped.items())
+        rep.lines.insert(
+            0,
+            f"INCOMPLETE: the run stopped before t = {t_end:g} s ({where}); the figures "
+            "below cover only the steps taken",
+        )
+        rep.values["incomplete"] = 1.0
+
+
+def status_report(scene: Scene, meta: dict) -> Report:
+    """What a run with ``output.summary`` off reports: only whether it completed (the
+    INCOMPLETE line of :meth:`RunSummary.report`), nothing measured, so such a run pays
+    for no summary.
+
+    Parameters
+    ----------
+    meta : dict
+        The run's ``Trajectory.meta`` (its paths' status, steps and step).
+
+    Examples
+    --------
+    >>> from ga_rotors.scene import load_scene, run_scene
+    >>> scene = load_scene("spinning_disk").replace({"time.duration": 0.1})
+    >>> status_report(scene, run_scene(scene).meta).values
+    {}
+    """
+    rep = Report(scene.name)
+    t_end = scene.data["time"]["start"] + meta["steps"] * meta["step"]
+    _completeness(rep, meta, t_end)
+    return rep
 
 
 def report(scene: Scene, trajectory: Trajectory) -> Report:
