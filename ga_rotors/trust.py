@@ -29,6 +29,7 @@ import types
 from collections.abc import Iterator
 from pathlib import Path
 
+from ._modules import load_registered
 from .errors import InputError
 
 __all__ = ["ENV", "FLAG", "allow_user_code", "allowed_folders", "import_user_module"]
@@ -129,13 +130,7 @@ def import_user_module(module: str, spec: str | None = None) -> types.ModuleType
             raise InputError(
                 f"no module {top!r} in the allowed folders ({', '.join(map(str, folders))})"
             )
-        loaded = importlib.util.module_from_spec(found)
-        sys.modules[top] = loaded
-        try:
-            found.loader.exec_module(loaded)
-        except BaseException:
-            sys.modules.pop(top, None)
-            raise
+        loaded = load_registered(found)
     if not _inside(getattr(loaded, "__file__", None), folders):
         raise InputError(
             f"module {top!r} ({spec}) is already imported from "

@@ -529,15 +529,9 @@ def _write_once(path: Path, text: str) -> None:
 
 
 def _import_file(name: str, path: Path) -> types.ModuleType:
-    spec = importlib.util.spec_from_file_location(name, path)
-    module = importlib.util.module_from_spec(spec)
-    sys.modules[name] = module
-    try:
-        spec.loader.exec_module(module)
-    except BaseException:
-        sys.modules.pop(name, None)
-        raise
-    return module
+    from .._modules import load_registered
+
+    return load_registered(importlib.util.spec_from_file_location(name, path))
 
 
 def _import_text(name: str, text: str) -> types.ModuleType:
