@@ -97,6 +97,39 @@ class Exact:
             q = Q.multiply(Q.conjugate(self.frame), q)
         return q, w, bound
 
+    def errors(self, t, w=None, orientations=None):
+        """|ω − ω_exact| for body rates ``w`` (n, 3) and the geodesic error of each array
+        of unit orientations in ``orientations`` (name -> (m, 4)), from one evaluation of
+        the reference at the first rows of ``t``: a path that stopped early has fewer
+        rows and is compared with the reference at its own times.
+
+        Returns
+        -------
+        (ndarray or None, dict of name -> ndarray)
+            The ω error (None when ``w`` is None) and each orientation's error.
+
+        Examples
+        --------
+        >>> from ga_rotors.scene import load_scene
+        >>> exact = load_scene("spinning_disk").exact_solution
+        >>> q, w, _ = exact.state([0.0, 0.5, 1.0])
+        >>> dw, dq = exact.errors([0.0, 0.5, 1.0], w, {"rotor": q[:2]})
+        >>> dw.tolist(), dq["rotor"].tolist()
+        ([0.0, 0.0, 0.0], [0.0, 0.0])
+        """
+        orientations = orientations or {}
+        sizes = [q.shape[0] for q in orientations.values()]
+        rows = max([0 if w is None else w.shape[0], *sizes])
+        if rows == 0:  # nothing to compare: the reference is not evaluated at all
+            return (None if w is None else np.empty(0)), {n: np.empty(0) for n in orientations}
+        q_ref, w_ref, _ = self.state(np.asarray(t, dtype=np.float64)[:rows])
+        dw = None if w is None else np.linalg.norm(w - w_ref[: w.shape[0]], axis=-1)
+        dq = {
+            name: np.atleast_1d(Q.distance(q_ref[: q.shape[0]], q))
+            for name, q in orientations.items()
+        }
+        return dw, dq
+
     def bound(self, t) -> float | None:
         """The reference's largest rounding-error bound (rad) at absolute times ``t`` (None
         for a closed form without one, or no times).

@@ -360,22 +360,12 @@ class RunSummary:
                         quats[path] = (
                             unit[path] if path in unit else Q.normalize(piece.quaternions(path))
                         )
-            rows = max([w.shape[0] if need_w else 0] + [qp.shape[0] for qp in quats.values()])
-            q_ref = w_ref = None
-            if rows:
-                q_ref, w_ref, _ = exact.state(piece.t[:rows])
-            if need_w:
-                self._max("omega_error", np.linalg.norm(w - w_ref[: w.shape[0]], axis=-1))
-            else:
-                self._max("omega_error", piece["omega_error"])
+            dw, dq = exact.errors(piece.t, w if need_w else None, quats)
+            self._max("omega_error", dw if need_w else piece["omega_error"])
             if exact.has_orientation:
                 for path in scene.paths:
-                    if path in quats:
-                        qp = quats[path]
-                        error = np.atleast_1d(Q.distance(q_ref[: qp.shape[0]], qp))
-                        self._max(f"error_{path}", error)
-                    else:
-                        self._max(f"error_{path}", piece[f"error_{path}"])
+                    error = dq[path] if path in quats else piece[f"error_{path}"]
+                    self._max(f"error_{path}", error)
         except GaRotorsError as exc:
             self.exact_failure = f"exact solution ({scene.exact}): not evaluated: {exc}"
             return
