@@ -298,6 +298,54 @@ def test_the_thinned_rows_are_each_slices_ends_and_first_extremes(seed):
     assert copy.trajectory().t.tolist() == t[sorted(expected)].tolist()
 
 
+@pytest.mark.parametrize("seed", range(12))
+def test_a_lines_envelope_is_each_slices_ends_and_first_extremes(seed):
+    """What a figure draws of one line beyond KEEP_ALL rows: per slice its first and last
+    row and the first rows of its smallest and largest value (a NaN: the slice's first)."""
+    from ga_rotors.scene.thinning import envelope
+
+    rng = np.random.default_rng(seed)
+    n, columns = int(rng.integers(1, 400)), int(rng.integers(1, 40))
+    t = np.sort(rng.uniform(0.0, 1.0, n))
+    y = rng.integers(-2, 3, n).astype(float)  # ties
+    if seed % 3 == 0:
+        y[rng.integers(0, n, 2)] = np.nan
+    expected = set()
+    span = t[-1] - t[0] if t[-1] > t[0] else 1.0
+    slices = np.clip(np.floor((t - t[0]) / span * columns), 0, columns - 1)
+    for s in np.unique(slices):
+        run = np.flatnonzero(slices == s)
+        expected |= {run[0], run[-1]}
+        v = y[run]
+        if np.isnan(v).any():
+            expected.add(run[0])
+        else:
+            expected |= {run[np.argmin(v)], run[np.argmax(v)]}
+    assert envelope(t, y, columns).tolist() == sorted(expected)
+
+
+def test_a_long_runs_figure_draws_each_line_through_its_own_envelope():
+    """Beyond KEEP_ALL samples each line is drawn through its envelope: at most four rows
+    a slice, and its smallest and largest values, first and last samples, all there."""
+    from ga_rotors.scene.figures import draw
+    from ga_rotors.scene.run import run_scene
+    from ga_rotors.scene.thinning import COLUMNS, KEEP_ALL
+
+    scene = load_scene("intermediate_axis_flip").replace(
+        {"time.duration": 60.0, "time.output_step": 0.001, "output.plots": ["omega"]}
+    )
+    tr = run_scene(scene)
+    assert len(tr) > KEEP_ALL
+    lines = draw(scene, tr).axes[0].get_lines()
+    assert len(lines) == 3
+    for k, line in enumerate(lines):
+        x, y, w = line.get_xdata(), line.get_ydata(), tr.w[:, k]
+        assert len(y) <= 4 * COLUMNS < len(w)
+        assert (y.min(), y.max()) == (w.min(), w.max())
+        assert (x[0], x[-1], y[0], y[-1]) == (tr.t[0], tr.t[-1], w[0], w[-1])
+        assert np.isin(x, tr.t).all() and (np.diff(x) > 0).all()
+
+
 def test_a_zarr_store_replaces_the_previous_runs(tmp_path):
     from ga_rotors.results import read
 

@@ -8,6 +8,10 @@ envelope a line plot of all the samples would draw, spikes included, in at most
 ``COLUMNS × (2 + 2 × columns)`` rows whatever the length of the run. A run of at most
 :data:`KEEP_ALL` samples is kept whole, so the figure of a short run is the figure of all
 its samples.
+
+A figure drawn from such a copy need not draw all its rows either: each of its lines needs
+only its own envelope (:func:`envelope`: per slice, the first and last row and the rows of
+the line's smallest and largest value), not the rows kept for the other arrays' extremes.
 """
 
 from __future__ import annotations
@@ -17,7 +21,7 @@ import numpy as np
 from .._jit import jit
 from ..trajectory import Trajectory
 
-__all__ = ["COLUMNS", "KEEP_ALL", "ThinnedCopy"]
+__all__ = ["COLUMNS", "KEEP_ALL", "ThinnedCopy", "envelope"]
 
 #: Slices of the time span; the figure's data area is about 900 pixels wide.
 COLUMNS = 2048
@@ -72,8 +76,7 @@ class ThinnedCopy:
 
     def _rows(self, piece: Trajectory) -> np.ndarray:
         t = piece.t
-        where = np.floor((t - self.t_start) / self.span * self.columns)
-        slices = np.clip(where, 0, self.columns - 1).astype(np.int64)
+        slices = _slices(t, self.t_start, self.span, self.columns)
         keep = np.zeros(t.shape[0], dtype=np.bool_)
         for name in piece.names:
             a = piece[name]
@@ -100,6 +103,39 @@ class ThinnedCopy:
         first = self.kept[0]
         arrays = {n: np.concatenate([p[n] for p in self.kept]) for n in first.names}
         return Trajectory(arrays, first.components, meta or self.kept[-1].meta)
+
+
+def envelope(t: np.ndarray, y: np.ndarray, columns: int = COLUMNS) -> np.ndarray:
+    """The rows of one line ``y(t)`` a plot of it needs: for each of ``columns`` equal
+    slices of ``t``'s span, its first and last row and the first rows holding the
+    smallest and the largest ``y`` (a slice holding a NaN: its first row).
+
+    Drawn through these rows, in order, a line covers in each slice what the line through
+    every row covers: the same vertical extent, joined to the same neighbours.
+
+    Examples
+    --------
+    >>> t = np.linspace(0.0, 1.0, 10_001)
+    >>> y = np.sin(40 * t)
+    >>> rows = envelope(t, y, columns=100)
+    >>> len(rows) <= 400, float(y[rows].max()) == float(y.max()), rows[0], rows[-1]
+    (True, True, np.int64(0), np.int64(10000))
+    """
+    t = np.asarray(t, dtype=np.float64)
+    keep = np.zeros(t.shape[0], dtype=np.bool_)
+    if t.shape[0] == 0:
+        return np.flatnonzero(keep)
+    span = float(t[-1] - t[0])
+    slices = _slices(t, float(t[0]), span if span > 0 else 1.0, int(columns))
+    _extremes(slices, np.ascontiguousarray(np.reshape(y, (t.shape[0], 1)), dtype=float), keep)
+    _slice_ends(slices, keep)
+    return np.flatnonzero(keep)
+
+
+def _slices(t: np.ndarray, t_start: float, span: float, columns: int) -> np.ndarray:
+    """Which of ``columns`` equal slices of [t_start, t_start + span] each time is in."""
+    where = np.floor((t - t_start) / span * columns)
+    return np.clip(where, 0, columns - 1).astype(np.int64)
 
 
 # Times increase, so each slice is a run of consecutive rows; one compiled pass per array
