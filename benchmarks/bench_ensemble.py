@@ -4,7 +4,7 @@ Usage (from the repository root)::
 
     python benchmarks/bench_ensemble.py [--bodies 100000] [--steps 200] [--repeats 5]
         [--sweep-samples 1000000] [--sweep-steps 100 1000] [--sweep-repeats 3]
-        [--kernels-only]
+        [--kernels-only] [--local-cluster]
 
 1. Kernel throughput in million body-steps per second, RK4, rows interleaved in each
    repeat (median, min–max): ``rk4_free`` (torque-free, one inertia shared by every body:
@@ -16,20 +16,21 @@ Usage (from the repository root)::
    in CPU time (``time.process_time``, every thread), which another job on the machine
    distorts less than wall time. ``--kernels-only`` stops after this part.
 2. Sweep overhead, for each ``--sweep-steps``: one Monte-Carlo sweep of
-   ``--sweep-samples`` samples run end to end with ``run_sweep`` on the local cluster it starts by
-   default (``local_cluster``: one worker process per core; started once here and reported
-   apart with the imports on its workers) into a zarr store, against the raw batched
-   kernel on the same samples (``run_samples`` on every core, the draws made beforehand);
-   and the same sweep in this process (``client="sync"``) against the serial kernel, which
-   separates the sweep's own work from Dask's. The four rows are interleaved in each
-   repeat; the overhead is taken per repeat (each sweep against the kernel run just before
-   it), median and range. The sweep's time holds the store's creation, every chunk's
-   draws, inputs, integration, reduction and write, and waiting for the last write; its
-   first repeat also each worker's first use (reading the sweep, loading the compiled
-   loop). Beside the wall time, each row's CPU time in all its processes (this one, and
-   the Dask workers' for the Dask row): on a loaded machine the wall-clock ratios mostly
-   measure the load, while the CPU overhead still says what the sweep adds to the kernel's
-   work.
+   ``--sweep-samples`` samples run end to end with ``run_sweep`` as ``ga-rotors sweep``
+   runs it by default (Dask's threaded scheduler in this process, one thread per core,
+   each task a chunk on the serial loop) into a zarr store, against the raw batched
+   kernel on the same samples (``run_samples`` on every core, the draws made
+   beforehand); and the same sweep in this process without Dask (``client="sync"``,
+   ``--here``) against the serial kernel. The rows are interleaved in each repeat; the
+   overhead is taken per repeat (each sweep against the kernel run just before it),
+   median and range. The sweep's time holds reading the sweep file, the nominal run, the
+   store's creation, every chunk's draws, inputs, integration, reduction and write.
+   Beside the wall time, each row's CPU time in all its processes (this one, and the
+   Dask workers' for a cluster row): on a loaded machine the wall-clock ratios mostly
+   measure the load, while the CPU overhead still says what the sweep adds to the
+   kernel's work. ``--local-cluster`` adds a row on a local ``distributed`` cluster of
+   one worker process per core (``local_cluster``, started once here and reported apart
+   with the imports on its workers), the previous default, against the same kernel run.
 """
 
 from __future__ import annotations
@@ -170,7 +171,7 @@ def _timed(f, client=None) -> tuple[float, float]:
     return wall, cpu + workers() - w0
 
 
-def sweep_overhead(samples: int, steps: int, repeats: int, client) -> None:
+def sweep_overhead(samples: int, steps: int, repeats: int, client=None) -> None:
     from ga_rotors.sweep import load_sweep, run_sweep
 
     text = _sweep_text(samples, steps)
@@ -179,27 +180,40 @@ def sweep_overhead(samples: int, steps: int, repeats: int, client) -> None:
     s = scene_samples(sweep.scene, sweep.values(0, sweep.size))
     t_inputs = time.perf_counter() - t0
     run_samples(scene_samples(sweep.scene, n=8))  # compiled / cached
-    run_samples(scene_samples(sweep.scene, n=8), parallel=False)
+    with tempfile.TemporaryDirectory() as tmp:  # the serial loop, the angle pass
+        run_sweep(_sweep_text(8, steps), Path(tmp) / "s.zarr", client="sync")
 
-    def swept(where, dask=None):
+    def swept(where=None, dask=None):
         with tempfile.TemporaryDirectory() as tmp:
             return _timed(lambda: run_sweep(text, Path(tmp) / "s.zarr", client=where), dask)
 
+    kernel = "raw kernel, every core (run_samples)"
     rows = {
-        "raw kernel, every core (run_samples)": lambda: _timed(lambda: run_samples(s)),
-        "sweep on the local Dask cluster (run_sweep)": lambda: swept(client, client),
+        kernel: lambda: _timed(lambda: run_samples(s)),
+        "sweep on Dask's threads (run_sweep, the default)": swept,
         "raw kernel, one thread (run_samples, parallel=False)": lambda: _timed(
             lambda: run_samples(s, parallel=False)
         ),
         "sweep in this process (run_sweep, client='sync')": lambda: swept("sync"),
     }
+    pairs = {
+        "Dask threads": ("sweep on Dask's threads (run_sweep, the default)", kernel),
+        "in this process": (
+            "sweep in this process (run_sweep, client='sync')",
+            "raw kernel, one thread (run_samples, parallel=False)",
+        ),
+    }
+    if client is not None:
+        cluster_row = "sweep on a local Dask cluster of processes"
+        rows[cluster_row] = lambda: swept(client, client)
+        pairs["local cluster"] = (cluster_row, kernel)
     times: dict[str, list[tuple[float, float]]] = {k: [] for k in rows}
     for _ in range(repeats):
         for name, f in rows.items():
             times[name].append(f())
     print(
         f"sweep: {samples} samples x {steps} RK4 steps, chunks of 65536, "
-        f"{len(client.scheduler_info()['workers'])} Dask workers, {repeats} interleaved repeats "
+        f"{os.cpu_count()} threads, {repeats} interleaved repeats "
         f"(+ {t_inputs:.2f} s drawing the values and building the raw kernel's inputs)"
     )
     print(f"  {'':56s} {'wall':>18s}   {'CPU, all processes':>18s}")
@@ -209,14 +223,10 @@ def sweep_overhead(samples: int, steps: int, repeats: int, client) -> None:
             f"  {name:56s} {statistics.median(wall):7.2f} s ({min(wall):.2f}-{max(wall):.2f})"
             f"   {statistics.median(cpu):7.2f} s ({min(cpu):.2f}-{max(cpu):.2f})"
         )
-    names = list(rows)
-    for label, sweep_row, kernel_row in (
-        ("Dask", names[1], names[0]),
-        ("in this process", names[3], names[2]),
-    ):
-        pairs = list(zip(times[sweep_row], times[kernel_row], strict=True))
-        over = [100 * (a[0] / b[0] - 1) for a, b in pairs]
-        cpu = [100 * (a[1] / b[1] - 1) for a, b in pairs]
+    for label, (sweep_row, kernel_row) in pairs.items():
+        both = list(zip(times[sweep_row], times[kernel_row], strict=True))
+        over = [100 * (a[0] / b[0] - 1) for a, b in both]
+        cpu = [100 * (a[1] / b[1] - 1) for a, b in both]
         print(
             f"  overhead over the raw kernel, {label + ':':16s} {statistics.median(over):6.1f} % "
             f"({min(over):.1f} to {max(over):.1f}, each repeat against its own kernel run); "
@@ -225,10 +235,6 @@ def sweep_overhead(samples: int, steps: int, repeats: int, client) -> None:
 
 
 def main() -> None:
-    import distributed
-
-    from ga_rotors.sweep import local_cluster
-
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("--bodies", type=int, default=100_000)
     p.add_argument("--steps", type=int, default=200)
@@ -237,6 +243,10 @@ def main() -> None:
     p.add_argument("--sweep-steps", type=int, nargs="+", default=[100, 1000])
     p.add_argument("--sweep-repeats", type=int, default=3)
     p.add_argument("--kernels-only", action="store_true", help="stop after the kernels")
+    p.add_argument(
+        "--local-cluster", action="store_true",
+        help="add a row on a local distributed cluster of one worker process per core",
+    )  # fmt: skip
     a = p.parse_args()
     print(f"load average before: {os.getloadavg()[0]:.1f}")
     kernels(a.bodies, a.steps, a.repeats)
@@ -244,19 +254,27 @@ def main() -> None:
         print(f"load average after: {os.getloadavg()[0]:.1f}")
         return
     _warm()
-    t0 = time.perf_counter()
-    cluster = local_cluster()  # what run_sweep starts when given no client
-    client = distributed.Client(cluster)
-    client.run(_warm)
-    print(
-        f"starting the local cluster and importing on its workers: {time.perf_counter() - t0:.2f} s"
-    )
+    cluster = client = None
+    if a.local_cluster:
+        import distributed
+
+        from ga_rotors.sweep import local_cluster
+
+        t0 = time.perf_counter()
+        cluster = local_cluster()
+        client = distributed.Client(cluster)
+        client.run(_warm)
+        print(
+            "starting the local cluster and importing on its workers: "
+            f"{time.perf_counter() - t0:.2f} s"
+        )
     try:
         for steps in a.sweep_steps:
             sweep_overhead(a.sweep_samples, steps, a.sweep_repeats, client)
     finally:
-        client.close()
-        cluster.close()
+        if client is not None:
+            client.close()
+            cluster.close()
     print(f"load average after: {os.getloadavg()[0]:.1f}")
 
 

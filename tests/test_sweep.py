@@ -5,6 +5,7 @@ from __future__ import annotations
 import contextlib
 import io
 import itertools
+import os
 import socket
 import warnings
 
@@ -171,23 +172,61 @@ def test_the_command_runs_resumes_and_prints_the_spread(tmp_path):
         assert main(["sweep", str(spec), "--out", str(tmp_path / "d.zarr"), "--here"]) == 0
 
 
-def test_the_command_on_a_local_cluster(tmp_path):
+def test_the_command_runs_on_dask_threads_by_default(tmp_path, reference, monkeypatch):
+    """``ga-rotors sweep`` with no --here or --scheduler: Dask's threaded scheduler in this
+    process, --workers threads (the store is the one a plain run writes), no cluster."""
+    import dask.threaded
+
     spec = tmp_path / "dispersion.toml"
     spec.write_text(SWEEP)
-    # Dask's default HTTP port held by someone else (another cluster on the machine) is no
-    # concern of the sweep's: no "Port 8787 is already in use" warning.
-    with (
-        socket.socket() as busy,
-        warnings.catch_warnings(record=True) as seen,
-        contextlib.redirect_stdout(io.StringIO()) as out,
-    ):
-        warnings.simplefilter("always")
-        with contextlib.suppress(OSError):  # already taken: the same situation
-            busy.bind(("", 8787))
-            busy.listen()
-        status = main(["sweep", str(spec), "--out", str(tmp_path / "d.zarr"), "--workers", "2"])
-    assert status == 0 and "(10 samples)" in out.getvalue()
-    assert not [w for w in seen if "already in use" in str(w.message)]
+    pools = []
+    real = dask.threaded.get
+
+    def spy(graph, keys, **kwargs):
+        pools.append(kwargs["pool"]._max_workers)
+        return real(graph, keys, **kwargs)
+
+    monkeypatch.setattr(dask.threaded, "get", spy)
+    monkeypatch.setattr(distributed, "LocalCluster", None)  # starting one would fail
+    for argv, threads in (([], os.cpu_count()), (["--workers", "2"], 2)):
+        out = tmp_path / f"d{threads}.zarr"
+        with contextlib.redirect_stdout(io.StringIO()) as printed:
+            status = main(["sweep", str(spec), "--out", str(out), *argv])
+        assert status == 0 and "(10 samples)" in printed.getvalue()
+        xr.testing.assert_identical(open_sweep(out).load(), reference)
+        assert pools[-1] == threads
+
+
+def test_a_threaded_sweep_interrupted_leaves_whole_flagged_chunks_and_resumes(tmp_path, reference):
+    """Ctrl-C reaches the thread waiting on Dask; the chunks running then finish and flag
+    themselves before run_sweep raises, so every flagged chunk holds all its samples, no
+    write goes on after it, and a second run does only the rest."""
+    text = SWEEP.replace("chunk = 4", "chunk = 1")  # ten chunks, two threads
+    full = open_sweep(run_sweep(text, tmp_path / "whole.zarr", workers=2)).load()
+    out = tmp_path / "s.zarr"
+
+    def interrupt(done, total):
+        if done == 1:
+            raise KeyboardInterrupt
+
+    with pytest.raises(KeyboardInterrupt):
+        run_sweep(text, out, workers=2, progress=interrupt)
+    first = xr.open_zarr(out).load()
+    flags = first["chunk_done"].values == 1  # unwritten flags read as NaN here
+    assert 1 <= flags.sum() < 10  # the running chunks finished, the others never started
+    for c in range(10):
+        if flags[c]:
+            xr.testing.assert_identical(
+                first.isel(sample=[c]).drop_vars("chunk_done"),
+                full.isel(sample=[c]).drop_vars("chunk_done"),
+            )
+        else:  # not started: nothing of it written
+            assert np.isnan(first["q"].values[c]).all()
+    calls = []
+    run_sweep(text, out, workers=2, progress=lambda d, n: calls.append(d))
+    assert calls[0] == flags.sum() and calls[-1] == 10  # only the missing chunks ran
+    xr.testing.assert_identical(open_sweep(out).load(), full)
+    assert np.array_equal(full["q"].values, reference["q"].values)
 
 
 def test_the_command_on_an_existing_scheduler_writes_what_a_plain_run_writes(tmp_path, reference):
@@ -229,8 +268,9 @@ def test_the_command_names_the_extra_when_dask_is_missing(tmp_path, monkeypatch)
     real = optional.importlib.import_module
 
     def fake(name, *args):
-        if name == "distributed":
-            raise ModuleNotFoundError("No module named 'distributed'", name="distributed")
+        top = name.split(".")[0]
+        if top in ("dask", "distributed"):
+            raise ModuleNotFoundError(f"No module named {top!r}", name=top)
         return real(name, *args)
 
     monkeypatch.setattr(optional.importlib, "import_module", fake)
@@ -242,7 +282,7 @@ def test_the_command_names_the_extra_when_dask_is_missing(tmp_path, monkeypatch)
     assert status == 2
     assert err.getvalue().strip().endswith('pip install "ga-rotors[dask]"')
     assert not (tmp_path / "d.zarr").exists()  # refused before anything was written
-    with pytest.raises(MissingExtraError, match="distributed"):
+    with pytest.raises(MissingExtraError, match="dask"):
         run_sweep(SWEEP, tmp_path / "d.zarr")
 
 
@@ -280,12 +320,13 @@ def test_a_failed_background_write_is_raised_not_lost(tmp_path, monkeypatch):
 
 
 def test_a_full_disk_is_one_line_naming_the_store(tmp_path, monkeypatch):
-    # On the command line, run here or on a local cluster (threads, so the fault reaches
-    # the workers too: the error crosses Dask as it would from a worker process).
+    # On the command line, run here, on Dask's threads (the default) or on a cluster (of
+    # threads, so the fault reaches the workers too: the error crosses Dask as it would
+    # from a worker process).
     _disk_full_at(monkeypatch, "q", 2)
     spec = tmp_path / "dispersion.toml"
     spec.write_text(SWEEP)
-    for where, store in ((["--here"], "here.zarr"), (None, "dask.zarr")):
+    for where, store in ((["--here"], "here.zarr"), ([], "threads.zarr"), (None, "dask.zarr")):
         err = io.StringIO()
         argv = ["sweep", str(spec), "--out", str(tmp_path / store), "--no-progress"]
         with contextlib.ExitStack() as stack:

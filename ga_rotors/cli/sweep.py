@@ -2,8 +2,9 @@
 
 The sweep file names the scene, the keys to vary (a grid of values, random draws from
 stated distributions with a seed) and the output times; see docs/ensembles.md. Chunks of
-samples run on Dask — on this machine by default (one worker process per core), or on an
-existing cluster with --scheduler ADDRESS — and are written to the store as they finish.
+samples run on Dask — on this machine by default (Dask's threaded scheduler, one thread
+per core, in this process), or on an existing cluster with --scheduler ADDRESS — and are
+written to the store as they finish.
 Interrupting and running the same command again resumes from the finished chunks.
 Prints how far the samples spread from the base scene at each output time.
 Needs pip install "ga-rotors[dask]".
@@ -29,16 +30,16 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     where = parser.add_mutually_exclusive_group()
     where.add_argument(
         "--scheduler", metavar="ADDRESS", default=None,
-        help="an existing Dask scheduler (tcp://host:8786), given 10 s to answer; default: a "
-        "local cluster",
+        help="an existing Dask cluster's scheduler (tcp://host:8786), given 10 s to answer; "
+        "default: Dask's threaded scheduler on this machine",
     )  # fmt: skip
     where.add_argument(
         "--workers", metavar="N", type=int, default=None,
-        help="worker processes of the local cluster (default: one per core)",
+        help="threads on this machine (default: one per core)",
     )  # fmt: skip
     where.add_argument(
         "--here", action="store_true",
-        help="run the chunks in this process, one after the other (no Dask cluster)",
+        help="run the chunks one after the other in this process, without Dask",
     )  # fmt: skip
     bar = parser.add_mutually_exclusive_group()
     bar.add_argument(

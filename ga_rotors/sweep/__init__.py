@@ -1,8 +1,10 @@
 """Sweeps and Monte-Carlo dispersion studies of a scene, on Dask, into a zarr store.
 
 * :func:`load_sweep` — a sweep file: the scene, grid keys, random draws and seed;
-* :func:`run_sweep` — run (or resume) it chunk by chunk on Dask into a ``.zarr`` store, on
-  :func:`local_cluster` by default;
+* :func:`run_sweep` — run (or resume) it chunk by chunk on Dask into a ``.zarr`` store:
+  on Dask's threaded scheduler in this process by default, or on a cluster (a
+  scheduler's address, a ``distributed.Client``; :func:`local_cluster` starts one of
+  worker processes on this machine);
 * :func:`open_sweep` — the finished store as an xarray Dataset; :func:`summary` and
   :func:`histogram` its spread from the base scene, reduced chunk by chunk.
 

@@ -3,18 +3,25 @@
 The store is created whole first (in a staging directory, then renamed into place): every
 variable at its full size, chunked along ``sample`` as the sweep's ``chunk``, plus a
 ``chunk_done`` flag per chunk (:mod:`ga_rotors.sweep.store`). Each Dask task draws one
-chunk's values, builds its inputs and integrates it
-(:func:`ga_rotors.ensemble.run_samples`); the process's writer thread then reduces it
-(the angle from the nominal) and writes its blocks (raw chunk files: nothing to encode)
-while the next chunk is integrated, and only then sets the chunk's flag. Run in this
-process (``client="sync"``), a second thread also draws and builds the next chunk's inputs
-while the current one integrates, so the integrating thread does little else. Running the
-same sweep into the same store again skips the flagged chunks: an interrupted sweep
-resumes from its finished chunks, and a chunk cut off halfway is done again. A store holds
-one sweep (its digest is an attribute); another sweep is refused.
+chunk's values, builds its inputs, integrates it on the serial batched loop
+(:func:`ga_rotors.ensemble.run_samples`), reduces it (the angle from the nominal) and
+writes its blocks (raw chunk files: nothing to encode), and only then sets the chunk's
+flag. Running the same sweep into the same store again skips the flagged chunks: an
+interrupted sweep resumes from its finished chunks, and a chunk cut off halfway is done
+again. A store holds one sweep (its digest is an attribute); another sweep is refused.
 
-Tasks run the serial kernel: the parallelism is Dask's (one worker process per core by
-default), and several tasks may share one process.
+Where the tasks run:
+
+* by default, on Dask's threaded scheduler in this process, one thread per core: the
+  compiled loops, numpy and the writes release the GIL, so the threads integrate side by
+  side with no scheduler, serialisation or worker processes in between (a local
+  ``distributed`` cluster of two processes cost 30-45 % of a 100-step sweep's kernel time
+  on two cores; see benchmarks/bench_ensemble.py);
+* on a Dask cluster, through a ``distributed.Client`` (of a ``--scheduler`` address, or
+  one given): one worker process per core with one thread each is the layout to start.
+  A worker integrates one chunk while its writer thread writes the previous one;
+* ``client="sync"``: in this process, one chunk after the other, with a second thread
+  drawing the next chunk's inputs and a writer thread writing the previous one.
 """
 
 from __future__ import annotations
@@ -301,19 +308,51 @@ def _create(sweep: Sweep, store: Path, nominal: np.ndarray) -> None:
 SCHEDULER_TIMEOUT = 10
 
 
-def _client(client, scheduler: str | None, workers: int | None):
-    """(client, owned): an explicit client, "sync" (no Dask), a scheduler or a LocalCluster."""
+def _client(client, scheduler: str | None):
+    """(client, owned): an explicit ``distributed.Client``, or one of ``scheduler``."""
     if client is not None:
         return client, False
     distributed = require("distributed", "dask")
-    if scheduler:
-        try:
-            return distributed.Client(scheduler, timeout=SCHEDULER_TIMEOUT), True
-        except (OSError, TimeoutError) as exc:
-            text = str(exc).strip()
-            first = text.splitlines()[0] if text else type(exc).__name__
-            raise InputError(f"--scheduler: cannot reach {scheduler}: {first}") from None
-    return distributed.Client(local_cluster(workers)), True
+    try:
+        return distributed.Client(scheduler, timeout=SCHEDULER_TIMEOUT), True
+    except (OSError, TimeoutError) as exc:
+        text = str(exc).strip()
+        first = text.splitlines()[0] if text else type(exc).__name__
+        raise InputError(f"--scheduler: cannot reach {scheduler}: {first}") from None
+
+
+def _run_threads(task: _Task, todo: list[int], threads: int, done) -> None:
+    """Run chunks ``todo`` on Dask's threaded scheduler, ``threads`` at a time.
+
+    One task per chunk, each integrating on the serial loop and writing its own blocks
+    (the threads overlap one another's writes with their integration). ``done()`` is
+    called in this thread as each chunk is flagged. The pool is this call's own and is
+    shut down before it returns or raises: an interrupted sweep (Ctrl-C reaches this
+    thread, waiting for the next chunk) first lets the running chunks finish and flag
+    themselves (Dask starts no more than ``threads`` tasks at a time, so nothing else
+    is queued), and so leaves no write behind it.
+    """
+    threaded = require("dask.threaded", "dask")
+    # Keys that Dask's ordering (reverse order of the names, for tasks that depend on
+    # nothing) starts in the order of ``todo``: chunks then fill the store from its
+    # start, and the last chunk, the one that may be short, runs last instead of leaving
+    # a thread idle at the end. Only a preference: any order writes the same store.
+    width = len(str(len(todo)))
+    graph = {
+        f"ga_rotors-chunk-{len(todo) - 1 - i:0{width}d}": (run_chunk, task, c)
+        for i, c in enumerate(todo)
+    }
+
+    def posttask(key, result, dsk, state, worker_id):
+        done()
+
+    pool = ThreadPoolExecutor(threads, thread_name_prefix="ga_rotors-sweep")
+    try:
+        # the callback as Dask's 5-tuple (start, start_state, pretask, posttask, finish),
+        # given to this computation only, not registered for every Dask call in the process
+        threaded.get(graph, list(graph), pool=pool, callbacks=[(None, None, None, posttask, None)])
+    finally:
+        pool.shutdown(wait=True, cancel_futures=True)
 
 
 #: Dask settings of the local cluster a sweep starts. Its workers' sampling profiler off,
@@ -334,10 +373,12 @@ LOCAL_CLUSTER_CONFIG = {
 
 
 def local_cluster(workers: int | None = None):
-    """The local Dask cluster a sweep runs on by default, started.
+    """A local Dask cluster of worker processes, started, for ``run_sweep(client=...)``.
 
     ``workers`` processes (default: one per core) of one thread each, with
-    :data:`LOCAL_CLUSTER_CONFIG`; the caller closes it.
+    :data:`LOCAL_CLUSTER_CONFIG`; the caller closes it. A sweep does not need it on one
+    machine (it runs on Dask's threaded scheduler by default, at less cost); it is for
+    watching a sweep on Dask's dashboard, or trying a cluster's layout before renting one.
 
     Examples
     --------
@@ -374,9 +415,14 @@ def run_sweep(source, out, *, client=None, scheduler=None, workers=None, progres
     out : path
         The store, a ``.zarr`` directory; created if absent, resumed if it holds this sweep.
     client : distributed.Client or "sync", optional
-        Where the chunks run: an existing client; ``"sync"`` runs them here, one by one.
-        Default: a client of ``scheduler`` if given, else a new LocalCluster of
-        ``workers`` processes (default: one per core), closed at the end.
+        Where the chunks run: an existing client (a cluster's); ``"sync"`` runs them here,
+        one by one. Default: a client of ``scheduler`` if given (closed at the end; the
+        cluster stays up), else Dask's threaded scheduler in this process.
+    scheduler : str, optional
+        A Dask scheduler's address (``tcp://host:8786``), given
+        :data:`SCHEDULER_TIMEOUT` seconds to answer.
+    workers : int, optional
+        Threads of the default run in this process (default: one per core).
     progress : callable, optional
         ``progress(done, total)`` in chunks.
 
@@ -392,9 +438,11 @@ def run_sweep(source, out, *, client=None, scheduler=None, workers=None, progres
     ((3, 1, 4), 'body.mass')
     """
     require("zarr", "results")
-    require("dask.array", "dask")
-    if client is None:
+    require("dask.threaded", "dask")
+    if client is None and scheduler:
         require("distributed", "dask")  # before anything is written
+    if workers is not None and workers < 1:
+        raise InputError(f"--workers: expected a positive number, got {workers}")
     sweep = load_sweep(source)
     store = Path(out)
     if store.suffix != ".zarr":
@@ -447,9 +495,23 @@ def run_sweep(source, out, *, client=None, scheduler=None, workers=None, progres
         if progress is not None:
             progress(finished, total)
         return store
+    if client is None and not scheduler:
+        if not created:
+            _create(sweep, store, nominal)
+        if progress is not None:
+            progress(finished, total)
+
+        def flagged():
+            nonlocal finished
+            finished += 1
+            if progress is not None:
+                progress(finished, total)
+
+        _run_threads(task, todo, workers or os.cpu_count() or 1, flagged)
+        return store
     distributed = require("distributed", "dask")
     # connected before anything is written: an unreachable scheduler leaves no store
-    dask_client, owned = _client(client, scheduler, workers)
+    dask_client, owned = _client(client, scheduler)
     try:
         if not created:
             _create(sweep, store, nominal)
@@ -465,10 +527,7 @@ def run_sweep(source, out, *, client=None, scheduler=None, workers=None, progres
         dask_client.run(flush_writes)  # every worker's last chunk
     finally:
         if owned:
-            cluster = dask_client.cluster
             dask_client.close()
-            if cluster is not None:
-                cluster.close()
     return store
 
 
