@@ -23,6 +23,7 @@ from __future__ import annotations
 import re
 import types
 from dataclasses import dataclass
+from math import isfinite
 
 import numba
 import numpy as np
@@ -473,21 +474,33 @@ def _fast(scene, changes: dict, n: int):
             target[:] = values.reshape(n, 3) * scale
         else:
             target[:, index] = values.reshape(n) * scale
-    if not np.all(np.isfinite(moments)) or not np.all(np.isfinite(omega)):
+    if _refused(moments, omega, np.finfo(float).tiny, MIN_MOMENT_RATIO):
         return None  # let the per-sample path name the bad value
-    # Any sample the body's own checks might refuse goes to the per-sample path, which
-    # names it: moments not normal floats, too thin a body, outside the triangle. Column
-    # by column (numpy reduces a length-3 axis slowly: 4x the time).
-    a, b, c = moments[:, 0], moments[:, 1], moments[:, 2]
-    s = a + b + c
-    lo, hi = np.minimum(np.minimum(a, b), c), np.maximum(np.maximum(a, b), c)
-    tiny = np.finfo(float).tiny
-    if np.any(
-        (lo < tiny) | (hi > 1.0 / tiny) | (lo / hi < MIN_MOMENT_RATIO)  # as the body's
-        | (a > s - a) | (b > s - b) | (c > s - c)
-    ):  # fmt: skip
-        return None
     return moments, omega
+
+
+@jit
+def _refused(moments, omega, tiny, ratio):
+    """Whether a sample's values are not finite, or its moments may be refused.
+
+    Any sample the body's own checks might refuse goes to the per-sample path, which
+    names it: moments not normal floats, too thin a body, outside the triangle. One pass
+    over the samples: the same conditions as numpy expressions made about fifteen
+    chunk-sized temporaries (1 ms of a 65,536-sample chunk's 2.5 ms of inputs, measured).
+    """
+    for i in range(moments.shape[0]):
+        a, b, c = moments[i, 0], moments[i, 1], moments[i, 2]
+        w0, w1, w2 = omega[i, 0], omega[i, 1], omega[i, 2]
+        if not (isfinite(a) and isfinite(b) and isfinite(c)
+                and isfinite(w0) and isfinite(w1) and isfinite(w2)):  # fmt: skip
+            return True
+        s = a + b + c
+        lo, hi = min(a, min(b, c)), max(a, max(b, c))
+        if lo < tiny or hi > 1.0 / tiny or lo / hi < ratio:  # as the body's
+            return True
+        if a > s - a or b > s - b or c > s - c:
+            return True
+    return False
 
 
 def scene_samples(scene, changes=None, n: int | None = None) -> SceneSamples:

@@ -197,6 +197,30 @@ def test_the_command_runs_on_dask_threads_by_default(tmp_path, reference, monkey
         assert pools[-1] == threads
 
 
+@pytest.mark.parametrize(("threads", "pieces"), [(2, [1, 2, 2]), (3, [3, 3, 2])])
+def test_chunks_cut_into_pieces_between_threads_are_the_chunks_made_at_once(
+    tmp_path, reference, monkeypatch, threads, pieces
+):
+    """The last chunks of a threaded run (as many as threads) are integrated in pieces by
+    several threads and written by the last piece to finish: the store is the one a plain
+    run writes."""
+    import ga_rotors.sweep.run as sweep_run
+
+    monkeypatch.setattr(sweep_run, "MIN_PIECE", 1)
+    parts = sweep_run._parts(load_sweep(SWEEP), [0, 1, 2], threads)
+    assert [len([p for p in parts if p[0] == c]) for c in range(3)] == pieces
+    for c in range(3):  # the pieces of each chunk cover it once, in order
+        cuts = [(a, b) for k, a, b, _ in parts if k == c]
+        assert cuts[0][0] == 0 and all(x[1] == y[0] for x, y in itertools.pairwise(cuts))
+        assert cuts[-1][1] == min(4, 10 - 4 * c)
+    seen = []
+    out = run_sweep(
+        SWEEP, tmp_path / "s.zarr", workers=threads, progress=lambda d, n: seen.append(d)
+    )
+    xr.testing.assert_identical(open_sweep(out).load(), reference)
+    assert seen == [0, 1, 2, 3]  # one step per chunk written, none per piece
+
+
 def test_a_threaded_sweep_interrupted_leaves_whole_flagged_chunks_and_resumes(tmp_path, reference):
     """Ctrl-C reaches the thread waiting on Dask; the chunks running then finish and flag
     themselves before run_sweep raises, so every flagged chunk holds all its samples, no
