@@ -28,9 +28,12 @@ Usage (from the repository root)::
    Beside the wall time, each row's CPU time in all its processes (this one, and the
    Dask workers' for a cluster row): on a loaded machine the wall-clock ratios mostly
    measure the load, while the CPU overhead still says what the sweep adds to the
-   kernel's work. ``--local-cluster`` adds a row on a local ``distributed`` cluster of
-   one worker process per core (``local_cluster``, started once here and reported apart
-   with the imports on its workers), the previous default, against the same kernel run.
+   kernel's work. The whole benchmark runs with ``keep_freed_memory()`` (glibc keeps
+   freed memory for reuse), as ``ga-rotors sweep`` does: the kernels' rows too, so
+   every row has the same allocator. ``--local-cluster`` adds a row on a local
+   ``distributed`` cluster of one worker process per core (``local_cluster``, started
+   once here and reported apart with the imports on its workers), the previous default,
+   against the same kernel run.
 """
 
 from __future__ import annotations
@@ -248,7 +251,11 @@ def main() -> None:
         help="add a row on a local distributed cluster of one worker process per core",
     )  # fmt: skip
     a = p.parse_args()
-    print(f"load average before: {os.getloadavg()[0]:.1f}")
+    from ga_rotors.sweep import keep_freed_memory
+
+    print(
+        f"load average before: {os.getloadavg()[0]:.1f}; keep_freed_memory: {keep_freed_memory()}"
+    )
     kernels(a.bodies, a.steps, a.repeats)
     if a.kernels_only:
         print(f"load average after: {os.getloadavg()[0]:.1f}")

@@ -48,6 +48,17 @@ uniform = [0.25, 0.35]
 """
 
 
+@pytest.fixture(autouse=True)
+def kept_memory(monkeypatch):
+    """Calls of keep_freed_memory by the command, which would otherwise change the
+    allocator of the test process itself (its doctest runs it in a process of its own)."""
+    import ga_rotors.sweep
+
+    calls = []
+    monkeypatch.setattr(ga_rotors.sweep, "keep_freed_memory", lambda: calls.append(1) or True)
+    return calls
+
+
 def test_the_same_seed_gives_the_same_numbers_whatever_the_chunking():
     text = SWEEP.replace("samples = 5", f"samples = {BLOCK + 1000}")
     sweep = load_sweep(text)
@@ -172,7 +183,7 @@ def test_the_command_runs_resumes_and_prints_the_spread(tmp_path):
         assert main(["sweep", str(spec), "--out", str(tmp_path / "d.zarr"), "--here"]) == 0
 
 
-def test_the_command_runs_on_dask_threads_by_default(tmp_path, reference, monkeypatch):
+def test_the_command_runs_on_dask_threads_by_default(tmp_path, reference, monkeypatch, kept_memory):
     """``ga-rotors sweep`` with no --here or --scheduler: Dask's threaded scheduler in this
     process, --workers threads (the store is the one a plain run writes), no cluster."""
     import dask.threaded
@@ -195,6 +206,7 @@ def test_the_command_runs_on_dask_threads_by_default(tmp_path, reference, monkey
         assert status == 0 and "(10 samples)" in printed.getvalue()
         xr.testing.assert_identical(open_sweep(out).load(), reference)
         assert pools[-1] == threads
+    assert len(kept_memory) == 2  # each command keeps its freed memory for the next chunk
 
 
 @pytest.mark.parametrize(("threads", "pieces"), [(2, [1, 2, 2]), (3, [3, 3, 2])])

@@ -55,7 +55,7 @@ def run(args: argparse.Namespace) -> int:
     from pathlib import Path
 
     from ..errors import InputError
-    from ..sweep import open_sweep, run_sweep, summary
+    from ..sweep import keep_freed_memory, open_sweep, run_sweep, summary
     from .run import ProgressBar
 
     start = time.perf_counter()
@@ -66,6 +66,7 @@ def run(args: argparse.Namespace) -> int:
         out.parent.mkdir(parents=True, exist_ok=True)
     else:
         out = Path(args.out)
+    keep_freed_memory()  # this process ends with the sweep: its freed memory may stay
     bar = ProgressBar(sys.stderr, args.progress, delay=0.0)
     try:
         store = run_sweep(

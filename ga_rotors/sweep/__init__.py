@@ -6,7 +6,9 @@
   scheduler's address, a ``distributed.Client``; :func:`local_cluster` starts one of
   worker processes on this machine);
 * :func:`open_sweep` — the finished store as an xarray Dataset; :func:`summary` and
-  :func:`histogram` its spread from the base scene, reduced chunk by chunk.
+  :func:`histogram` its spread from the base scene, reduced chunk by chunk;
+* :func:`keep_freed_memory` — what ``ga-rotors sweep`` does to its process's allocator
+  so that each chunk's arrays do not fault their pages in afresh.
 
 Needs ``pip install "ga-rotors[dask]"`` (Dask, xarray, zarr). ``ga-rotors sweep`` is the
 command; docs/ensembles.md a worked study.
@@ -17,6 +19,7 @@ from __future__ import annotations
 from .run import (
     LOCAL_CLUSTER_CONFIG,
     histogram,
+    keep_freed_memory,
     local_cluster,
     open_sweep,
     run_chunk,
@@ -30,6 +33,7 @@ __all__ = [
     "LOCAL_CLUSTER_CONFIG",
     "Sweep",
     "histogram",
+    "keep_freed_memory",
     "load_sweep",
     "local_cluster",
     "open_sweep",
