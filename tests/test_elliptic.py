@@ -110,3 +110,39 @@ def test_jacobi_next_to_zero_is_the_identity_not_nan(m1):
     # and continuous with the general path just above the switch (|u| = 1e-100)
     above = elliptic.jacobi(np.array([1e-99]), 1.0 - m1, m1)
     assert above[0][0] == pytest.approx(1e-99, rel=1e-15) and above[1][0] == 1.0
+
+
+def _rj_ulps(got, x, y, z, p):
+    want = mp.elliprj(x, y, z, p)
+    return float(abs((mp.mpf(got) - want) / want)) / EPS
+
+
+def _rj_arguments(rng, size):
+    """R_J's arguments in Π(n; am u | m) = r + (n/3) s³ R_J(c², d², 1, p): m₁ from 1 to
+    1e-15, n of either sign (p = 1 − n + n c² or 1 − n s²), n up to 1 − 1e-15."""
+    for _ in range(size):
+        c, m1 = rng.uniform(0.0, 1.0), 10.0 ** rng.uniform(-15.0, 0.0)
+        n = rng.choice([1.0, -1.0]) * 10.0 ** rng.uniform(-6.0, 1.5)
+        if n > 0.0:
+            n = min(n, 1.0 - 10.0 ** rng.uniform(-15.0, -0.1))
+        p = (1.0 - n) + n * c * c if n > 0.0 else 1.0 - n * (1.0 - c * c)
+        yield c * c, m1 + (1.0 - m1) * c * c, 1.0, p
+
+
+def test_carlson_rj_against_mpmath_where_the_references_call_it():
+    # Measured on 3000 such draws: at most 2.7 ulps (scipy's elliprj: 4.2); and the
+    # complete integrals R_J(0, m₁, 1, 1 − n), n < 0: 2.3 ulps (scipy's: 6.9).
+    rng = np.random.default_rng(13)
+    worst = max(_rj_ulps(elliptic.carlson_rj(*a), *a) for a in _rj_arguments(rng, 300))
+    assert worst <= 4.0
+    for _ in range(100):
+        a = (0.0, 10.0 ** rng.uniform(-15.0, 0.0), 1.0, 1.0 + 10.0 ** rng.uniform(-6.0, 2.0))
+        assert _rj_ulps(elliptic.carlson_rj(*a), *a) <= 4.0, a
+
+
+def test_carlson_rj_pair_is_each_single_bit_for_bit():
+    rng = np.random.default_rng(5)
+    args = list(_rj_arguments(rng, 200))
+    for (x, y, z, p), (_, _, _, other) in zip(args, args[::-1], strict=True):
+        pair = elliptic.carlson_rj_pair(x, y, z, p, other)
+        assert pair == (elliptic.carlson_rj(x, y, z, p), elliptic.carlson_rj(x, y, z, other))

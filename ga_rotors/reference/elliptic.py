@@ -19,6 +19,15 @@ uses m₁ wherever 1 − m would appear.
 * :class:`JacobiArgument` — arguments u reduced once, for :func:`jacobi` and any number of
   :func:`pi_integral` characteristics at the same u and m (an exact reference evaluates
   all three at every sample: the reduction and the Gauss transformation are done once).
+
+The per-argument formulas are compiled scalar functions (:func:`reduce_argument`,
+:func:`sncndn_reduced`, :func:`pi_reduced`, :func:`carlson_rj`), which the functions above
+loop over and which a reference's own compiled pass calls directly
+(:mod:`ga_rotors.reference.heavy_top` evaluates its whole state per sample that way): one
+implementation of each. R_J is Carlson's duplication algorithm, compiled here rather than
+scipy's ``elliprj`` (a ufunc, called per array): at most 2.7 ulps against mpmath where the
+references call it, scipy's 4.2, and :func:`carlson_rj_pair` serves the heavy top's two
+characteristics at the same (x, y, z) with one duplication.
 """
 
 from __future__ import annotations
@@ -27,7 +36,9 @@ import math
 import sys
 
 import numpy as np
-from scipy.special import ellipkm1, elliprf, elliprj
+from scipy.special import ellipkm1, elliprf
+
+from .._jit import jit
 
 __all__ = [
     "MIN_M1",
@@ -64,16 +75,30 @@ def complete_first(m: float, m1: float) -> float:
     return float(ellipkm1(m1))
 
 
-def _reduce(u, m, m1):
-    """u = 2jK + r with r ∈ [−K, K]: returns (j, r, K)."""
-    k = complete_first(m, m1)
-    u = np.asarray(u, dtype=float)
-    j = np.rint(u / (2.0 * k))
-    return j, u - 2.0 * k * j, k
+def _gauss_coefficients(m1: float):
+    """The descending Gauss transformation's means for m₁ (they depend on m₁ alone).
+
+    Returns (a, e, c): the arithmetic means aₙ and the square roots eₙ of the
+    complementary parameters, in the order produced, and the last mean c.
+    """
+    a, emc = 1.0, m1
+    ems, ens = [], []
+    while True:
+        ems.append(a)
+        emc = math.sqrt(emc)
+        ens.append(emc)
+        c = 0.5 * (a + emc)
+        if abs(a - emc) <= 1e-9 * a:  # quadratic convergence: the next mean is exact
+            break
+        emc *= a
+        a = c
+    return np.array(ems), np.array(ens), c
 
 
-def _jacobi_reduced(r, m, m1):
-    """sn, cn, dn for r ∈ [−K, K] by the descending Gauss transformation on m₁.
+@jit
+def sncndn_reduced(r, m, m1, means, roots, c):
+    """sn, cn, dn for one r ∈ [−K, K] by the descending Gauss transformation on m₁
+    (``means``, ``roots``, ``c`` from the transformation's setup for m₁).
 
     The recurrence runs on the complementary parameter and on the ratio cn/sn
     (Numerical Recipes' ``sncndn``), never through arcsin: the textbook AGM form
@@ -84,41 +109,191 @@ def _jacobi_reduced(r, m, m1):
     """
     # Next to 0 the ratio cn/sn ~ 1/r below would overflow when squared (r = 5e-167 gave
     # NaN); there sn = r (1 − (1 + m) r²/6 + …) = r and cn = dn = 1 to rounding.
-    given = np.asarray(r, dtype=float)
-    small = np.abs(given) < _SMALL_ARGUMENT
-    r = np.where(small, 0.0, given)
-    a, emc = 1.0, m1
-    ems, ens = [], []
-    while True:
-        ems.append(a)
-        emc = np.sqrt(emc)
-        ens.append(emc)
-        c = 0.5 * (a + emc)
-        if abs(a - emc) <= 1e-9 * a:  # quadratic convergence: the next mean is exact
-            break
-        emc *= a
-        a = c
-    x = np.asarray(r, dtype=float) * c
-    sn, cn = np.sin(x), np.cos(x)
-    zero = sn == 0.0
-    ratio = np.where(zero, 1.0, cn) / np.where(zero, 1.0, sn)
-    cc = c * ratio
-    d = np.ones_like(x)
-    for b, en in zip(reversed(ems), reversed(ens), strict=True):
-        ratio = ratio * cc
-        cc = cc * d
-        d = (en + ratio) / (b + ratio)
-        ratio = cc / b
-    s_abs = 1.0 / np.sqrt(cc * cc + 1.0)
-    sn_new = np.where(sn >= 0.0, s_abs, -s_abs)
-    cn_new = cc * sn_new
-    sn = np.where(zero, sn, sn_new)
-    cn = np.where(zero, cn, cn_new)
-    if small.any():
-        sn = np.where(small, given, sn)
-        cn = np.where(small, 1.0, cn)
-    dn = np.sqrt(m1 + m * cn * cn)
-    return sn, cn, dn
+    if abs(r) < _SMALL_ARGUMENT:
+        return r, 1.0, math.sqrt(m1 + m * 1.0 * 1.0)
+    x = r * c
+    sn, cn = math.sin(x), math.cos(x)
+    if sn != 0.0:
+        ratio = cn / sn
+        cc = c * ratio
+        d = 1.0
+        for i in range(means.shape[0] - 1, -1, -1):
+            b = means[i]
+            ratio = ratio * cc
+            cc = cc * d
+            d = (roots[i] + ratio) / (b + ratio)
+            ratio = cc / b
+        s_abs = 1.0 / math.sqrt(cc * cc + 1.0)
+        sn = s_abs if sn >= 0.0 else -s_abs
+        cn = cc * sn
+    return sn, cn, math.sqrt(m1 + m * cn * cn)
+
+
+@jit
+def reduce_argument(u, k):
+    """u = 2jK + r with r ∈ [−K, K]: (j, r) for one argument (j a whole float)."""
+    j = np.rint(u / (2.0 * k))
+    return j, u - 2.0 * k * j
+
+
+@jit
+def half_period_sign(j):
+    """(−1)^j for a whole float j: sn(u + 2K) = −sn u, cn(u + 2K) = −cn u."""
+    return 1.0 - 2.0 * (j - 2.0 * math.floor(0.5 * j))
+
+
+#: Carlson's stopping constant (r/4)^(−1/6) for a relative truncation error r = ε.
+_RJ_STOP = (_EPS / 4.0) ** (-1.0 / 6.0)
+
+
+@jit
+def _rc_one(e):
+    """R_C(1, 1 + e) for e > −1: atan(√e)/√e, atanh(√−e)/√−e, or their series near 0
+    (truncated after e⁵: the next term is below ε for |e| < 1e-3)."""
+    if abs(e) < 1e-3:
+        return 1.0 + e * (-1.0 / 3.0 + e * (0.2 + e * (-1.0 / 7.0 + e * (1.0 / 9.0 - e / 11.0))))
+    if e > 0.0:
+        root = math.sqrt(e)
+        return math.atan(root) / root
+    root = math.sqrt(-e)
+    return math.atanh(root) / root
+
+
+@jit
+def _rj_start(x, y, z, p):
+    """Carlson's duplication for R_J(x, y, z, p), before its first step:
+    (p, A, 4⁻ᵐ, 4⁻³ᵐ, Σ, going on, A₀, δ, Q)."""
+    a = (x + y + z + 2.0 * p) / 5.0
+    q = _RJ_STOP * max(abs(a - x), abs(a - y), abs(a - z), abs(a - p))
+    return (p, a, 1.0, 1.0, 0.0, q >= abs(a), a, (p - x) * (p - y) * (p - z), q)
+
+
+@jit
+def _rj_step(state, sx, sy, sz, lam):
+    """One duplication step of :func:`_rj_start`'s state, given √x, √y, √z and λ of this
+    step (shared by every p at the same x, y, z); a finished state is returned as it is."""
+    p, a, f, g, total, going, a0, delta, q = state
+    if not going:
+        return state
+    sp = math.sqrt(p)
+    d = (sp + sx) * (sp + sy) * (sp + sz)
+    total += f * _rc_one(g * delta / (d * d)) / d
+    a, f = 0.25 * (a + lam), 0.25 * f
+    return (0.25 * (p + lam), a, f, g / 64.0, total, f * q >= abs(a), a0, delta, q)
+
+
+@jit
+def _rj_finish(state, x, y, z):
+    """R_J from a finished duplication of the arguments x, y, z (their initial values):
+    the fifth-order series at the last step, plus the R_C sum (Carlson 1995, DLMF 19.36.ii)."""
+    _, a, f, _, total, _, a0, _, _ = state
+    scale = f / a
+    xx, yy, zz = (a0 - x) * scale, (a0 - y) * scale, (a0 - z) * scale
+    pp = -0.5 * (xx + yy + zz)
+    xyz, p2 = xx * yy * zz, pp * pp
+    e2 = xx * yy + xx * zz + yy * zz - 3.0 * p2
+    e3 = xyz + 2.0 * e2 * pp + 4.0 * p2 * pp
+    e4 = (2.0 * xyz + e2 * pp + 3.0 * p2 * pp) * pp
+    e5 = xyz * p2
+    series = (
+        1.0 - 3.0 * e2 / 14.0 + e3 / 6.0 + 9.0 * e2 * e2 / 88.0 - 3.0 * e4 / 22.0
+        - 9.0 * e2 * e3 / 52.0 + 3.0 * e5 / 26.0
+    )  # fmt: skip
+    return f * series / (a * math.sqrt(a)) + 6.0 * total
+
+
+@jit
+def carlson_rj_pair(x, y, z, p1, p2):
+    """Carlson's R_J(x, y, z, p₁) and R_J(x, y, z, p₂) (x, y, z ≥ 0, at most one zero;
+    p₁, p₂ > 0) by one duplication of x, y, z: each result is what :func:`carlson_rj`
+    gives for its p alone (each p stops at its own step)."""
+    s1, s2 = _rj_start(x, y, z, p1), _rj_start(x, y, z, p2)
+    u, v, w = x, y, z
+    while s1[5] or s2[5]:
+        su, sv, sw = math.sqrt(u), math.sqrt(v), math.sqrt(w)
+        lam = su * sv + su * sw + sv * sw
+        s1, s2 = _rj_step(s1, su, sv, sw, lam), _rj_step(s2, su, sv, sw, lam)
+        u, v, w = 0.25 * (u + lam), 0.25 * (v + lam), 0.25 * (w + lam)
+    return _rj_finish(s1, x, y, z), _rj_finish(s2, x, y, z)
+
+
+@jit
+def carlson_rj(x, y, z, p):
+    """Carlson's symmetric elliptic integral of the third kind R_J(x, y, z, p), x, y, z ≥ 0
+    with at most one zero, p > 0, by duplication (Carlson 1995; DLMF 19.36.ii)."""
+    state = _rj_start(x, y, z, p)
+    u, v, w = x, y, z
+    while state[5]:
+        su, sv, sw = math.sqrt(u), math.sqrt(v), math.sqrt(w)
+        lam = su * sv + su * sw + sv * sw
+        state = _rj_step(state, su, sv, sw, lam)
+        u, v, w = 0.25 * (u + lam), 0.25 * (v + lam), 0.25 * (w + lam)
+    return _rj_finish(state, x, y, z)
+
+
+@jit
+def _pi_terms(r, j, s, c, n, n1):
+    """(p, the factor of R_J) in Π = r + (n/3) s³ R_J(c², d², 1, p) (+ 2j Π(n|m))."""
+    return (n1 + n * c * c if n > 0.0 else 1.0 - n * s * s), (n / 3.0) * s**3.0
+
+
+@jit
+def pi_reduced(r, j, s, c, d, n, n1, complete):
+    """Π(n; am u | m) for u = 2jK + r from sn, cn, dn of r (:func:`pi_integral`'s formula);
+    ``complete`` is Π(n | m), used only when j ≠ 0."""
+    p, factor = _pi_terms(r, j, s, c, n, n1)
+    part = r + factor * carlson_rj(c * c, d * d, 1.0, p)
+    return part if j == 0.0 else 2.0 * j * complete + part
+
+
+@jit
+def pi_reduced_pair(r, j, s, c, d, n_a, n1_a, complete_a, n_b, n1_b, complete_b):
+    """:func:`pi_reduced` for two characteristics at the same argument, with one
+    duplication of R_J's shared arguments (:func:`carlson_rj_pair`)."""
+    p_a, factor_a = _pi_terms(r, j, s, c, n_a, n1_a)
+    p_b, factor_b = _pi_terms(r, j, s, c, n_b, n1_b)
+    rj_a, rj_b = carlson_rj_pair(c * c, d * d, 1.0, p_a, p_b)
+    part_a, part_b = r + factor_a * rj_a, r + factor_b * rj_b
+    if j == 0.0:
+        return part_a, part_b
+    return 2.0 * j * complete_a + part_a, 2.0 * j * complete_b + part_b
+
+
+@jit
+def _reduced_loop(u, k, m, m1, means, roots, c, j_out, r_out, sn_out, cn_out, dn_out):
+    for i in range(u.shape[0]):
+        j, r = reduce_argument(u[i], k)
+        j_out[i], r_out[i] = j, r
+        sn_out[i], cn_out[i], dn_out[i] = sncndn_reduced(r, m, m1, means, roots, c)
+
+
+@jit
+def _pi_loop(r, j, sn, cn, dn, n, n1, complete, out):
+    for i in range(r.shape[0]):
+        out[i] = pi_reduced(r[i], j[i], sn[i], cn[i], dn[i], n, n1, complete)
+
+
+class GaussTransform:
+    """What sn, cn, dn and Π at any argument need for one parameter m (with m₁ = 1 − m):
+    K(m) and the descending Gauss transformation's means; ``args`` is the tuple compiled
+    code takes after r (:func:`sncndn_reduced`).
+
+    Examples
+    --------
+    >>> g = GaussTransform(0.5, 0.5)
+    >>> round(g.k, 12), len(g.args)
+    (1.854074677301, 5)
+    """
+
+    def __init__(self, m: float, m1: float):
+        self.m, self.m1 = m, m1
+        self.k = complete_first(m, m1)
+        means, roots, c = _gauss_coefficients(m1)
+        self.args = (float(m), float(m1), means, roots, float(c))
+
+    def complete_pi(self, n: float, n1: float) -> float:
+        """Π(n | m) = K + (n/3) R_J(0, m₁, 1, 1 − n)."""
+        return self.k + (n / 3.0) * carlson_rj(0.0, self.m1, 1.0, n1)
 
 
 def jacobi(u, m: float, m1: float):
@@ -176,8 +351,15 @@ class JacobiArgument:
         if m1 == 0.0:  # the separatrix limit: closed forms, nothing to reduce
             self.j = self.r = self.k = self.reduced = None
             return
-        self.j, self.r, self.k = _reduce(self.u, m, m1)
-        self.reduced = _jacobi_reduced(self.r, m, m1)
+        self.gauss = GaussTransform(m, m1)
+        self.k = self.gauss.k
+        flat = np.ascontiguousarray(self.u.reshape(-1))
+        self.j, self.r, sn, cn, dn = (np.empty_like(flat) for _ in range(5))
+        _reduced_loop(flat, self.k, *self.gauss.args, self.j, self.r, sn, cn, dn)
+        self.reduced = sn, cn, dn
+
+    def _shaped(self, a):
+        return a.reshape(self.u.shape)
 
     def jacobi(self):
         """sn(u|m), cn(u|m), dn(u|m) (:func:`jacobi`)."""
@@ -186,7 +368,7 @@ class JacobiArgument:
             return np.tanh(self.u), sech, sech.copy()
         sn, cn, dn = self.reduced
         sign = 1.0 - 2.0 * np.mod(self.j, 2.0)  # sn(u + 2K) = −sn u, cn(u + 2K) = −cn u
-        return sign * sn, sign * cn, dn
+        return self._shaped(sign * sn), self._shaped(sign * cn), self._shaped(dn.copy())
 
     def pi_integral(self, n: float, n1: float | None = None):
         """Π(n; am u | m) (:func:`pi_integral`, which see for ``n`` and ``n1``)."""
@@ -199,13 +381,10 @@ class JacobiArgument:
                 raise ValueError("pi_integral: m = 1 is implemented for n ≤ 0 only")
             u, nu = self.u, -n  # ∫ dτ/(1 + ν tanh²τ) = (τ + √ν atan(√ν tanh τ)) / (1 + ν)
             return (u + np.sqrt(nu) * np.arctan(np.sqrt(nu) * np.tanh(u))) / (1.0 + nu)
-        s, c, d = self.reduced
-        p = n1 + n * c * c if n > 0.0 else 1.0 - n * s * s
-        part = self.r + (n / 3.0) * s**3 * elliprj(c * c, d * d, 1.0, p)
-        if not np.any(self.j):
-            return part
-        complete = self.k + (n / 3.0) * elliprj(0.0, self.m1, 1.0, n1)
-        return 2.0 * self.j * complete + part
+        complete = self.gauss.complete_pi(n, n1) if np.any(self.j) else 0.0
+        out = np.empty_like(self.r)
+        _pi_loop(self.r, self.j, *self.reduced, float(n), float(n1), complete, out)
+        return self._shaped(out)
 
 
 def incomplete_first(phi, m: float, m1: float):

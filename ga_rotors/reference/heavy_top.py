@@ -55,14 +55,14 @@ from fractions import Fraction
 import numpy as np
 from scipy.optimize import brentq
 
-from .. import quaternion as Q
+from .._jit import jit
 from .._validate import as_float_array, require_unit
 from ..body import RigidBody
 from ..effects import vertical_gravity
 from ..errors import InputError, PrecisionError
 from ..integrators.base import TorqueTerm
 from . import elliptic
-from .asymmetric_top import State, _orientation_error, _times, axis_rotation
+from .asymmetric_top import State, _orientation_error, _times
 
 __all__ = ["HeavyTop", "State", "gravity_torque"]
 
@@ -104,6 +104,80 @@ def gravity_torque(mgl: float) -> TorqueTerm:
     """
     weight_and_lever = (0.0, 0.0, -float(mgl), 0.0, 0.0, 1.0)
     return TorqueTerm(vertical_gravity, weight_and_lever, name="gravity", depends_on_omega=False)
+
+
+@jit
+def _state_loop(t, constants, m, m1, means, roots, c, q_out, w_out, err_out):
+    """:meth:`HeavyTop.state` at each time of ``t`` (from the solution's constants), in one
+    pass: orientations, body rates and rounding-error bounds into the three arrays.
+    Returns whether every value is finite."""
+    (rate, r0, k, n_p, n1_p, complete_p, n_m, n1_m, complete_m, p0_p, scale_p, p0_m, scale_m,
+     om1, op1, psi0, phi0, w3, a, half_bma, half_bpa, udot_scale, phase_gain,
+     sin_min) = constants  # fmt: skip
+    bad = 0.0
+    for i in range(t.shape[0]):
+        ti = t[i]
+        phase = rate * ti + r0
+        j, r = elliptic.reduce_argument(phase, k)  # reduced once for sn, Π₊, Π₋
+        s, cr, d = elliptic.sncndn_reduced(r, m, m1, means, roots, c)
+        pi_plus, pi_minus = elliptic.pi_reduced_pair(
+            r, j, s, cr, d, n_p, n1_p, complete_p, n_m, n1_m, complete_m
+        )
+        sign = elliptic.half_period_sign(j)
+        sn, cn, dn = sign * s, sign * cr, d
+        one_minus = om1 * (n1_p + n_p * cn * cn)
+        one_plus = op1 * (1.0 - n_m * sn * sn)
+        p_plus = (pi_plus - p0_p) / scale_p
+        p_minus = (pi_minus - p0_m) / scale_m
+        psi = psi0 + half_bma * p_plus + half_bpa * p_minus
+        phi = phi0 + (w3 - a) * ti - half_bma * p_plus + half_bpa * p_minus
+        # q = q_z(ψ) ⊗ q_y(θ) ⊗ q_z(φ) = (c cos Σ, −s sin Δ, s cos Δ, c sin Σ) with
+        # Σ, Δ = (ψ ± φ)/2 and c, s = cos(θ/2), sin(θ/2) = √(1 + u), √(1 − u) over their
+        # norm (θ = 2 atan2(√(1 − u), √(1 + u)), read without the arctangent)
+        root_minus, root_plus = math.sqrt(one_minus), math.sqrt(one_plus)
+        norm = math.sqrt(one_minus + one_plus)
+        half_sin, half_cos = root_minus / norm, root_plus / norm
+        half_sum, half_diff = 0.5 * (psi + phi), 0.5 * (psi - phi)
+        cs, ss, cd, sd = (
+            math.cos(half_sum),
+            math.sin(half_sum),
+            math.cos(half_diff),
+            math.sin(half_diff),
+        )
+        q = (half_cos * cs, -half_sin * sd, half_sin * cd, half_cos * ss)
+        # Body rates from the angles' rates (z–y′–z″): ω = (−ψ̇ sθ cφ + θ̇ sφ, ψ̇ sθ sφ + θ̇ cφ, ω₃).
+        sin_t = root_minus * root_plus
+        psidot = half_bma / one_minus + half_bpa / one_plus
+        # θ̇ = −u̇ / sin θ, u̇ = 2 (u₂ − u₁) λ sn cn dn
+        thetadot = -(udot_scale * sn * cn * dn) / sin_t
+        cphi, sphi = cs * cd + ss * sd, ss * cd - cs * sd  # φ = Σ − Δ
+        w = (-psidot * sin_t * cphi + thetadot * sphi, psidot * sin_t * sphi + thetadot * cphi, w3)
+        # A few ulps of the phase r (|r| + |r₀| + 1) move ψ and φ at most by the largest of
+        # their rates over λ: ½|b − a|/(1 − u) peaks at u₂ (1 − u₂, not 1 − u₁: they differ
+        # most next to the separatrix), ½|b + a|/(1 + u) at u₁; the Π-integrals carry a
+        # few ulps of |Π(n₊; r)| ≤ |r|/(1 − n₊) = |r| (1 − u₁)/(1 − u₂), the same term
+        # (``phase_gain``). Measured errors against a 34-54-digit oracle are 22-290x below
+        # this bound, next to the separatrix (1 − m down to 1e-14) as far from it
+        # (tests/test_reference_heavy.py).
+        err = (
+            16.0
+            * _EPS
+            * (
+                1.0
+                + (abs(phase) + abs(r0) + 1.0) * phase_gain / rate
+                + abs(psi)
+                + abs(phi)
+                + abs(w3 - a) * abs(ti)
+            )
+            / sin_min
+        )
+        for n in range(4):
+            q_out[i, n] = q[n]
+        for n in range(3):
+            w_out[i, n] = w[n]
+        err_out[i] = err
+        bad += (q[0] + q[1] + q[2] + q[3] + w[0] + w[1]) * 0.0
+    return bad == 0.0
 
 
 @dataclass(frozen=True)
@@ -281,12 +355,24 @@ class HeavyTop:
         self._w3 = float(w3)
         self._b_minus_a = float(bma)
         self._b_plus_a = float(bpa)
-        self._p0 = (self._pi_plus(self._r0), self._pi_minus(self._r0))
+        self._gauss = elliptic.GaussTransform(self.m, self.m1)
+        self._p0 = (float(self._pi_plus(self._r0)), float(self._pi_minus(self._r0)))
         # ψ₀, φ₀ from q0 = q_z(ψ₀) q_y(θ₀) q_z(φ₀): (ψ+φ)/2 = atan2(z, w), (ψ−φ)/2 = atan2(−x, y).
         qw, qx, qy, qz = self._given
         s, d = math.atan2(qz, qw), math.atan2(-qx, qy)
         self._psi0, self._phi0 = s + d, s - d
         self._sin_min = math.sqrt(min(self._om1 * (2 - self._om1), self._op1 * (2 - self._op1)))
+        gauss = self._gauss
+        half_bma, half_bpa = 0.5 * self._b_minus_a, 0.5 * self._b_plus_a
+        self._constants = (
+            self.rate, self._r0, gauss.k,
+            self._n_plus, self._n1_plus, gauss.complete_pi(self._n_plus, self._n1_plus),
+            self._n_minus, self._n1_minus, gauss.complete_pi(self._n_minus, self._n1_minus),
+            self._p0[0], self.rate * self._om1, self._p0[1], self.rate * self._op1,
+            self._om1, self._op1, self._psi0, self._phi0, self._w3, self._a, half_bma, half_bpa,
+            2.0 * self._d21 * self.rate,
+            1.0 + abs(half_bma) / self._om2 + abs(half_bpa) / self._op1, self._sin_min,
+        )  # fmt: skip
 
     @staticmethod
     def _roots(c, e, beta, v0, p0):
@@ -379,62 +465,13 @@ class HeavyTop:
                 "where the Jacobi elliptic functions lose their accuracy (u₃ − u₂ within "
                 "~1e-154 of the unstable vertical separatrix)"
             )
-        r = self.rate * t + self._r0
-        arg = elliptic.JacobiArgument(r, self.m, self.m1)  # reduced once for sn, Π₊, Π₋
-        sn, cn, dn = arg.jacobi()
-        one_minus = self._om1 * (self._n1_plus + self._n_plus * cn * cn)
-        one_plus = self._op1 * (1.0 - self._n_minus * sn * sn)
-        theta = 2.0 * np.arctan2(np.sqrt(one_minus), np.sqrt(one_plus))
-        pi_plus = arg.pi_integral(self._n_plus, self._n1_plus)
-        pi_minus = arg.pi_integral(self._n_minus, self._n1_minus)
-        p_plus = (pi_plus - self._p0[0]) / (self.rate * self._om1)
-        p_minus = (pi_minus - self._p0[1]) / (self.rate * self._op1)
-        half_bma, half_bpa = 0.5 * self._b_minus_a, 0.5 * self._b_plus_a
-        psi = self._psi0 + half_bma * p_plus + half_bpa * p_minus
-        phi = self._phi0 + (self._w3 - self._a) * t - half_bma * p_plus + half_bpa * p_minus
-        q = Q.multiply(
-            Q.multiply(axis_rotation(2, psi), axis_rotation(1, theta)), axis_rotation(2, phi)
-        )
-        # Body rates from the angles' rates (z–y′–z″): ω = (−ψ̇ sθ cφ + θ̇ sφ, ψ̇ sθ sφ + θ̇ cφ, ω₃).
-        sin_t = np.sqrt(one_minus * one_plus)
-        psidot = half_bma / one_minus + half_bpa / one_plus
-        # θ̇ = −u̇ / sin θ, u̇ = 2 (u₂ − u₁) λ sn cn dn
-        udot = 2.0 * self._d21 * self.rate * sn * cn * dn
-        thetadot = -udot / sin_t
-        cphi, sphi = np.cos(phi), np.sin(phi)
-        w = np.stack(
-            [
-                -psidot * sin_t * cphi + thetadot * sphi,
-                psidot * sin_t * sphi + thetadot * cphi,
-                np.full_like(t, self._w3),
-            ],
-            axis=-1,
-        )
-        # A few ulps of the phase r (|r| + |r₀| + 1) move ψ and φ at most by the largest of
-        # their rates over λ: ½|b − a|/(1 − u) peaks at u₂ (1 − u₂, not 1 − u₁: they differ
-        # most next to the separatrix), ½|b + a|/(1 + u) at u₁; the Π-integrals carry a
-        # few ulps of |Π(n₊; r)| ≤ |r|/(1 − n₊) = |r| (1 − u₁)/(1 − u₂), the same term.
-        # Measured errors against a 34-54-digit oracle are 22-290x below this bound, next to
-        # the separatrix (1 − m down to 1e-14) as far from it (tests/test_reference_heavy.py).
-        err = (
-            16.0
-            * _EPS
-            * (
-                1.0
-                + (np.abs(r) + abs(self._r0) + 1.0)
-                * (1.0 + abs(half_bma) / self._om2 + abs(half_bpa) / self._op1)
-                / self.rate
-                + np.abs(psi)
-                + np.abs(phi)
-                + abs(self._w3 - self._a) * np.abs(t)
-            )
-            / self._sin_min
-        )
+        q, w, err = np.empty((t.size, 4)), np.empty((t.size, 3)), np.empty(t.size)
+        finite = _state_loop(t, self._constants, *self._gauss.args, q, w, err)
         if self.body is not None and not self.body.is_principal:
             q, w = self._from_principal(q, w)
             err = err + 4.0 * _EPS  # q ⊗ P*: a few roundings
         worst = float(err.max())
-        if not (worst <= max_error) or not np.isfinite(q).all():
+        if not (worst <= max_error) or not finite:
             raise PrecisionError(
                 f"heavy top reference: rounding-error bound {worst:.3g} rad exceeds "
                 f"max_error={max_error:.3g} rad; shorten the time span or raise max_error"
