@@ -23,10 +23,14 @@ the output step Δ rather than the O(Δ²) of linear interpolation.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 
 import numpy as np
 
+from .._jit import jit
+from .._kernels import qmul, qrotate, qunit
+from .._validate import UNIT_TOLERANCE
 from ..trajectory import Trajectory
 from .model import Scene
 
@@ -251,6 +255,32 @@ def _unwrap(raw: np.ndarray, before) -> tuple[np.ndarray, tuple[float, float]]:
     return raw + total, (float(raw[-1]), float(total[-1]))
 
 
+@jit
+def _axis_readouts_loop(frame, q, w, out, tol):
+    for n in range(q.shape[0]):
+        fq = qunit(qmul(frame, (q[n, 0], q[n, 1], q[n, 2], q[n, 3])), tol)
+        axis = qrotate(fq, (0.0, 0.0, 1.0))
+        ws = qrotate(fq, (w[n, 0], w[n, 1], w[n, 2]))
+        u = axis[2]
+        out[0, n] = u
+        out[1, n] = ws[0] * axis[1] - ws[1] * axis[0]  # (ω_s × axis)_z
+        out[2, n] = math.atan2(axis[1], axis[0])
+        # ψ is the azimuth of the axis; with ω_s = ψ̇ ẑ + θ̇ n̂ + φ̇ e₃ (ZYZ),
+        # ψ̇ = (ω_s·ẑ − cos θ ω_s·e₃) / sin²θ exactly, so ψ too is Hermite-interpolated.
+        along = ws[0] * axis[0] + ws[1] * axis[1] + ws[2] * axis[2]
+        out[3, n] = (ws[2] - u * along) / (1.0 - u * u)
+
+
+def _axis_readouts(frame, q, w):
+    """The heavy top's symmetry axis in the frame ``frame`` ⊗ q (gravity along −z) for unit
+    orientations ``q`` (n, 4) and body rates ``w`` (n, 3): cos θ, its exact rate
+    (ω_s × axis)_z, the axis's azimuth atan2(y, x) and ψ̇, each (n,)."""
+    out = np.empty((4, q.shape[0]))
+    q, w = (np.ascontiguousarray(a, dtype=np.float64) for a in (q, w))
+    _axis_readouts_loop(np.asarray(frame, dtype=np.float64), q, w, out, UNIT_TOLERANCE)
+    return out[0], out[1], out[2], out[3]
+
+
 class RunSummary:
     """The summary of a run handed over piece by piece (:func:`report` is its one-piece use).
 
@@ -383,18 +413,12 @@ class RunSummary:
             self.found["flips"].append(zero_crossings(t, w[:, b], rates[b]))
 
     def _heavy_top(self, exact, t, w, q) -> None:
-        from .. import quaternion as Q
-
-        frame_q = Q.multiply(exact.frame, q)  # the model's space frame: gravity along −z
-        axis = Q.rotate(frame_q, np.array([0.0, 0.0, 1.0]))
-        w_space = Q.rotate(frame_q, w)
-        u, du = axis[:, 2], np.cross(w_space, axis)[:, 2]  # cos θ and its exact rate
+        # the model's space frame (gravity along −z): cos θ, its exact rate, the axis's
+        # azimuth and ψ̇, in one compiled pass
+        u, du, raw, dpsi = _axis_readouts(exact.frame, q, w)
         when, value, is_max = extrema(t, u, du)
         for key, found in (("when", when), ("value", value), ("is_max", is_max)):
             self.found[key].append(found)
-        # ψ is the azimuth of the axis; with ω_s = ψ̇ ẑ + θ̇ n̂ + φ̇ e₃ (ZYZ),
-        # ψ̇ = (ω_s·ẑ − cos θ ω_s·e₃) / sin²θ exactly, so ψ too is Hermite-interpolated.
-        raw = np.arctan2(axis[:, 1], axis[:, 0])
         if self.psi is None:
             psi, self.psi = _unwrap(raw, None)
         else:  # the sample in front was unwrapped with the previous piece: raw + correction
@@ -403,7 +427,6 @@ class RunSummary:
             psi = np.concatenate([[front], psi])
         peaks = when[~is_max]
         if peaks.size:
-            dpsi = (w_space[:, 2] - u * np.einsum("ij,ij->i", w_space, axis)) / (1.0 - u * u)
             at = hermite_at(t, psi, dpsi, peaks[[0, -1]])
             first = self.peak_psi[0] if self.peak_psi else float(at[0])
             self.peak_psi = [first, float(at[-1])]
