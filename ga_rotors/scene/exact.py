@@ -16,6 +16,8 @@ import numpy as np
 
 from .. import quaternion as Q
 from .._jit import jit
+from .._kernels import geodesic_angle, qconj, qmul, qunit
+from .._validate import UNIT_TOLERANCE
 from ..errors import SceneError
 
 __all__ = ["MAX_BOUND", "Exact", "applicable", "build", "refusal"]
@@ -137,6 +139,45 @@ class Exact:
         }
         return dw, dq
 
+    def largest_errors(self, t, w=None, orientations=None):
+        """The largest values of :meth:`errors` (what a run's summary prints), without the
+        per-sample arrays: equal to ``errors(...)``'s maxima bit for bit, from one
+        evaluation of the reference.
+
+        Returns
+        -------
+        (float or None, dict of name -> float or None)
+            The largest ω error and each orientation's largest geodesic error; None for
+            no rows (and for ω when ``w`` is None).
+
+        Examples
+        --------
+        >>> from ga_rotors.scene import load_scene
+        >>> exact = load_scene("spinning_disk").exact_solution
+        >>> q, w, _ = exact.state([0.0, 0.5, 1.0])
+        >>> exact.largest_errors([0.0, 0.5, 1.0], w, {"rotor": q[:2]})
+        (0.0, {'rotor': 0.0})
+        """
+        orientations = orientations or {}
+        sizes = [q.shape[0] for q in orientations.values()]
+        rows = max([0 if w is None else w.shape[0], *sizes])
+        if rows == 0:
+            return None, {n: None for n in orientations}
+        q_ref, w_ref, _ = self.state(np.asarray(t, dtype=np.float64)[:rows])
+        dw = None
+        if w is not None and w.shape[0]:
+            dw = _largest_rate_error(np.ascontiguousarray(w, dtype=np.float64), w_ref)
+        dq = {}
+        for name, q in orientations.items():
+            q = np.ascontiguousarray(q, dtype=np.float64)
+            if not q.shape[0]:
+                dq[name] = None
+                continue
+            largest, ok = _largest_distance(q_ref, q, UNIT_TOLERANCE)
+            # a non-unit or non-finite orientation: as Q.distance says (raises or nan)
+            dq[name] = largest if ok else float(np.max(Q.distance(q_ref[: q.shape[0]], q)))
+        return dw, dq
+
     def bound(self, t) -> float | None:
         """The reference's largest rounding-error bound (rad) at absolute times ``t`` (None
         for a closed form without one, or no times).
@@ -165,6 +206,66 @@ def _rate_error_loop(w, w_ref, out):
     for n in range(out.shape[0]):
         dx, dy, dz = w[n, 0] - w_ref[n, 0], w[n, 1] - w_ref[n, 1], w[n, 2] - w_ref[n, 2]
         out[n] = math.sqrt(dx * dx + dy * dy + dz * dz)
+
+
+@jit
+def _largest_rate_error(w, w_ref):
+    """max over rows of |w − w_ref| (:func:`_rate_error_loop`'s values): the largest
+    square, then its root (√ is monotone and correctly rounded); nan if any row is."""
+    best, nan_seen = 0.0, False
+    for n in range(w.shape[0]):
+        dx, dy, dz = w[n, 0] - w_ref[n, 0], w[n, 1] - w_ref[n, 1], w[n, 2] - w_ref[n, 2]
+        square = dx * dx + dy * dy + dz * dz
+        if square != square:
+            nan_seen = True
+        elif square > best:
+            best = square
+    return math.nan if nan_seen else math.sqrt(best)
+
+
+#: Rows screened at a time by :func:`_largest_distance`.
+_BLOCK = 1024
+
+
+@jit
+def _largest_distance(a, b, tol):
+    """(max over rows of the geodesic angle from a[n] to b[n] exactly as
+    :func:`ga_rotors.quaternion.distance` computes it, whether every row was finite).
+
+    The angle is 2 asin |vec(a* ⊗ b)| for unit a, b, increasing in |vec|; |vec| without
+    the normalisations is within 1e-13 + 4 tol |vec| of the normalised one (a few ulps
+    of unit inputs, or their allowed departure from unit). Per block of rows, only those
+    whose |vec| is that close to the block's largest can hold its largest angle: the full
+    angle (two normalisations, two hypot, an atan2) is computed for those alone.
+    """
+    keys = np.empty(_BLOCK)
+    best, ok = 0.0, True
+    for start in range(0, b.shape[0], _BLOCK):
+        stop = min(start + _BLOCK, b.shape[0])
+        top = 0.0
+        for n in range(start, stop):
+            d = qmul(qconj((a[n, 0], a[n, 1], a[n, 2], a[n, 3])),
+                       (b[n, 0], b[n, 1], b[n, 2], b[n, 3]))  # fmt: skip
+            key = d[1] * d[1] + d[2] * d[2] + d[3] * d[3]
+            keys[n - start] = key
+            if key > top:
+                top = key
+            elif not key <= top:  # nan
+                ok = False
+        root = math.sqrt(top)
+        floor = max(root - 1e-13 - 8.0 * tol * root, 0.0)
+        floor = floor * floor
+        for n in range(start, stop):
+            if keys[n - start] >= floor:
+                r = geodesic_angle(
+                    qunit((a[n, 0], a[n, 1], a[n, 2], a[n, 3]), tol),
+                    qunit((b[n, 0], b[n, 1], b[n, 2], b[n, 3]), tol),
+                )
+                if r > best:
+                    best = r
+                elif not r <= best:
+                    ok = False
+    return best, ok
 
 
 def build(name: str | None, body, q0, w0, t0: float, gravity=None, damping=None) -> Exact | None:

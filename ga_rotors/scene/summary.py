@@ -318,7 +318,7 @@ class RunSummary:
         self.final = None  # the last (t, w)
 
     def _max(self, key: str, values) -> None:
-        if np.size(values):
+        if values is not None and np.size(values):
             value = float(np.max(values))
             old = self.maxima.get(key)
             self.maxima[key] = value if old is None or value > old else old
@@ -390,7 +390,7 @@ class RunSummary:
                         quats[path] = (
                             unit[path] if path in unit else Q.normalize(piece.quaternions(path))
                         )
-            dw, dq = exact.errors(piece.t, w if need_w else None, quats)
+            dw, dq = exact.largest_errors(piece.t, w if need_w else None, quats)
             self._max("omega_error", dw if need_w else piece["omega_error"])
             if exact.has_orientation:
                 for path in scene.paths:
