@@ -176,8 +176,8 @@ def _rj_step(state, sx, sy, sz, lam):
     if not going:
         return state
     sp = math.sqrt(p)
-    d = (sp + sx) * (sp + sy) * (sp + sz)
-    total += f * _rc_one(g * delta / (d * d)) / d
+    inverse = 1.0 / ((sp + sx) * (sp + sy) * (sp + sz))  # 1/d: one division, not two
+    total += f * _rc_one(g * delta * inverse * inverse) * inverse
     a, f = 0.25 * (a + lam), 0.25 * f
     return (0.25 * (p + lam), a, f, g / 64.0, total, f * q >= abs(a), a0, delta, q)
 
