@@ -500,3 +500,43 @@ def test_a_run_with_its_summary_off_measures_nothing_but_still_says_incomplete(
         _, rep = stream_scene(stopped, tmp_path / "stopped", chunk_steps=128)
     assert rep.values == {"incomplete": 1.0}
     assert rep.lines[0].startswith("INCOMPLETE: the run stopped before t = 0.5 s (euler at")
+
+
+def test_csv_rows_of_mixed_columns_are_printfs_17g():
+    """Rows of several columns, each value as %.17g between commas: every magnitude and
+    sign next to every other (the text of one value is stored in 8-byte words that may
+    run past its end, into where the next one goes), and a column that stopped early."""
+    rng = np.random.default_rng(7)
+    n, m = 3000, 9
+    scale = 10.0 ** rng.integers(-8, 20, (n, m))
+    block = rng.standard_normal((n, m)) * scale
+    block[rng.random((n, m)) < 0.05] = 0.0
+    block[::97, 3] = np.nan
+    block[::89, 5] = -np.inf
+    block[:, 6] = np.round(block[:, 6], 2)  # trailing zeros to drop
+    block[:, 7] = rng.integers(-(10**6), 10**6, n)  # integers
+    lengths = np.full(m, n)
+    lengths[8] = n // 3
+    expected = "".join(
+        ",".join(f"{v:.17g}" if r < lengths[j] else "" for j, v in enumerate(row)) + "\n"
+        for r, row in enumerate(block.tolist())
+    ).encode()
+    assert format_rows(block, lengths) == expected
+    out = np.empty(n * (m * 26 + 1), dtype=np.uint8)
+    assert bytes(format_rows(block, lengths, out=out)) == expected
+
+
+@pytest.mark.parametrize(
+    "value", [-1.2345678901234567e-100, -0.00012345678901234567, -1234567.8901234567]
+)
+def test_csv_text_stays_inside_its_buffer(value):
+    """Values of the longest texts in every cell: nothing is stored past the buffer a
+    block of rows may take (MAX_CHARS per value, one newline per row)."""
+    from ga_rotors.results.decimal import MAX_CHARS
+
+    n, m = 5, 4
+    size = n * (m * MAX_CHARS + 1)
+    memory = np.full(size + 64, 7, dtype=np.uint8)
+    text = format_rows(np.full((n, m), value), out=memory[:size])
+    assert bytes(text) == ((",".join([f"{value:.17g}"] * m) + "\n") * n).encode()
+    assert (memory[size:] == 7).all()

@@ -13,15 +13,20 @@ half a unit of the 17th digit away (at most 5e-17 relative), less than half a fl
 ulp (at least 5.5e-17 relative). ``tests/test_stream.py`` compares with Python's
 ``%.17g`` on values of every magnitude, and reads every value back.
 
-Speed (about 27 ns a value on a heavy top's columns, under load; the first version took
+Speed (about 17 ns a value on a heavy top's columns, under load; the first version took
 about 100, and the CSV of a long run is most of its output work): the decimal exponent is
 guessed from the float's binary exponent instead of a log10; each row's numbers are found
 first, by straight-line code (:func:`_decimal_fast`, the rare values it cannot settle
 passed to :func:`_decimal`), all independent of one another, so the processor overlaps
-them instead of waiting for each value's length; the 17 digits are then one integer split
-into 1 + 8 + 8 digits, each 8 turned into ASCII at once in a 64-bit word (SWAR) and stored
-in one go, instead of 17 divisions by ten and 17 stores; the helpers are inlined into
-the row loop (a call passing an array costs reference counting per value).
+them instead of waiting for each value's length; the product's rounding error is one
+fused multiply-add (where the processor has one; elsewhere a library call, the same
+digits); the 17 digits are then one integer split into 1 + 8 + 8 digits, each 8 turned
+into ASCII at once in a 64-bit word (SWAR) and stored in one go, the point put in by
+storing the word it splits a second time, shifted, and the last nonzero digit found
+by counting zero bits, so no byte is read back; nothing branches on a value's sign
+(an oscillating column's signs are a coin toss for the branch predictor: 27 → 17 ns a
+value with the rest of this paragraph's last three items); the helpers are inlined
+into the row loop (a call passing an array costs reference counting per value).
 """
 
 from __future__ import annotations
@@ -169,6 +174,26 @@ def _decimal(x, biased, pow10, tens):
     return n, k
 
 
+@intrinsic
+def _fma(typingctx, a, b, c):
+    """a·b + c rounded once (LLVM's fma: one instruction where the processor has it)."""
+
+    def codegen(context, builder, sig, args):
+        return builder.fma(*args)
+
+    return types.float64(types.float64, types.float64, types.float64), codegen
+
+
+@intrinsic
+def _leading_zero_bits(typingctx, word):
+    """The number of leading zero bits of a nonzero uint64."""
+
+    def codegen(context, builder, sig, args):
+        return builder.ctlz(args[0], ir.Constant(ir.IntType(1), 1))
+
+    return types.uint64(types.uint64), codegen
+
+
 @jit(inline="always")
 def _decimal_fast(x, biased, pow10, tens):
     """:func:`_decimal` for the common case, without a branch: (n, k, ok), ``ok`` false
@@ -185,8 +210,8 @@ def _decimal_fast(x, biased, pow10, tens):
     si = min(max(s, -_HALF), _HALF)
     f_hi = pow10[si + _HALF, 0]
     f_lo = pow10[si + _HALF, 1]
-    p, e = _two_prod(ax, f_hi)
-    e += ax * f_lo
+    p = ax * f_hi
+    e = _fma(ax, f_hi, -p) + ax * f_lo  # the product's rounding error, exactly
     hi = p + e
     lo = e - (hi - p)
     ok = (s == si) & (biased != 0) & (biased != 2047) & (hi > 1e16) & (hi < 1e17)
@@ -239,21 +264,31 @@ def _put(buf, at, text):
     return at + len(text)
 
 
+_ZEROS = np.uint64(0x3030303030303030)
+
+
+@jit(inline="always")
+def _zeros_after(word):
+    """How many of the 8 ASCII digits of ``word`` (:func:`_ascii8`, not all zeros) end it
+    as zeros: its last digits are its highest bytes."""
+    return np.int64(_leading_zero_bits(word ^ _ZEROS) >> np.uint64(3))
+
+
 @jit(inline="always")
 def _text(n, k, negative, buf, at):
     """Write the value (n, k) of :func:`_decimal` (``negative``: its sign bit) as %.17g
     writes it into ``buf`` from ``at``; return the new end.
 
-    The 17 digits go down in one piece, one place to the right of where the number
-    starts; then the digits before the point move one place left and the point goes in
-    between (or "0.000" is put in front, for -4 <= k < 0), and the end is set after the
-    last nonzero digit.
+    The 17 digits are the first one and two words of 8 ASCII digits; the point goes
+    between them by storing the word it splits twice (the second time shifted past the
+    point), so no byte is read back; the last nonzero digit is found from the words.
+    Stores may reach 26 bytes from where the value starts (its sign included): junk
+    past its end, overwritten by what comes next (:data:`MAX_CHARS` keeps room for it).
     """
     if k == _NAN:  # %g prints nan without its sign
         return _put(buf, at, "nan")
-    if negative:
-        buf[at] = 45  # "-"
-        at += 1
+    buf[at] = 45  # "-", kept only if negative: no branch on a sign (half of them would
+    at += np.int64(negative)  # be mispredicted in an oscillating column)
     if k == _INF:
         return _put(buf, at, "inf")
     if k == _ZERO:
@@ -262,37 +297,36 @@ def _text(n, k, negative, buf, at):
     u = np.uint64(n)  # unsigned: division without Python's sign rules
     top = u // np.uint64(100_000_000)
     first = top // np.uint64(100_000_000)
-    low = np.uint32(u - top * np.uint64(100_000_000))
-    mid = np.uint32(top - first * np.uint64(100_000_000))
-    small = -4 <= k < 0
-    if small:
-        d = at + 1 - k
-        for i in range(5):
-            buf[at + i] = 48  # "0"
-        buf[at + 1] = 46  # "."
+    low = u - top * np.uint64(100_000_000)
+    mid = top - first * np.uint64(100_000_000)
+    w1 = _ascii8(mid)
+    w2 = _ascii8(low)
+    if low != 0:
+        last = 16 - _zeros_after(w2)  # the last nonzero digit
+    elif mid != 0:
+        last = 8 - _zeros_after(w1)
     else:
-        d = at + 1
-    buf[d] = 48 + np.uint8(first)
-    _store8(buf, d + 1, _ascii8(mid))
-    _store8(buf, d + 9, _ascii8(low))
-    last = 16  # the last nonzero digit
-    if low == 0:
-        last = 8
-        if mid == 0:
-            last = 0
-    while last > 0 and buf[d + last] == 48:
-        last -= 1
-    if small:
+        last = 0
+    if -4 <= k < 0:  # "0.000" and the digits
+        _store8(buf, at, np.uint64(0x3030303030302E30))
+        d = at + 1 - k
+        buf[d] = 48 + np.uint8(first)
+        _store8(buf, d + 1, w1)
+        _store8(buf, d + 9, w2)
         return d + last + 1
+    buf[at] = 48 + np.uint8(first)
+    _store8(buf, at + 1, w1)
     fixed = 0 <= k < 17
     point = k if fixed else 0  # digits 0..point go before the "."
-    for i in range(point + 1):
-        buf[at + i] = buf[at + i + 1]
-    if last > point:
-        buf[at + point + 1] = 46  # "."
-        end = at + last + 2
-    else:
-        end = at + point + 1
+    if point < 8:  # the point splits w1: w1's digits after it again, one byte on
+        _store8(buf, at + point + 2, w1 >> np.uint64(8 * point))
+        _store8(buf, at + 10, w2)
+    else:  # at 8: between w1 and w2; beyond, it splits w2 (at 16: nothing after it)
+        _store8(buf, at + 9, w2)
+        if point < 16:
+            _store8(buf, at + point + 2, w2 >> np.uint64(8 * (point - 8)))
+    buf[at + point + 1] = 46  # "."
+    end = at + last + 2 if last > point else at + point + 1
     if fixed:
         return end
     buf[end] = 101  # "e"
@@ -338,7 +372,8 @@ def _rows(block, bits, lengths, first, pow10, tens, buf):
     return at
 
 
-#: Bytes a value may take: sign, 17 digits, "0." and four zeros or an exponent, a comma.
+#: Bytes a value may take: sign, 17 digits, "0." and four zeros or an exponent, a comma
+#: (and what :func:`_text` stores past a value's end, at most 26 bytes from its start).
 MAX_CHARS = 26
 
 
