@@ -540,3 +540,56 @@ def test_csv_text_stays_inside_its_buffer(value):
     text = format_rows(np.full((n, m), value), out=memory[:size])
     assert bytes(text) == ((",".join([f"{value:.17g}"] * m) + "\n") * n).encode()
     assert (memory[size:] == 7).all()
+
+
+def _ragged(n=1001):
+    from ga_rotors.trajectory import Trajectory
+
+    rng = np.random.default_rng(3)
+    return Trajectory(
+        {"t": np.arange(n) * 0.1, "w": rng.standard_normal((n, 3)), "q": rng.random((n // 3, 4))}
+    )
+
+
+@pytest.mark.parametrize("threads", [1, 2])
+@pytest.mark.parametrize("block_rows", [1, 7, 64, 5000])
+def test_csv_streamed_by_one_or_two_threads_is_the_text_written_whole(
+    tmp_path, threads, block_rows
+):
+    """Pieces of rows (a column stopped in the middle of one), blocks formatted by one
+    thread or split with a helper: the bytes of write_csv."""
+    from ga_rotors.results import write_csv
+    from ga_rotors.results.streams import CsvStream
+
+    tr = _ragged()
+    out = CsvStream(tmp_path / "run.csv", threads=threads, block_rows=block_rows)
+    for lo, hi in [(0, 1), (1, 300), (300, 333), (333, 334), (334, 1001)]:
+        out.append(_rows(tr, lo, hi))
+    out.close({})
+    assert (tmp_path / "run.csv").read_text() == write_csv(tr)
+
+
+def _rows(tr, lo, hi):
+    from ga_rotors.trajectory import Trajectory
+
+    return Trajectory({n: tr[n][lo:hi] for n in tr.names})
+
+
+def test_a_failure_in_the_csv_helper_is_raised_after_both_threads_stop(tmp_path, monkeypatch):
+    from ga_rotors.results import streams
+
+    real, calls = streams._csv_text, []
+
+    def failing(piece, start, stop, buffer):
+        calls.append(start)
+        if start > 0:  # the helper's half of the first pair
+            raise OSError("injected")
+        return real(piece, start, stop, buffer)
+
+    monkeypatch.setattr(streams, "_csv_text", failing)
+    out = streams.CsvStream(tmp_path / "run.csv", threads=2, block_rows=100)
+    with pytest.raises(OSError, match="injected"):
+        out.append(_ragged())
+    assert len(calls) == 2 and min(calls) == 0  # both halves of the first pair, no more
+    out.abort()
+    assert out._helper is None

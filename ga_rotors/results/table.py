@@ -48,15 +48,15 @@ def csv_header(trajectory) -> list[str]:
     return out
 
 
-def _blocks(trajectory, rows: int, buffer=None):
-    """The data rows as UTF-8 text, ``rows`` at a time (:func:`~.decimal.format_rows`;
-    into ``buffer`` when given)."""
+def _blocks(trajectory, rows: int, buffer=None, start: int = 0, stop: int | None = None):
+    """The data rows ``start:stop`` as UTF-8 text, ``rows`` at a time
+    (:func:`~.decimal.format_rows`; into ``buffer`` when given)."""
     from .decimal import format_rows
 
     cols = trajectory.columns()
-    n = len(trajectory)
+    n = len(trajectory) if stop is None else stop
     lengths = np.array([trajectory[name].shape[0] for _, name, _ in cols], dtype=np.int64)
-    for lo in range(0, n, rows):
+    for lo in range(start, n, rows):
         hi = min(n, lo + rows)
         block = np.zeros((hi - lo, len(cols)))
         for j, (_, name, comp) in enumerate(cols):
@@ -65,14 +65,16 @@ def _blocks(trajectory, rows: int, buffer=None):
         yield format_rows(block, lengths, lo, out=buffer)
 
 
-def csv_rows(trajectory, block_rows: int = BLOCK_ROWS, *, buffer=None):
+def csv_rows(trajectory, block_rows: int = BLOCK_ROWS, *, buffer=None, start=0, stop=None):
     """The data rows of ``trajectory`` as UTF-8 text, a block of ``block_rows`` at a time
     (no header: :func:`csv_header`); the rows of consecutive pieces of a run, joined, are
     the rows of the run whole.
 
     With ``buffer`` (a uint8 array of :func:`csv_buffer_size` bytes) each block is written
     into it and given as a memoryview, valid until the next block is asked for: for a
-    writer that writes each block at once (:class:`~.streams.CsvStream`).
+    writer that writes each block at once (:class:`~.streams.CsvStream`). ``start`` and
+    ``stop``: only those rows (the text of consecutive row ranges, joined, is the text of
+    all of them).
 
     Examples
     --------
@@ -80,8 +82,10 @@ def csv_rows(trajectory, block_rows: int = BLOCK_ROWS, *, buffer=None):
     >>> from ga_rotors.trajectory import Trajectory
     >>> list(csv_rows(Trajectory({"t": np.array([0.0, 0.25])})))
     [b'0\\n0.25\\n']
+    >>> list(csv_rows(Trajectory({"t": np.array([0.0, 0.25, 0.5])}), start=1, stop=2))
+    [b'0.25\\n']
     """
-    yield from _blocks(trajectory, block_rows, buffer)
+    yield from _blocks(trajectory, block_rows, buffer, start, stop)
 
 
 def csv_buffer_size(trajectory, block_rows: int = BLOCK_ROWS) -> int:
