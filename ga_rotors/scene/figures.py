@@ -110,13 +110,15 @@ _HIDDEN = 0.01
 def _line(ax, t, y, *, log: bool = False, **style):
     """Draw ``y(t)`` on ``ax`` (``log``: on a log axis); beyond
     :data:`~ga_rotors.scene.thinning.KEEP_ALL` rows, through its envelope only
-    (:func:`~ga_rotors.scene.thinning.envelope`): the same pixels, a tenth of the vertices
-    for the renderer (a thinned copy keeps every array's extremes, most of them not this
-    line's)."""
+    (:func:`~ga_rotors.scene.thinning.envelope`, a slice per pixel column of the saved
+    figure, within the x limits :func:`draw` set): the same pixels, a tenth of the
+    vertices and of the strokes for the renderer (a thinned copy keeps every array's
+    extremes, most of them not this line's)."""
     from .thinning import KEEP_ALL, envelope
 
     if t.shape[0] > KEEP_ALL:
-        rows = envelope(t, y)
+        pixels = round(ax.get_position().width * _WIDTH * _DPI)
+        rows = envelope(t, y, pixels, bounds=ax.get_xlim())
         t, y = t[rows], y[rows]
     return (ax.semilogy if log else ax.plot)(t, y, **style)
 
@@ -312,7 +314,10 @@ def draw(scene: Scene, trajectory: Trajectory):
     >>> len(draw(scene, run_scene(scene)).axes)     # omega, invariants
     2
     """
+    from matplotlib import rcParams
     from matplotlib.figure import Figure
+
+    from .thinning import KEEP_ALL
 
     plots = scene.data["output"]["plots"]
     rows = sum(PANELS[p][0] for p in plots)
@@ -322,6 +327,12 @@ def draw(scene: Scene, trajectory: Trajectory):
                         hspace=0.12)  # fmt: skip
     axes = fig.subplots(rows, 1, sharex=True, squeeze=False)[:, 0]
     ctx = _Context(scene, trajectory)
+    t = ctx.t
+    if t.shape[0] > KEEP_ALL and t[-1] > t[0]:
+        # the limits autoscaling would give, set before the lines, whose envelopes are
+        # sliced at the pixel columns between them (_line)
+        margin = rcParams["axes.xmargin"] * (t[-1] - t[0])
+        axes[0].set_xlim(t[0] - margin, t[-1] + margin)
     row = 0
     for p in plots:
         n, func = PANELS[p]

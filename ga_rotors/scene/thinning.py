@@ -105,13 +105,15 @@ class ThinnedCopy:
         return Trajectory(arrays, first.components, meta or self.kept[-1].meta)
 
 
-def envelope(t: np.ndarray, y: np.ndarray, columns: int = COLUMNS) -> np.ndarray:
+def envelope(t: np.ndarray, y: np.ndarray, columns: int = COLUMNS, bounds=None) -> np.ndarray:
     """The rows of one line ``y(t)`` a plot of it needs: for each of ``columns`` equal
-    slices of ``t``'s span, its first and last row and the first rows holding the
-    smallest and the largest ``y`` (a slice holding a NaN: its first row).
+    slices of ``bounds`` (t_low, t_high; by default ``t``'s own span), its first and last
+    row and the first rows holding the smallest and the largest ``y`` (a slice holding a
+    NaN: its first row).
 
     Drawn through these rows, in order, a line covers in each slice what the line through
-    every row covers: the same vertical extent, joined to the same neighbours.
+    every row covers: the same vertical extent, joined to the same neighbours; with a
+    slice per pixel column, the same pixels.
 
     Examples
     --------
@@ -125,8 +127,9 @@ def envelope(t: np.ndarray, y: np.ndarray, columns: int = COLUMNS) -> np.ndarray
     keep = np.zeros(t.shape[0], dtype=np.bool_)
     if t.shape[0] == 0:
         return np.flatnonzero(keep)
-    span = float(t[-1] - t[0])
-    slices = _slices(t, float(t[0]), span if span > 0 else 1.0, int(columns))
+    low, high = (float(t[0]), float(t[-1])) if bounds is None else map(float, bounds)
+    span = high - low
+    slices = _slices(t, low, span if span > 0 else 1.0, int(columns))
     _extremes(slices, np.ascontiguousarray(np.reshape(y, (t.shape[0], 1)), dtype=float), keep)
     _slice_ends(slices, keep)
     return np.flatnonzero(keep)
