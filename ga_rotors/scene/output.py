@@ -61,12 +61,13 @@ def _write(scene: Scene, pieces, stage: Path | None, summarise: bool):
     Report (with ``summarise`` off, only whether the run completed).
 
     A piece is consumed in two more threads while the next one is integrated: one writes
-    it to the data files, the other measures it (summary) and thins it (figure). The
-    compiled loops, the CSV formatting and numpy's array loops release the GIL, so on two
-    cores the three overlap; each consumer takes the pieces one at a time, in order, and
-    both have finished with a piece before the next is handed over. Every consumer has
-    finished before this returns or raises: nothing writes into the staging folder after
-    a failure or an interrupt.
+    it to the data files and thins it (figure), the other measures it (summary; with
+    ``summarise`` off there is nothing to measure and no such thread). The compiled
+    loops, the CSV formatting and numpy's array loops release the GIL, so on two cores
+    they overlap; each consumer takes the pieces one at a time, in order, and both have
+    finished with a piece before the next is handed over. Every consumer has finished
+    before this returns or raises: nothing writes into the staging folder after a
+    failure or an interrupt.
     """
     from concurrent.futures import ThreadPoolExecutor
 
@@ -83,10 +84,9 @@ def _write(scene: Scene, pieces, stage: Path | None, summarise: bool):
                     for future in pending:
                         future.result()  # the previous piece is done (or its error raised)
                     sink.meta = piece.meta
-                    pending = [
-                        files.submit(sink.write, piece),
-                        measures.submit(sink.measure, piece),
-                    ]
+                    pending = [files.submit(sink.write, piece)]
+                    if sink.summary is not None:
+                        pending.append(measures.submit(sink.measure, piece))
             except BaseException:
                 for future in pending:
                     future.cancel()  # not started: dropped; started: its pool waits for it
@@ -134,12 +134,18 @@ class _Sink:
         self.thin = self.balance = None
 
     def write(self, piece: Trajectory) -> None:
-        """Append ``piece`` to the data files."""
+        """Append ``piece`` to the data files and the figure's thinned copy (the summary,
+        a long run's largest cost, has a thread to itself)."""
         for writer in self.writers:
             writer.append(piece)
+        self._thin(piece)
 
     def measure(self, piece: Trajectory) -> None:
-        """Add ``piece`` to the summary and the figure's thinned copy."""
+        """Add ``piece`` to the summary."""
+        if self.summary is not None:
+            self.summary.add(piece)
+
+    def _thin(self, piece: Trajectory) -> None:
         from .figures import energy_balance_drawn
         from .thinning import ThinnedCopy
 
@@ -151,8 +157,6 @@ class _Sink:
             self.thin = ThinnedCopy(float(piece.t[0]), t_end, count)
             if not self.thin.keep_all and energy_balance_drawn(self.scene):
                 self.balance = _Balance(self.scene)
-        if self.summary is not None:
-            self.summary.add(piece)
         if self.thin is not None:
             self.thin.add(piece if self.balance is None else self.balance.add(piece))
 
