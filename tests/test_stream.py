@@ -563,7 +563,7 @@ def test_csv_streamed_by_one_or_two_threads_is_the_text_written_whole(
 
     tr = _ragged()
     out = CsvStream(tmp_path / "run.csv", threads=threads, block_rows=block_rows)
-    for lo, hi in [(0, 1), (1, 300), (300, 333), (333, 334), (334, 1001)]:
+    for lo, hi in [(0, 1), (1, 300), (300, 300), (300, 333), (333, 334), (334, 1001)]:
         out.append(_rows(tr, lo, hi))
     out.close({})
     assert (tmp_path / "run.csv").read_text() == write_csv(tr)

@@ -89,6 +89,8 @@ class CsvStream:
             if self._threads > 1:
                 self._helper = ThreadPoolExecutor(1, thread_name_prefix="ga_rotors-csv")
         n = len(piece)
+        if n == 0:
+            return
         step = self._block_rows
         if self._helper is None:
             for lo in range(0, n, step):
@@ -97,7 +99,7 @@ class CsvStream:
         # blocks of equal size in pairs, no more rows than a buffer holds: this thread
         # formats and writes the first of each pair while the helper formats the second
         pairs = -(-n // (2 * step))
-        rows = -(-n // (2 * pairs)) if n else 0
+        rows = -(-n // (2 * pairs))
         for lo in range(0, n, 2 * rows):
             mid, hi = min(n, lo + rows), min(n, lo + 2 * rows)
             later = self._helper.submit(_csv_text, piece, mid, hi, self._buffers[1])
