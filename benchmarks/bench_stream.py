@@ -25,9 +25,12 @@ same scene first, in the same child), interleaved over the repeats:
   :func:`write_outputs`, every sample in memory.
 
 Times are measured inside the child around the call (interpreter start-up and imports
-excluded, the same for every mode); peak memory is the child's maximum resident set
-(``os.wait4``'s ``ru_maxrss``), start-up included. Reported: median and min–max over the
-repeats, and stream / bare. No number here is a test: the suite only runs ``--quick``.
+excluded, the same for every mode): wall time, and the CPU time of all the child's
+threads (on a loaded machine the wall times stretch, the CPU times much less; a streamed
+run's wall time on two cores cannot fall below half its CPU time); peak memory is the
+child's maximum resident set (``os.wait4``'s ``ru_maxrss``), start-up included.
+Reported: median and min–max over the repeats, and stream / bare (wall and CPU). No
+number here is a test: the suite only runs ``--quick``.
 """
 
 from __future__ import annotations
@@ -75,10 +78,10 @@ else:
 with warnings.catch_warnings():
     warnings.simplefilter("ignore")
     once(warm)  # compiled, imported
-    start = time.perf_counter()
+    start, cpu = time.perf_counter(), time.process_time()
     once(scene)
-    took = time.perf_counter() - start
-print(json.dumps({"seconds": took}))
+    took, cpu = time.perf_counter() - start, time.process_time() - cpu
+print(json.dumps({"seconds": took, "cpu": cpu}))
 """
 
 
@@ -144,15 +147,17 @@ def main(argv=None) -> int:
         f"{'off' if args.no_summary else 'on'}; "
         f"{args.repeats} repeat(s), fresh processes"
     )
-    print(f"{'mode':<8} {'seconds: median (min–max)':<28} {'peak RSS MB':<28} files MB")
+    print(f"{'mode':<8} {'seconds: median (min–max)':<28} {'CPU seconds':<28} "
+          f"{'peak RSS MB':<28} files MB")  # fmt: skip
     for mode, rows in results.items():
-        seconds, peak = (_summary([r[key] for r in rows]) for key in ("seconds", "peak_mb"))
-        print(f"{mode:<8} {seconds:<28} {peak:<28} {rows[0]['files_mb']:.2f}")
+        seconds, cpu, peak = (_summary([r[k] for r in rows]) for k in ("seconds", "cpu", "peak_mb"))
+        print(f"{mode:<8} {seconds:<28} {cpu:<28} {peak:<28} {rows[0]['files_mb']:.2f}")
     if "bare" in results and "stream" in results:
         pairs = zip(results["stream"], results["bare"], strict=True)
-        print(
-            f"stream / bare wall time: {_summary([s['seconds'] / b['seconds'] for s, b in pairs])}"
-        )
+        pairs = list(pairs)
+        for key, what in (("seconds", "wall"), ("cpu", "CPU")):
+            ratios = [s[key] / b[key] for s, b in pairs]
+            print(f"stream / bare {what} time: {_summary(ratios)}")
     if args.json:
         Path(args.json).write_text(json.dumps({"steps": args.steps, "results": results}))
     return 0
