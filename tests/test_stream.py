@@ -593,3 +593,56 @@ def test_a_failure_in_the_csv_helper_is_raised_after_both_threads_stop(tmp_path,
     assert len(calls) == 2 and min(calls) == 0  # both halves of the first pair, no more
     out.abort()
     assert out._helper is None
+
+
+def test_the_figure_is_drawn_while_the_summary_catches_up(tmp_path, monkeypatch):
+    """The summary may lag behind the files by SUMMARY_LAG pieces: the figure is drawn
+    while it measures the last ones (here the first piece's measuring waits until the
+    figure has been drawn: without the lag the run would wait for it)."""
+    import threading
+
+    from ga_rotors.scene import figures, output
+    from ga_rotors.scene.budget import SUMMARY_LAG
+
+    drawn, render = threading.Event(), figures.render
+    measure, waited = output._Sink.measure, []
+
+    def slow_measure(self, piece):
+        if not waited:
+            waited.append(drawn.wait(60))  # True: the figure was drawn meanwhile
+        return measure(self, piece)
+
+    def spy_render(*args, **kwargs):
+        out = render(*args, **kwargs)
+        drawn.set()
+        return out
+
+    monkeypatch.setattr(output._Sink, "measure", slow_measure)
+    monkeypatch.setattr(figures, "render", spy_render)
+    scene = load_scene("heavy_top").replace({"time.duration": 0.5, "output.data": ["csv"]})
+    pieces = -(-scene.steps // 1000)
+    assert 1 < pieces <= SUMMARY_LAG
+    files, rep = stream_scene(scene, tmp_path / "o", chunk_steps=1000)
+    assert waited == [True] and rep.values["drift_total_energy"] < 1e-9
+    assert sorted(p.name for p in (tmp_path / "o").iterdir()) == sorted(p.name for p in files)
+
+
+def test_a_failure_in_the_summary_stops_the_run_and_leaves_nothing(tmp_path, monkeypatch):
+    import threading
+
+    from ga_rotors.scene import output
+
+    measure, calls = output._Sink.measure, []
+
+    def failing(self, piece):
+        calls.append(len(piece))
+        if len(calls) == 2:
+            raise ValueError("injected")
+        return measure(self, piece)
+
+    monkeypatch.setattr(output._Sink, "measure", failing)
+    before = threading.active_count()
+    scene = load_scene("heavy_top").replace({"time.duration": 2.0, "output.data": ["csv"]})
+    with pytest.raises(ValueError, match="injected"):
+        stream_scene(scene, tmp_path / "o", chunk_steps=1000)
+    assert not (tmp_path / "o").exists() and threading.active_count() == before

@@ -40,9 +40,15 @@ BYTES_PER_VALUE = {"csv": 25, "npz": 8, "netcdf": 8, "zarr": 8}
 #: Steps per piece of a streamed run (each path): a few MB of samples at most.
 CHUNK_STEPS = 2**17
 
+#: Pieces a streamed run's summary may fall behind its integration and files (each a
+#: few MB of samples): the summary, a long run's largest cost, then still measures the
+#: last ones while the figure is drawn (:mod:`ga_rotors.scene.output`).
+SUMMARY_LAG = 8
+
 #: Samples per piece of a streamed run kept at once (the piece, its quantities, the
-#: writers' copies) on top of the thinned copy's rows (COLUMNS x (2 + 2 x columns)).
-_STREAM_COPIES = 4
+#: writers' copies, the pieces the summary has yet to measure) on top of the thinned
+#: copy's rows (COLUMNS x (2 + 2 x columns)).
+_STREAM_COPIES = 4 + SUMMARY_LAG
 
 #: Columns a path's state occupies per sample.
 _PATH_COLUMNS = {"rotor": 4, "quaternion": 4, "euler": 3}
@@ -123,7 +129,7 @@ def estimate(scene, streamed: bool = False) -> Estimate:
     >>> print(estimate(long))
     1e+07 steps, 1e+06 samples: about 412 MiB of memory, 429 MiB of files
     >>> print(estimate(long, streamed=True))
-    1e+07 steps, 1e+06 samples: about 25.1 MiB of memory, 429 MiB of files
+    1e+07 steps, 1e+06 samples: about 53.9 MiB of memory, 429 MiB of files
     """
     from .thinning import COLUMNS
 

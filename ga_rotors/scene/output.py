@@ -32,7 +32,7 @@ from pathlib import Path
 import numpy as np
 
 from ..trajectory import Trajectory
-from .budget import CHUNK_STEPS
+from .budget import CHUNK_STEPS, SUMMARY_LAG
 from .formats import FORMATS
 from .loading import load_scene
 from .model import Scene
@@ -64,11 +64,13 @@ def _write(scene: Scene, pieces, stage: Path | None, summarise: bool):
     it to the data files and thins it (figure), the other measures it (summary; with
     ``summarise`` off there is nothing to measure and no such thread). The compiled
     loops, the CSV formatting and numpy's array loops release the GIL, so on two cores
-    they overlap; each consumer takes the pieces one at a time, in order, and both have
-    finished with a piece before the next is handed over. Every consumer has finished
-    before this returns or raises: nothing writes into the staging folder after a
-    failure or an interrupt.
+    they overlap. Each consumer takes the pieces one at a time, in order; the files'
+    thread has finished with a piece before the next is handed over, the summary's may
+    fall :data:`~ga_rotors.scene.budget.SUMMARY_LAG` pieces behind, and the figure is
+    drawn (here) while it catches up. Every consumer has finished before this returns or
+    raises: nothing writes into the staging folder after a failure or an interrupt.
     """
+    from collections import deque
     from concurrent.futures import ThreadPoolExecutor
 
     out = scene.data["output"]
@@ -78,22 +80,32 @@ def _write(scene: Scene, pieces, stage: Path | None, summarise: bool):
             ThreadPoolExecutor(max_workers=1, thread_name_prefix="ga_rotors-writer") as files,
             ThreadPoolExecutor(max_workers=1, thread_name_prefix="ga_rotors-summary") as measures,
         ):
-            pending = []
+            writing, measuring = None, deque()
             try:
                 for piece in pieces:  # integrated here, consumed there
-                    for future in pending:
-                        future.result()  # the previous piece is done (or its error raised)
+                    if writing is not None:
+                        writing.result()  # the previous piece is written (or its error raised)
+                    while len(measuring) >= SUMMARY_LAG:
+                        measuring.popleft().result()
                     sink.meta = piece.meta
-                    pending = [files.submit(sink.write, piece)]
+                    writing = files.submit(sink.write, piece)
                     if sink.summary is not None:
-                        pending.append(measures.submit(sink.measure, piece))
+                        measuring.append(measures.submit(sink.measure, piece))
+                if writing is not None:
+                    writing.result()
+                sink.close()
+                if stage is not None and sink.thin is not None:
+                    from . import figures
+
+                    figure = figures.render(scene, sink.thin.trajectory(sink.meta))
+                    (stage / f"{scene.name}.{out['figure_format']}").write_bytes(figure)
+                while measuring:
+                    measuring.popleft().result()
             except BaseException:
-                for future in pending:
-                    future.cancel()  # not started: dropped; started: its pool waits for it
+                for future in (writing, *measuring):
+                    if future is not None:  # not started: dropped; started: its pool waits
+                        future.cancel()
                 raise
-            for future in pending:
-                future.result()
-        sink.close()
     except BaseException:
         sink.abort()
         raise
@@ -105,11 +117,6 @@ def _write(scene: Scene, pieces, stage: Path | None, summarise: bool):
         rep = status_report(scene, sink.meta)
     if stage is not None:
         name = scene.name
-        if sink.thin is not None:
-            from . import figures
-
-            figure = figures.render(scene, sink.thin.trajectory(sink.meta))
-            (stage / f"{name}.{out['figure_format']}").write_bytes(figure)
         if rep is not None and out["summary"]:
             (stage / f"{name}.summary.txt").write_text(str(rep) + "\n", "utf-8")
         (stage / f"{name}.scene.toml").write_text(scene.to_toml(), "utf-8")
