@@ -383,7 +383,10 @@ def test_a_full_disk_is_one_line_naming_the_store(tmp_path, monkeypatch):
         assert f"{store} (chunk 2 of q): No space left on device" in lines[0]
 
 
-def test_a_full_disk_while_creating_the_store_is_one_line(tmp_path, monkeypatch):
+@pytest.mark.parametrize("client", ["sync", None])
+def test_a_full_disk_while_creating_the_store_is_one_line(tmp_path, monkeypatch, client):
+    # On threads (None) the store is made while the first chunks integrate: the first
+    # chunk to write raises what making it raised.
     from ga_rotors.sweep import store
 
     def disk_full(path, data):
@@ -391,7 +394,7 @@ def test_a_full_disk_while_creating_the_store_is_one_line(tmp_path, monkeypatch)
 
     monkeypatch.setattr(store, "_write", disk_full)
     with pytest.raises(InputError, match=r"cannot write .*s\.zarr \(creating it\): No space"):
-        run_sweep(SWEEP, tmp_path / "s.zarr", client="sync")
+        run_sweep(SWEEP, tmp_path / "s.zarr", client=client)
     assert list(tmp_path.iterdir()) == []  # no store, no staging left
 
 

@@ -357,18 +357,16 @@ class _Pieces:
         self.lock = threading.Lock()
 
 
-def _run_part(task: _Task, c: int, first: int, end: int, pieces: _Pieces | None) -> bool:
+def _run_part(task: _Task, c: int, first: int, end: int, pieces: _Pieces | None, ready) -> bool:
     """Integrate samples ``first`` to ``end - 1`` of chunk ``c``; True if it wrote the chunk.
 
-    A whole chunk (``pieces`` None) is :func:`run_chunk`. A piece keeps its values and
+    A whole chunk (``pieces`` None) is written by its task. A piece keeps its values and
     states; the last piece of its chunk to finish puts them together and writes the
     chunk, so the store is written whole chunks at a time whatever the split. A sample's
     numbers depend on its index only (its draws, its own integration): a chunk made of
-    pieces is the chunk made at once, bit for bit.
+    pieces is the chunk made at once, bit for bit. ``ready()`` returns once the store
+    exists (it is made while the first chunks integrate) and raises what making it raised.
     """
-    if pieces is None:
-        run_chunk(task, c)
-        return True
     from ..ensemble import EnsembleRun, run_samples, scene_samples
 
     sweep = _sweep(task)
@@ -376,20 +374,23 @@ def _run_part(task: _Task, c: int, first: int, end: int, pieces: _Pieces | None)
     values = sweep.values(start + first, start + end)
     samples = scene_samples(sweep.scene, values, n=end - first)
     run = run_samples(samples, sweep.times, parallel=False)
-    with pieces.lock:
-        pieces.done[first] = (values, run)
-        pieces.left -= 1
-        if pieces.left:
-            return False
-    parts = [pieces.done[k] for k in sorted(pieces.done)]
-    values = {key: np.concatenate([v[key] for v, _ in parts]) for key in parts[0][0]}
-    q = np.concatenate([r.q for _, r in parts], axis=1)
-    w = np.concatenate([r.w for _, r in parts], axis=1)
-    _finish(task.store, c, EnsembleRun(run.t, q, w), values, task.nominal)
+    if pieces is not None:
+        with pieces.lock:
+            pieces.done[first] = (values, run)
+            pieces.left -= 1
+            if pieces.left:
+                return False
+        parts = [pieces.done[k] for k in sorted(pieces.done)]
+        values = {key: np.concatenate([v[key] for v, _ in parts]) for key in parts[0][0]}
+        q = np.concatenate([r.q for _, r in parts], axis=1)
+        w = np.concatenate([r.w for _, r in parts], axis=1)
+        run = EnsembleRun(run.t, q, w)
+    ready()
+    _finish(task.store, c, run, values, task.nominal)
     return True
 
 
-def _run_threads(task: _Task, sweep: Sweep, todo: list[int], threads: int, done) -> None:
+def _run_threads(task: _Task, sweep: Sweep, todo: list[int], threads: int, done, ready) -> None:
     """Run chunks ``todo`` on Dask's threaded scheduler, ``threads`` at a time.
 
     Each task integrates a chunk (or a piece of one, see :func:`_parts`) on the serial
@@ -404,13 +405,14 @@ def _run_threads(task: _Task, sweep: Sweep, todo: list[int], threads: int, done)
     threaded = require("dask.threaded", "dask")
     parts = _parts(sweep, todo, threads)
     shared = {c: _Pieces(n) for c, _, _, n in parts if n > 1}
+    ready = ready or (lambda: None)
     # Keys that Dask's ordering (reverse order of the names, for tasks that depend on
     # nothing) starts in the order of ``parts``: chunks then fill the store from its
     # start, and the pieces run last. Only a preference: any order writes the same store.
     width = len(str(len(parts)))
     keys = [f"ga_rotors-chunk-{len(parts) - 1 - i:0{width}d}" for i in range(len(parts))]
     graph = {
-        key: (_run_part, task, c, first, end, shared.get(c))
+        key: (_run_part, task, c, first, end, shared.get(c), ready)
         for key, (c, first, end, _) in zip(keys, parts, strict=True)
     }
 
@@ -607,18 +609,27 @@ def run_sweep(source, out, *, client=None, scheduler=None, workers=None, progres
             progress(finished, total)
         return store
     if client is None and not scheduler:
-        if not created:
-            _create(sweep, store, nominal)
-        if progress is not None:
-            progress(finished, total)
-
-        def flagged():
-            nonlocal finished
-            finished += 1
+        # The store is made on a thread of its own while the first chunks integrate
+        # (about 4 ms of files: 1 % of a 10⁶-sample sweep at 100 steps on two cores);
+        # a chunk waits for it before writing.
+        making = ThreadPoolExecutor(1, thread_name_prefix="ga_rotors-create")
+        try:
+            made = making.submit(_create, sweep, store, nominal) if not created else None
             if progress is not None:
                 progress(finished, total)
 
-        _run_threads(task, sweep, todo, workers or os.cpu_count() or 1, flagged)
+            def flagged():
+                nonlocal finished
+                finished += 1
+                if progress is not None:
+                    progress(finished, total)
+
+            threads = workers or os.cpu_count() or 1
+            _run_threads(task, sweep, todo, threads, flagged, made.result if made else None)
+            if made is not None:
+                made.result()  # raised by the first chunk to write, if it failed
+        finally:
+            making.shutdown(wait=True)
         return store
     distributed = require("distributed", "dask")
     # connected before anything is written: an unreachable scheduler leaves no store
