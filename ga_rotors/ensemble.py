@@ -21,6 +21,7 @@ trajectory of ``get("rk4")`` on the quaternion path, bit for bit.
 from __future__ import annotations
 
 import re
+import threading
 import types
 from dataclasses import dataclass
 from math import isfinite
@@ -283,8 +284,16 @@ def _scene_soa(q, w, inertia, params, t0, h, marks, out_q, out_w, chunk):
 _SCENE_LOOPS: dict = {}
 
 
+#: One thread at a time loads a specialisation's modules: a module is registered in
+#: ``sys.modules`` before it has run, and another thread finding it there half made (the
+#: threads of a sweep all start on the same loop) read ``step`` before it existed.
+_LOOP_LOCK = threading.Lock()
+
+
 def _compiled_scene_loop(integrator, problem, path: str, parallel: bool = True, stored=True):
     """The batched loop for one specialisation, compiled once per installation.
+
+    Thread-safe: see ``_LOOP_LOCK``.
 
     Written as a module next to the generated single-run module (same cache directory,
     its name carrying that module's digest), so numba's cache keeps the machine code
@@ -296,6 +305,11 @@ def _compiled_scene_loop(integrator, problem, path: str, parallel: bool = True, 
     divided out in every stage): for a step template that unpacks ``inertia`` into three
     names, which a 9-tuple cannot be.
     """
+    with _LOOP_LOCK:
+        return _load_scene_loop(integrator, problem, path, parallel, stored)
+
+
+def _load_scene_loop(integrator, problem, path: str, parallel: bool, stored: bool):
     import importlib.util
     import inspect
     import sys
