@@ -57,7 +57,7 @@ def test_largest_errors_are_the_maxima_of_errors_bit_for_bit(reference, case, of
 
 
 def test_largest_errors_of_nothing_and_of_a_non_unit_orientation(reference):
-    exact, t, q_ref, w_ref = reference
+    exact, t, q_ref, _ = reference
     assert exact.largest_errors(t, None, {"rotor": q_ref[:0]}) == (None, {"rotor": None})
     bad = q_ref.copy()
     bad[7] *= 2.0  # off unit beyond the tolerance: refused as Q.distance refuses it

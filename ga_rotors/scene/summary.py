@@ -280,6 +280,46 @@ def _gravity_deviations(body, w, q, w_first, q_first, weight, r, up, scale, l0):
     return out[0], out[1], out[2]
 
 
+@jit
+def _largest_norm_drift(a):
+    """max over rows of | |a[n]| − 1 | (|a[n]| as numpy's norm sums its squares); nan if a
+    row is, −1 for no rows."""
+    best = -1.0
+    for n in range(a.shape[0]):
+        square = 0.0
+        for k in range(a.shape[1]):
+            square += a[n, k] * a[n, k]
+        drift = abs(math.sqrt(square) - 1.0)
+        if drift > best:
+            best = drift
+        elif not drift <= best:
+            return math.nan
+    return best
+
+
+@jit
+def _unwrap_loop(raw, prev_raw, carried, out):
+    """:func:`_unwrap`'s corrections, row by row: numpy's unwrap (np.mod as numpy
+    computes it: fmod, then the divisor's sign) and one running sum."""
+    two_pi = 2.0 * math.pi
+    total = carried
+    for n in range(raw.shape[0]):
+        dd = raw[n] - prev_raw
+        prev_raw = raw[n]
+        mod = np.fmod(dd + math.pi, two_pi)
+        if mod != 0.0:
+            if mod < 0.0:
+                mod += two_pi
+        else:
+            mod = 0.0
+        ddmod = mod - math.pi
+        if ddmod == -math.pi and dd > 0.0:
+            ddmod = math.pi
+        total += (ddmod - dd) if not abs(dd) < math.pi else 0.0
+        out[n] = raw[n] + total
+    return total
+
+
 def _unwrap(raw: np.ndarray, before) -> tuple[np.ndarray, tuple[float, float]]:
     """Unwrapped angles ``raw`` continuing from ``before`` = (last raw, its correction).
 
@@ -288,13 +328,11 @@ def _unwrap(raw: np.ndarray, before) -> tuple[np.ndarray, tuple[float, float]]:
     same numbers as the run whole.
     """
     prev_raw, carried = before if before is not None else (raw[0], 0.0)
-    dd = np.diff(np.concatenate([[prev_raw], raw]))
-    ddmod = np.mod(dd + np.pi, 2 * np.pi) - np.pi
-    ddmod[(ddmod == -np.pi) & (dd > 0)] = np.pi
-    correct = ddmod - dd
-    correct[np.abs(dd) < np.pi] = 0.0
-    total = np.cumsum(np.concatenate([[carried], correct]))[1:]
-    return raw + total, (float(raw[-1]), float(total[-1]))
+    out = np.empty(raw.shape[0])
+    total = _unwrap_loop(
+        np.ascontiguousarray(raw, dtype=float), float(prev_raw), float(carried), out
+    )
+    return out, (float(raw[-1]), float(total))
 
 
 @jit
@@ -374,8 +412,8 @@ class RunSummary:
         for path in piece.paths:
             spec = _paths.get(path)
             if spec.on_unit_sphere:
-                drift = np.abs(np.linalg.norm(piece[spec.array], axis=-1) - 1.0)
-                self._max(f"norm_drift_{path}", drift)
+                drift = _largest_norm_drift(np.ascontiguousarray(piece[spec.array], dtype=float))
+                self._max(f"norm_drift_{path}", None if drift < 0.0 else drift)
         w = piece.w
         n = w.shape[0]
         if n == 0:
