@@ -61,6 +61,7 @@ import inspect
 import os
 import sys
 import textwrap
+import threading
 import types
 from dataclasses import dataclass
 from pathlib import Path
@@ -92,6 +93,11 @@ PACKAGE_ROOT = Path(__file__).resolve().parent.parent
 #: Steps per call of the compiled loop when progress is reported (~10 ms of RK4).
 CHUNK_STEPS = 131_072
 _MEMO: dict[tuple, Specialisation] = {}
+#: One thread at a time generates and loads a specialisation: a module is registered in
+#: ``sys.modules`` before it has run, and another thread finding it there half made used
+#: it ("has no attribute 'loop'": single runs started from several threads of a new
+#: process). Reentrant: generating one module may specialise another.
+_LOAD_LOCK = threading.RLock()
 
 
 @dataclass(frozen=True)
@@ -562,6 +568,12 @@ def specialise(integrator: Integrator | None, problem: Problem, path: str) -> Sp
     found = _MEMO.get(key)
     if found is not None:
         return found
+    with _LOAD_LOCK:
+        found = _MEMO.get(key)  # made by the thread this one waited for
+        return found if found is not None else _specialise(key, integrator, problem, path)
+
+
+def _specialise(key, integrator: Integrator | None, problem: Problem, path: str):
     directory = cache_location()
     text, modules = _generate(integrator, problem, path, cache=directory is not None)
     digest = _digest(text, modules)
