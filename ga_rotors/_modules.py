@@ -1,16 +1,24 @@
-"""Loading a module from a file by its import spec: registered, executed, unregistered
-if it fails. User torque modules (:mod:`ga_rotors.trust`) and generated loop modules
-(:mod:`ga_rotors.integrators._codegen`) are both imported this way.
+"""Loading a module from a file by its import spec, or from its source text: registered,
+executed, unregistered if it fails. User torque modules (:mod:`ga_rotors.trust`) and
+generated loop modules (:mod:`ga_rotors.integrators._codegen`, :mod:`ga_rotors.ensemble`)
+are all imported this way; the generated ones under :data:`GENERATED_LOCK`.
 """
 
 from __future__ import annotations
 
 import importlib.util
 import sys
+import threading
 import types
 from importlib.machinery import ModuleSpec
 
-__all__ = ["load_registered"]
+__all__ = ["GENERATED_LOCK", "load_registered", "load_source"]
+
+#: Held while a generated module is looked up, made and loaded: a module is registered in
+#: ``sys.modules`` before it has run, and another thread finding it there half made used
+#: it ("has no attribute 'loop'": single runs or a sweep's threads starting together in a
+#: new process). Reentrant: making one generated module may load another.
+GENERATED_LOCK = threading.RLock()
 
 
 def load_registered(spec: ModuleSpec) -> types.ModuleType:
@@ -36,10 +44,31 @@ def load_registered(spec: ModuleSpec) -> types.ModuleType:
     False
     """
     module = importlib.util.module_from_spec(spec)
-    sys.modules[spec.name] = module
+    return _run_registered(spec.name, module, lambda: spec.loader.exec_module(module))
+
+
+def load_source(name: str, text: str) -> types.ModuleType:
+    """The module ``name`` made from the source ``text`` (no file: compiled in memory),
+    registered and removed again if it raises, as :func:`load_registered`.
+
+    Examples
+    --------
+    >>> load_source("ga_rotors_demo_text", "VALUE = 4\\n").VALUE
+    4
+    >>> sys.modules.pop("ga_rotors_demo_text").__file__
+    '<ga_rotors_demo_text>'
+    """
+    module = types.ModuleType(name)
+    module.__file__ = f"<{name}>"
+    code = compile(text, module.__file__, "exec")
+    return _run_registered(name, module, lambda: exec(code, module.__dict__))
+
+
+def _run_registered(name: str, module: types.ModuleType, run) -> types.ModuleType:
+    sys.modules[name] = module
     try:
-        spec.loader.exec_module(module)
+        run()
     except BaseException:
-        sys.modules.pop(spec.name, None)
+        sys.modules.pop(name, None)
         raise
     return module

@@ -21,7 +21,6 @@ trajectory of ``get("rk4")`` on the quaternion path, bit for bit.
 from __future__ import annotations
 
 import re
-import threading
 import types
 from dataclasses import dataclass
 from math import isfinite
@@ -30,6 +29,7 @@ import numba
 import numpy as np
 from numba import prange
 
+from . import _modules
 from ._jit import jit
 from ._kernels import euler_coefficients, free_euler_rates
 from .body import MIN_MOMENT_RATIO
@@ -284,16 +284,11 @@ def _scene_soa(q, w, inertia, params, t0, h, marks, out_q, out_w, chunk):
 _SCENE_LOOPS: dict = {}
 
 
-#: One thread at a time loads a specialisation's modules: a module is registered in
-#: ``sys.modules`` before it has run, and another thread finding it there half made (the
-#: threads of a sweep all start on the same loop) read ``step`` before it existed.
-_LOOP_LOCK = threading.Lock()
-
-
 def _compiled_scene_loop(integrator, problem, path: str, parallel: bool = True, stored=True):
     """The batched loop for one specialisation, compiled once per installation.
 
-    Thread-safe: see ``_LOOP_LOCK``.
+    Thread-safe: made and loaded under :data:`ga_rotors._modules.GENERATED_LOCK` (the
+    threads of a sweep all start on the same loop).
 
     Written as a module next to the generated single-run module (same cache directory,
     its name carrying that module's digest), so numba's cache keeps the machine code
@@ -305,14 +300,13 @@ def _compiled_scene_loop(integrator, problem, path: str, parallel: bool = True, 
     divided out in every stage): for a step template that unpacks ``inertia`` into three
     names, which a 9-tuple cannot be.
     """
-    with _LOOP_LOCK:
+    with _modules.GENERATED_LOCK:
         return _load_scene_loop(integrator, problem, path, parallel, stored)
 
 
 def _load_scene_loop(integrator, problem, path: str, parallel: bool, stored: bool):
     import importlib.util
     import inspect
-    import sys
 
     from .files import write_text
     from .integrators._codegen import specialise
@@ -355,14 +349,9 @@ def _load_scene_loop(integrator, problem, path: str, parallel: bool, stored: boo
         except OSError:
             file = None
     if file is not None:
-        module_spec = importlib.util.spec_from_file_location(name, file)
-        module = importlib.util.module_from_spec(module_spec)
-        sys.modules[name] = module
-        module_spec.loader.exec_module(module)
+        module = _modules.load_registered(importlib.util.spec_from_file_location(name, file))
     else:  # no writable cache: compiled in memory, every process
-        module = types.ModuleType(name)
-        sys.modules[name] = module
-        exec(compile(text(False), f"<{name}>", "exec"), module.__dict__)
+        module = _modules.load_source(name, text(False))
     _SCENE_LOOPS[name] = module.loop
     return module.loop
 

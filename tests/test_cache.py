@@ -163,52 +163,18 @@ def test_threads_specialising_the_same_loop_at_once_wait_for_one_another(monkeyp
     """Single runs started from several threads of a new process all load the same
     generated module; a module is in sys.modules before it has run, and a thread finding
     it there half made used it ("has no attribute ...")."""
-    import importlib.util
-    import sys
-    import threading
-    import time
+    from _loading_race import race_first_load
 
-    from ga_rotors import _modules
-    from ga_rotors.integrators import _codegen, problem
+    from ga_rotors.integrators import problem
     from ga_rotors.scene import load_scene, run_scene
 
     def once():  # the heavy top's loop is generated for its torque; a new scene each
         # time, so nothing it derived (its prepared loops) is reused
         return run_scene(load_scene("heavy_top").replace({"time.duration": 0.01}))
 
-    expected = once()  # compiled and cached; then unloaded again:
-    for name in [name for name in sys.modules if name.startswith("_ga_rotors_gen_")]:
-        monkeypatch.delitem(sys.modules, name)
-    monkeypatch.setattr(_codegen, "_MEMO", {})
-    monkeypatch.setattr(problem, "_PROBLEMS", {})  # and the loops they prepared
-
-    slowed = []
-
-    def slow(spec):  # load_registered; the first load leaves time for the other thread
-        module = importlib.util.module_from_spec(spec)
-        sys.modules[spec.name] = module
-        if not slowed:
-            slowed.append(spec.name)
-            time.sleep(0.3)
-        spec.loader.exec_module(module)
-        return module
-
-    monkeypatch.setattr(_modules, "load_registered", slow)
-    start, errors, results = threading.Barrier(2), [], []
-
-    def one(delay):
-        start.wait()
-        time.sleep(delay)  # the first thread is the one that loads
-        try:
-            results.append(once())
-        except Exception as exc:  # reported by the assertion below
-            errors.append(exc)
-
-    threads = [threading.Thread(target=one, args=(delay,)) for delay in (0.0, 0.1)]
-    for t in threads:
-        t.start()
-    for t in threads:
-        t.join()
+    expected = once()  # compiled and cached; then unloaded again, with the problems
+    monkeypatch.setattr(problem, "_PROBLEMS", {})  # that kept their prepared loops
+    slowed, errors, results = race_first_load(monkeypatch, once)
     assert slowed and errors == []
     for tr in results:
         for path in ("rotor", "quaternion"):

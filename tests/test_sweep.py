@@ -507,47 +507,12 @@ def test_threads_loading_the_same_loop_at_once_wait_for_one_another(monkeypatch)
     """The threads of a sweep in a new process all start by loading the same generated
     modules; a module is in sys.modules before it has run, and a second thread finding
     it there half made failed ("has no attribute 'step'", seen on a resumed sweep)."""
-    import importlib.util
-    import sys
-    import threading
-    import time
+    from _loading_race import race_first_load
 
-    from ga_rotors import _modules, ensemble
-    from ga_rotors.integrators import _codegen
+    from ga_rotors import ensemble
 
     samples = scene_samples(load_sweep(SWEEP).scene, n=2)
-    run_samples(samples, parallel=False)  # compiled, cached; then unloaded again:
-    loaded = [name for name in sys.modules if name.startswith("_ga_rotors_gen_")]
-    for name in loaded:
-        monkeypatch.delitem(sys.modules, name)
+    run_samples(samples, parallel=False)  # compiled, cached; then unloaded
     monkeypatch.setattr(ensemble, "_SCENE_LOOPS", {})
-    monkeypatch.setattr(_codegen, "_MEMO", {})
-
-    slowed = []
-
-    def slow(spec):  # load_registered; the first load leaves time for the other thread
-        module = importlib.util.module_from_spec(spec)
-        sys.modules[spec.name] = module
-        if not slowed:
-            slowed.append(spec.name)
-            time.sleep(0.3)
-        spec.loader.exec_module(module)
-        return module
-
-    monkeypatch.setattr(_modules, "load_registered", slow)
-    start, errors = threading.Barrier(2), []
-
-    def one(delay):
-        start.wait()
-        time.sleep(delay)  # the first thread is the one that loads
-        try:
-            run_samples(samples, parallel=False)
-        except Exception as exc:  # reported by the assertion below
-            errors.append(exc)
-
-    threads = [threading.Thread(target=one, args=(delay,)) for delay in (0.0, 0.1)]
-    for t in threads:
-        t.start()
-    for t in threads:
-        t.join()
+    slowed, errors, _ = race_first_load(monkeypatch, lambda: run_samples(samples, parallel=False))
     assert slowed and errors == []

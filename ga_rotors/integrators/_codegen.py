@@ -61,13 +61,14 @@ import inspect
 import os
 import sys
 import textwrap
-import threading
 import types
 from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 
+from .. import _modules
+from .._modules import GENERATED_LOCK, load_source
 from .._private_dir import private_directory
 from ..errors import InputError
 from ..files import write_text
@@ -93,11 +94,6 @@ PACKAGE_ROOT = Path(__file__).resolve().parent.parent
 #: Steps per call of the compiled loop when progress is reported (~10 ms of RK4).
 CHUNK_STEPS = 131_072
 _MEMO: dict[tuple, Specialisation] = {}
-#: One thread at a time generates and loads a specialisation: a module is registered in
-#: ``sys.modules`` before it has run, and another thread finding it there half made used
-#: it ("has no attribute 'loop'": single runs started from several threads of a new
-#: process). Reentrant: generating one module may specialise another.
-_LOAD_LOCK = threading.RLock()
 
 
 @dataclass(frozen=True)
@@ -535,17 +531,7 @@ def _write_once(path: Path, text: str) -> None:
 
 
 def _import_file(name: str, path: Path) -> types.ModuleType:
-    from .._modules import load_registered
-
-    return load_registered(importlib.util.spec_from_file_location(name, path))
-
-
-def _import_text(name: str, text: str) -> types.ModuleType:
-    module = types.ModuleType(name)
-    module.__file__ = f"<{name}>"
-    sys.modules[name] = module
-    exec(compile(text, module.__file__, "exec"), module.__dict__)
-    return module
+    return _modules.load_registered(importlib.util.spec_from_file_location(name, path))
 
 
 def _memo_key(integrator, problem: Problem, path: str) -> tuple:
@@ -568,7 +554,7 @@ def specialise(integrator: Integrator | None, problem: Problem, path: str) -> Sp
     found = _MEMO.get(key)
     if found is not None:
         return found
-    with _LOAD_LOCK:
+    with GENERATED_LOCK:  # one thread at a time makes and loads generated modules
         found = _MEMO.get(key)  # made by the thread this one waited for
         return found if found is not None else _specialise(key, integrator, problem, path)
 
@@ -591,9 +577,9 @@ def _specialise(key, integrator: Integrator | None, problem: Problem, path: str)
             module = _import_file(modname, file)
         except OSError:
             text, _ = _generate(integrator, problem, path, cache=False)
-            file, module = None, _import_text(modname, text)
+            file, module = None, load_source(modname, text)
     else:
-        module = _import_text(modname, text)
+        module = load_source(modname, text)
     result = Specialisation(module, file, text)
     _MEMO[key] = result
     return result
