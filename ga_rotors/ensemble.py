@@ -693,7 +693,8 @@ def run_samples(
     module = pspec.load()
     n = len(samples)
     x = np.ascontiguousarray(module.initial_state(samples.orientation).T)
-    w = np.ascontiguousarray(samples.angular_velocity.T)
+    # a copy: the loops integrate ω in place, and scene_samples stores it in their layout
+    w = np.array(samples.angular_velocity.T, order="C")
     inertia = np.ascontiguousarray(samples.inertia.T)
     params = np.ascontiguousarray(samples.params.T)
     out_x, out_w = np.empty((marks.size, 4, n)), np.empty((marks.size, 3, n))

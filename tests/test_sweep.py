@@ -512,7 +512,11 @@ def test_threads_loading_the_same_loop_at_once_wait_for_one_another(monkeypatch)
     from ga_rotors import ensemble
 
     samples = scene_samples(load_sweep(SWEEP).scene, n=2)
-    run_samples(samples, parallel=False)  # compiled, cached; then unloaded
+    expected = run_samples(samples, parallel=False)  # compiled, cached; then unloaded
     monkeypatch.setattr(ensemble, "_SCENE_LOOPS", {})
-    slowed, errors, _ = race_first_load(monkeypatch, lambda: run_samples(samples, parallel=False))
+    slowed, errors, results = race_first_load(
+        monkeypatch, lambda: run_samples(samples, parallel=False)
+    )
     assert slowed and errors == []
+    for run in results:  # the same samples run three times: the same numbers each time
+        assert (run.q == expected.q).all()
