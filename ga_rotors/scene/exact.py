@@ -124,11 +124,10 @@ class Exact:
         ([0.0, 0.0, 0.0], [0.0, 0.0])
         """
         orientations = orientations or {}
-        sizes = [q.shape[0] for q in orientations.values()]
-        rows = max([0 if w is None else w.shape[0], *sizes])
-        if rows == 0:  # nothing to compare: the reference is not evaluated at all
+        found = self._reference_rows(t, w, orientations)
+        if found is None:  # nothing to compare: the reference is not evaluated at all
             return (None if w is None else np.empty(0)), {n: np.empty(0) for n in orientations}
-        q_ref, w_ref, _ = self.state(np.asarray(t, dtype=np.float64)[:rows])
+        q_ref, w_ref = found
         dw = None
         if w is not None:  # |w − w_ref| row by row, without the difference array
             dw = np.empty(w.shape[0])
@@ -159,11 +158,10 @@ class Exact:
         (0.0, {'rotor': 0.0})
         """
         orientations = orientations or {}
-        sizes = [q.shape[0] for q in orientations.values()]
-        rows = max([0 if w is None else w.shape[0], *sizes])
-        if rows == 0:
+        found = self._reference_rows(t, w, orientations)
+        if found is None:
             return None, {n: None for n in orientations}
-        q_ref, w_ref, _ = self.state(np.asarray(t, dtype=np.float64)[:rows])
+        q_ref, w_ref = found
         dw = None
         if w is not None and w.shape[0]:
             dw = _largest_rate_error(np.ascontiguousarray(w, dtype=np.float64), w_ref)
@@ -177,6 +175,16 @@ class Exact:
             # a non-unit or non-finite orientation: as Q.distance says (raises or nan)
             dq[name] = largest if ok else float(np.max(Q.distance(q_ref[: q.shape[0]], q)))
         return dw, dq
+
+    def _reference_rows(self, t, w, orientations: dict):
+        """The reference's (q, ω) at as many first rows of ``t`` as the longest of ``w``
+        and ``orientations`` has (None if none has a row): one evaluation for all."""
+        sizes = [q.shape[0] for q in orientations.values()]
+        rows = max([0 if w is None else w.shape[0], *sizes])
+        if rows == 0:
+            return None
+        q_ref, w_ref, _ = self.state(np.asarray(t, dtype=np.float64)[:rows])
+        return q_ref, w_ref
 
     def bound(self, t) -> float | None:
         """The reference's largest rounding-error bound (rad) at absolute times ``t`` (None
@@ -201,11 +209,17 @@ def _is_identity(q) -> bool:
 
 
 @jit
+def _rate_error_squared(w, w_ref, n):
+    """|w[n] − w_ref[n]|², summed as numpy's norm of the difference sums it."""
+    dx, dy, dz = w[n, 0] - w_ref[n, 0], w[n, 1] - w_ref[n, 1], w[n, 2] - w_ref[n, 2]
+    return dx * dx + dy * dy + dz * dz
+
+
+@jit
 def _rate_error_loop(w, w_ref, out):
     """out[n] = |w[n] − w_ref[n]| (as numpy's norm of the difference)."""
     for n in range(out.shape[0]):
-        dx, dy, dz = w[n, 0] - w_ref[n, 0], w[n, 1] - w_ref[n, 1], w[n, 2] - w_ref[n, 2]
-        out[n] = math.sqrt(dx * dx + dy * dy + dz * dz)
+        out[n] = math.sqrt(_rate_error_squared(w, w_ref, n))
 
 
 @jit
@@ -214,8 +228,7 @@ def _largest_rate_error(w, w_ref):
     square, then its root (√ is monotone and correctly rounded); nan if any row is."""
     best, nan_seen = 0.0, False
     for n in range(w.shape[0]):
-        dx, dy, dz = w[n, 0] - w_ref[n, 0], w[n, 1] - w_ref[n, 1], w[n, 2] - w_ref[n, 2]
-        square = dx * dx + dy * dy + dz * dz
+        square = _rate_error_squared(w, w_ref, n)
         if square != square:
             nan_seen = True
         elif square > best:
