@@ -83,11 +83,10 @@ def _bounds(sweep: Sweep, c: int) -> tuple[int, int]:
     return c * sweep.chunk, min(sweep.size, (c + 1) * sweep.chunk)
 
 
-def _inputs(sweep: Sweep, c: int):
-    """Chunk ``c``'s drawn values and its kernel inputs."""
+def _inputs(sweep: Sweep, lo: int, hi: int):
+    """The drawn values of samples ``lo`` to ``hi - 1`` and their kernel inputs."""
     from ..ensemble import scene_samples
 
-    lo, hi = _bounds(sweep, c)
     values = sweep.values(lo, hi)
     return values, scene_samples(sweep.scene, values, n=hi - lo)
 
@@ -122,7 +121,7 @@ def run_chunk(task: _Task, c: int, wait: bool = True, inputs=None) -> int:
     from ..ensemble import run_samples
 
     sweep = _sweep(task)
-    values, samples = inputs if inputs is not None else _inputs(sweep, c)
+    values, samples = inputs if inputs is not None else _inputs(sweep, *_bounds(sweep, c))
     run = run_samples(samples, sweep.times, parallel=False)
     job = functools.partial(_finish, task.store, c, run, values, task.nominal)
     if wait:
@@ -367,12 +366,11 @@ def _run_part(task: _Task, c: int, first: int, end: int, pieces: _Pieces | None,
     pieces is the chunk made at once, bit for bit. ``ready()`` returns once the store
     exists (it is made while the first chunks integrate) and raises what making it raised.
     """
-    from ..ensemble import EnsembleRun, run_samples, scene_samples
+    from ..ensemble import EnsembleRun, run_samples
 
     sweep = _sweep(task)
     start = c * sweep.chunk
-    values = sweep.values(start + first, start + end)
-    samples = scene_samples(sweep.scene, values, n=end - first)
+    values, samples = _inputs(sweep, start + first, start + end)
     run = run_samples(samples, sweep.times, parallel=False)
     if pieces is not None:
         with pieces.lock:
@@ -587,7 +585,7 @@ def run_sweep(source, out, *, client=None, scheduler=None, workers=None, progres
         # the GIL).
         prepare = ThreadPoolExecutor(1, thread_name_prefix="ga_rotors-inputs")
         try:
-            ahead = prepare.submit(_inputs, sweep, todo[0])
+            ahead = prepare.submit(_inputs, sweep, *_bounds(sweep, todo[0]))
             if not created:
                 _create(sweep, store, nominal)
             if progress is not None:
@@ -595,7 +593,7 @@ def run_sweep(source, out, *, client=None, scheduler=None, workers=None, progres
             for i, c in enumerate(todo):
                 inputs = ahead.result()
                 if i + 1 < len(todo):
-                    ahead = prepare.submit(_inputs, sweep, todo[i + 1])
+                    ahead = prepare.submit(_inputs, sweep, *_bounds(sweep, todo[i + 1]))
                 run_chunk(task, c, wait=False, inputs=inputs)
                 finished += 1
                 if progress is not None:
