@@ -10,9 +10,15 @@ Faults, and what each leaves:
 
 * an error, Ctrl-C or SIGTERM while writing: the staging folder is removed, ``--out`` is
   untouched (the command line turns SIGTERM into an exception so clean-up runs);
-* SIGKILL or a power cut: the staging folder stays; the next command writing the same
-  ``--out`` removes it (or, if every file had been written and the moves had begun,
-  finishes moving them in), so no debris lasts and no half set stays;
+* SIGKILL: the staging folder stays; the next command writing the same ``--out`` removes
+  it (or, if every file had been written and the moves had begun, finishes moving them
+  in), so no debris lasts and no half set stays;
+* a power cut or a crash of the operating system: the same for the files' names, but
+  their contents are not forced to disk (an ``fsync`` of a long run's CSV, hundreds of
+  megabytes, would cost more than the run), so a file written in the seconds before the
+  cut may come back short or empty, as with any unsynced write. On ext4 with its default
+  ``auto_da_alloc``, a file renamed over the previous run's has its data written before
+  the rename is committed, which covers re-running into the same ``--out``;
 * two commands writing one ``--out``: serialised by a lock on the folder holding it
   (``fcntl.flock``, no lock file left behind); the second waits up to
   :data:`LOCK_TIMEOUT` seconds, then fails with one line;
