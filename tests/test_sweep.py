@@ -159,7 +159,7 @@ def test_a_store_of_another_sweep_is_refused(tmp_path):
         (("seed = 42", ""), r"sweep\.seed: missing; random draws need a seed"),
         (
             ("normal = [0.0, 0.1]", "normal = [0.0, -0.1]"),
-            r"draw\[0\]\.normal: expected mean ≤ std",
+            r"draw\[0\]\.normal: expected std ≥ 0, got -0\.1",
         ),
         (("normal = [0.0, 0.1]", "poisson = [1.0]"), r"draw\[0\]\.poisson: unknown key"),
         (('"intermediate_axis_flip"', '"no_such_scene"'), r"sweep\.scene: .*no bundled scene"),

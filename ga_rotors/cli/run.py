@@ -177,14 +177,15 @@ def _user_code(args: argparse.Namespace, scene):
     return allow_user_code(folder)
 
 
-def _budget(args: argparse.Namespace):
-    """The scene budget from --max-steps / --max-memory / --max-disk (defaults where not
-    given)."""
+def budget_from_args(args: argparse.Namespace, default=None):
+    """The budget from --max-steps / --max-memory / --max-disk, ``default``'s values
+    (the scene budget's by default) where not given."""
     from ..scene.budget import DEFAULT, Budget
 
-    steps = DEFAULT.max_steps if args.max_steps is None else args.max_steps
-    memory = DEFAULT.max_memory_gib if args.max_memory is None else args.max_memory
-    disk = DEFAULT.max_disk_gib if args.max_disk is None else args.max_disk
+    default = DEFAULT if default is None else default
+    steps = default.max_steps if args.max_steps is None else args.max_steps
+    memory = default.max_memory_gib if args.max_memory is None else args.max_memory
+    disk = default.max_disk_gib if args.max_disk is None else args.max_disk
     if steps != steps or memory != memory or disk != disk:  # NaN
         from ..errors import InputError
 
@@ -209,7 +210,7 @@ def run(args: argparse.Namespace) -> int:
     scene = load_scene(args.scene)
     if args.format is not None:
         scene = scene.replace({"output.figure_format": args.format})
-    budget = _budget(args)
+    budget = budget_from_args(args)
     estimate = check(scene, budget, streamed=True)
     if estimate.steps > SHOW_ESTIMATE_STEPS:
         print(f"{scene.name}: {estimate} (streamed)", file=sys.stderr)

@@ -7,6 +7,9 @@ per core, in this process), or on an existing cluster with --scheduler ADDRESS â
 written to the store as they finish.
 Interrupting and running the same command again resumes from the finished chunks.
 Prints how far the samples spread from the base scene at each output time.
+A sweep needing more than --max-steps integration steps (default 1e12), --max-memory GiB
+for the chunks integrating at once (default 2) or --max-disk GiB of store (default 20) is
+refused before anything is written.
 Needs pip install "ga-rotors[dask]".
 """
 
@@ -41,6 +44,20 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         "--here", action="store_true",
         help="run the chunks one after the other in this process, without Dask",
     )  # fmt: skip
+    parser.add_argument(
+        "--max-steps", metavar="N", type=float, default=None,
+        help="refuse a sweep needing more integration steps, summed over samples "
+        "(default 1e12)",
+    )  # fmt: skip
+    parser.add_argument(
+        "--max-memory", metavar="GIB", type=float, default=None,
+        help="refuse a sweep whose chunks integrating at once need more memory "
+        "(default 2 GiB)",
+    )  # fmt: skip
+    parser.add_argument(
+        "--max-disk", metavar="GIB", type=float, default=None,
+        help="refuse a sweep whose store needs more disk (default 20 GiB)",
+    )  # fmt: skip
     bar = parser.add_mutually_exclusive_group()
     bar.add_argument(
         "--progress", dest="progress", action="store_true", default=None,
@@ -56,9 +73,11 @@ def run(args: argparse.Namespace) -> int:
 
     from ..errors import InputError
     from ..sweep import keep_freed_memory, open_sweep, run_sweep, summary
-    from .run import ProgressBar
+    from ..sweep.budget import DEFAULT
+    from .run import ProgressBar, budget_from_args
 
     start = time.perf_counter()
+    budget = budget_from_args(args, DEFAULT)
     if args.workers is not None and args.workers < 1:
         raise InputError(f"--workers: expected a positive number, got {args.workers}")
     if args.out is None:
@@ -71,7 +90,7 @@ def run(args: argparse.Namespace) -> int:
     try:
         store = run_sweep(
             Path(args.sweep), out, client="sync" if args.here else None,
-            scheduler=args.scheduler, workers=args.workers, progress=bar,
+            scheduler=args.scheduler, workers=args.workers, progress=bar, budget=budget,
         )  # fmt: skip
     finally:
         bar.close()

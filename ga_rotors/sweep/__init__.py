@@ -7,6 +7,8 @@
   worker processes on this machine);
 * :func:`open_sweep` — the finished store as an xarray Dataset; :func:`summary` and
   :func:`histogram` its spread from the base scene, reduced chunk by chunk;
+* :mod:`ga_rotors.sweep.budget` — the steps, memory and disk a sweep will take, checked
+  before anything is written;
 * :func:`keep_freed_memory` — what ``ga-rotors sweep`` does to its process's allocator
   so that each chunk's arrays do not fault their pages in afresh.
 

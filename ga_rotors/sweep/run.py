@@ -43,6 +43,7 @@ from .. import _kernels as K
 from .._jit import jit
 from ..errors import InputError
 from ..optional import require
+from . import budget as sweep_budget
 from . import store as zstore
 from .spec import Sweep, load_sweep
 
@@ -516,7 +517,9 @@ def keep_freed_memory() -> bool:
     return all(mallopt(_MALLOPT[name], value) == 1 for name, value in _KEPT_MEMORY.items())
 
 
-def run_sweep(source, out, *, client=None, scheduler=None, workers=None, progress=None) -> Path:
+def run_sweep(
+    source, out, *, client=None, scheduler=None, workers=None, progress=None, budget=None
+) -> Path:
     """Run (or resume) the sweep ``source`` into the zarr store ``out``.
 
     Parameters
@@ -536,6 +539,9 @@ def run_sweep(source, out, *, client=None, scheduler=None, workers=None, progres
         Threads of the default run in this process (default: one per core).
     progress : callable, optional
         ``progress(done, total)`` in chunks.
+    budget : ga_rotors.scene.budget.Budget, optional
+        The most the sweep may take (default :data:`ga_rotors.sweep.budget.DEFAULT`):
+        beyond it, refused before anything is written (:mod:`ga_rotors.sweep.budget`).
 
     Examples
     --------
@@ -555,6 +561,8 @@ def run_sweep(source, out, *, client=None, scheduler=None, workers=None, progres
     if workers is not None and workers < 1:
         raise InputError(f"--workers: expected a positive number, got {workers}")
     sweep = load_sweep(source)
+    threads = 1 if client == "sync" else workers
+    sweep_budget.check(sweep, sweep_budget.DEFAULT if budget is None else budget, threads)
     store = Path(out)
     if store.suffix != ".zarr":
         raise InputError(f"--out: {store}: expected a .zarr store name")

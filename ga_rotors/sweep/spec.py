@@ -31,6 +31,7 @@ between the samples of one ensemble); ``time`` and ``integrator`` keys go in ``[
 from __future__ import annotations
 
 import hashlib
+import math
 import tomllib
 from dataclasses import dataclass
 from pathlib import Path
@@ -104,7 +105,8 @@ class Sweep:
 
     @property
     def grid_points(self) -> int:
-        return int(np.prod([len(v) for _, v in self.grid])) if self.grid else 1
+        # math.prod: exact for any size (a budget then refuses it), where numpy's int64 wraps
+        return math.prod(len(v) for _, v in self.grid)
 
     @property
     def size(self) -> int:
@@ -210,6 +212,8 @@ def load_sweep(source) -> Sweep:
     times = None
     if "times" in sw:
         times = np.array(r.numbers(sw["times"], "sweep.times"))
+        if not times.size:
+            raise r.error("sweep.times", "expected at least one output time (s)")
     changes = r.table(top.get("set", {}), "set", _any_keys(top.get("set", {})))
     if changes:
         try:
@@ -234,17 +238,21 @@ def load_sweep(source) -> Sweep:
         _varying(r, k, join(key, "key"))
         dist = r.one_of(d, key, DISTRIBUTIONS)
         a, b = r.vector(d[dist], join(key, dist), 2, unit=" and ".join(DISTRIBUTIONS[dist]))
-        if (dist == "normal" and b < 0) or (dist == "uniform" and b < a):
-            raise r.error(join(key, dist), f"expected {' ≤ '.join(DISTRIBUTIONS[dist])}")
+        if dist == "normal" and b < 0:
+            raise r.error(join(key, dist), f"expected std ≥ 0, got {b:g}")
+        if dist == "uniform" and b < a:
+            raise r.error(join(key, dist), f"expected low ≤ high, got [{a:g}, {b:g}]")
         draws.append((k, dist, (a, b)))
     keys = [k for k, _ in grid] + [k for k, _, _ in draws]
     if len(set(keys)) != len(keys):
         raise r.error("draw", "a key is varied twice (in grid and draw, or in two draws)")
     seed = None
-    if draws:
-        if "seed" not in sw:
-            raise r.error("sweep.seed", "missing; random draws need a seed")
-        seed = int(_count(r, sw["seed"], "sweep.seed", zero=True))
+    if "seed" in sw:  # checked even when unused: a typo'd seed should not pass silently
+        seed = _count(r, sw["seed"], "sweep.seed", zero=True)
+    if draws and seed is None:
+        raise r.error("sweep.seed", "missing; random draws need a seed")
+    if not draws:
+        seed = None
     return Sweep(scene, tuple(grid), tuple(draws), samples, seed, chunk, times, text, file)
 
 
