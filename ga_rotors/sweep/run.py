@@ -321,6 +321,10 @@ def _client(client, scheduler: str | None):
         text = str(exc).strip()
         first = text.splitlines()[0] if text else type(exc).__name__
         raise InputError(f"--scheduler: cannot reach {scheduler}: {first}") from None
+    except ValueError as exc:  # no port, an unknown scheme: distributed parses it first
+        raise InputError(
+            f"--scheduler: {scheduler!r} is not a scheduler address (tcp://host:port): {exc}"
+        ) from None
 
 
 #: Fewest samples in a piece of a chunk split between threads (see :func:`_parts`): a

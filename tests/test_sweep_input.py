@@ -1,7 +1,8 @@
-"""A sweep's budget: an absurd sweep file is refused in one line before anything is
-written, and the three options that raise the budget do; and the sweep file's own checks
-that a probe of bad inputs found missing (an empty list of times, a seed that is a boolean,
-the message of a negative standard deviation)."""
+"""Bad input to a sweep is one line: a sweep's budget (an absurd sweep file is refused
+before anything is written, and the three options that raise the budget do), and what a
+probe of bad sweep files and arguments found (an empty list of times, a seed that is a
+boolean, the message of a negative standard deviation, a scheduler address without a
+port)."""
 
 from __future__ import annotations
 
@@ -174,3 +175,13 @@ def test_a_seed_without_draws_is_still_checked():
     assert load_sweep(text).seed is None  # unused: the store says -1, as before
     with pytest.raises(InputError, match=r"sweep\.seed: expected an integer ≥ 0, got 'x'"):
         load_sweep(text.replace("seed = 3", 'seed = "x"'))
+
+
+@pytest.mark.parametrize("address", ["notanaddress", "foo://127.0.0.1:1"])
+def test_a_malformed_scheduler_address_is_one_line_and_writes_nothing(tmp_path, capsys, address):
+    pytest.importorskip("distributed")
+    out = tmp_path / "s.zarr"
+    argv = ["sweep", str(_write(tmp_path, SMALL)), "--out", str(out), "--scheduler", address]
+    err = _one_line_error(capsys, argv)
+    assert f"--scheduler: {address!r} is not a scheduler address (tcp://host:port)" in err
+    assert not out.exists()
