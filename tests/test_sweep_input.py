@@ -11,13 +11,13 @@ import os
 import pytest
 
 pytest.importorskip("zarr")
-pytest.importorskip("dask")
+dask = pytest.importorskip("dask")
 
-from ga_rotors.cli import main
-from ga_rotors.errors import InputError
-from ga_rotors.scene.budget import Budget
-from ga_rotors.sweep import load_sweep, open_sweep, run_sweep
-from ga_rotors.sweep.budget import BLOCK_BYTES, DEFAULT, check, estimate
+from ga_rotors.cli import main  # noqa: E402
+from ga_rotors.errors import InputError  # noqa: E402
+from ga_rotors.scene.budget import Budget  # noqa: E402
+from ga_rotors.sweep import load_sweep, open_sweep, run_sweep  # noqa: E402
+from ga_rotors.sweep.budget import BLOCK_BYTES, DEFAULT, check, estimate  # noqa: E402
 
 SMALL = """
 [sweep]
@@ -185,3 +185,20 @@ def test_a_malformed_scheduler_address_is_one_line_and_writes_nothing(tmp_path, 
     err = _one_line_error(capsys, argv)
     assert f"--scheduler: {address!r} is not a scheduler address (tcp://host:port)" in err
     assert not out.exists()
+    # the failed client is not left as the process's scheduler (later computes hung on it)
+    assert dask.config.get("scheduler", None) is None
+
+
+def test_a_zarr_store_of_something_else_is_not_a_sweep_store(tmp_path, capsys):
+    import numpy as np
+    import xarray as xr
+
+    foreign = tmp_path / "other.zarr"
+    xr.Dataset({"a": ("x", np.arange(3.0))}).to_zarr(foreign, zarr_format=2, consolidated=True)
+    with pytest.raises(InputError, match=r"other\.zarr: not a sweep store \(no chunk_done, "):
+        open_sweep(foreign)  # was a KeyError from xarray
+    argv = ["sweep", str(_write(tmp_path, SMALL)), "--out", str(foreign), "--here"]
+    assert "not a sweep store (no chunk_done" in _one_line_error(capsys, argv)
+    assert sorted(p.name for p in foreign.iterdir()) == sorted(
+        [".zattrs", ".zgroup", ".zmetadata", "a"]
+    )

@@ -316,7 +316,11 @@ def _client(client, scheduler: str | None):
         return client, False
     distributed = require("distributed", "dask")
     try:
-        return distributed.Client(scheduler, timeout=SCHEDULER_TIMEOUT), True
+        # not the process's default scheduler: the sweep hands its client the tasks, and a
+        # client that failed to connect must not stay behind as every later compute's
+        # (a malformed address left it there, and the next .values hung)
+        client = distributed.Client(scheduler, timeout=SCHEDULER_TIMEOUT, set_as_default=False)
+        return client, True
     except (OSError, TimeoutError) as exc:
         text = str(exc).strip()
         first = text.splitlines()[0] if text else type(exc).__name__
@@ -652,7 +656,8 @@ def run_sweep(
         futures = dask_client.map(run_chunk, [task] * len(todo), todo, wait=False, pure=False)
         # results come with the completions (a failed chunk raises here), rather than
         # one round trip to the client's event loop per future
-        for _ in distributed.as_completed(futures, with_results=True):
+        completed = distributed.as_completed(futures, loop=dask_client.loop, with_results=True)
+        for _ in completed:
             finished += 1
             if progress is not None:
                 progress(finished, total)
@@ -666,10 +671,16 @@ def run_sweep(
 def _open(store: Path):
     xr = require("xarray", "results")
     try:
-        return xr.open_zarr(store, consolidated=True)
+        ds = xr.open_zarr(store, consolidated=True)
     except (OSError, ValueError, KeyError) as exc:
         first = str(exc).strip().splitlines()[0] if str(exc).strip() else type(exc).__name__
         raise InputError(f"{store}: not a sweep store ({first})") from None
+    # a zarr store of something else: what a sweep's reading relies on, named
+    lacking = [v for v in ("chunk_done", "angle_from_nominal", "q_nominal") if v not in ds]
+    if lacking or "sweep_digest" not in ds.attrs:
+        what = ", ".join(lacking + ([] if "sweep_digest" in ds.attrs else ["sweep_digest"]))
+        raise InputError(f"{store}: not a sweep store (no {what})")
+    return ds
 
 
 def open_sweep(store):
