@@ -157,3 +157,27 @@ def test_a_scene_declaring_netcdf_data_writes_a_readable_dataset(tmp_path):
     assert back.attrs["scene_toml"] == scene.to_toml()  # the run records its scene
     assert back.attrs["exact_solution"] == "heavy_top"
     assert (tmp_path / "run" / "heavy_top.csv").read_text().startswith("t [s],w_1 [rad/s]")
+
+
+@pytest.mark.parametrize("suffix", [".nc", ".zarr"])
+def test_a_file_larger_than_the_memory_budget_is_refused_before_loading_and_read_lazily(
+    heavy, tmp_path, suffix
+):
+    # a streamed run's file can hold more than memory: read() says so in one line instead
+    # of filling it, and lazy=True reads values as they are used
+    scene, tr = heavy
+    path = results.write(tr, tmp_path / f"run{suffix}", scene)
+    whole = results.read(path)
+    small = whole.nbytes / 2**30 / 2
+    with pytest.raises(InputError, match=r"GiB of data, more than max_memory_gib = .*lazy=True"):
+        results.read(path, max_memory_gib=small)
+    with results.read(path, lazy=True, max_memory_gib=small) as lazy:
+        assert not lazy["w"].variable._in_memory  # nothing loaded yet
+        xr.testing.assert_identical(lazy.load(), whole)
+    assert results.read(path, max_memory_gib=2 * small).identical(whole)
+
+
+@pytest.mark.parametrize("bad", [0, -1.0, float("nan"), True, "2"])
+def test_a_bad_memory_budget_is_one_line_naming_it(tmp_path, bad):
+    with pytest.raises(InputError, match="max_memory_gib: expected a positive number"):
+        results.read(tmp_path / "missing.nc", max_memory_gib=bad)

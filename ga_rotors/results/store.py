@@ -127,8 +127,19 @@ def _staged(path: Path, writer) -> Path:
     return path
 
 
-def read(path):
-    """The Dataset stored at ``path`` (``.nc`` or ``.zarr``), loaded into memory.
+#: Gibibytes :func:`read` loads at most unless told otherwise (as a run's memory budget).
+READ_MEMORY_GIB = 2.0
+
+
+def read(path, lazy: bool = False, max_memory_gib: float = READ_MEMORY_GIB):
+    """The Dataset stored at ``path`` (``.nc`` or ``.zarr``): loaded into memory, or
+    ``lazy``, its values read from the file as they are used.
+
+    A streamed run's file can hold more than memory (10⁸ steps of the heavy top are
+    gigabytes): a file whose data is over ``max_memory_gib`` is refused with one line,
+    before anything is loaded, rather than filling the memory. Read it ``lazy`` then,
+    and use a slice, a reduction or ``.chunk()`` for Dask; a lazy netCDF file stays
+    open until the Dataset is closed (``with read(p, lazy=True) as ds:``).
 
     Examples
     --------
@@ -138,19 +149,44 @@ def read(path):
     >>> p = write(ds, pathlib.Path(tempfile.mkdtemp()) / "run.zarr")
     >>> read(p).identical(ds)
     True
+    >>> read(p, max_memory_gib=1e-9)
+    Traceback (most recent call last):
+    ...
+    ga_rotors.errors.InputError: path: ...run.zarr: 2.24e-08 GiB of data, more than ...
+    >>> with read(p, lazy=True) as lazy:
+    ...     float(lazy["t"][-1])
+    2.0
     """
     xr = require("xarray", "results")
     fmt = format_of(path)
     path = Path(path)
+    ok = isinstance(max_memory_gib, int | float) and not isinstance(max_memory_gib, bool)
+    if not (ok and max_memory_gib > 0):
+        raise InputError(
+            f"expected a positive number, got {max_memory_gib!r}", key="max_memory_gib"
+        )
     if not path.exists():
         raise InputError(f"path: {path}: no such file or store")
     try:
         if fmt == "netcdf":
-            with xr.open_dataset(path, engine=_netcdf_engine()) as ds:
-                return ds.load()
-        require("zarr", "results")
-        with xr.open_zarr(path, consolidated=None) as ds:
-            return ds.load()
+            ds = xr.open_dataset(path, engine=_netcdf_engine())
+        else:
+            require("zarr", "results")
+            ds = xr.open_zarr(path, consolidated=None)
     except (OSError, ValueError, KeyError) as exc:
         first = str(exc).strip().splitlines()[0] if str(exc).strip() else type(exc).__name__
         raise InputError(f"path: {path}: not a readable {fmt} results file ({first})") from None
+    if lazy:
+        return ds
+    with ds:
+        if ds.nbytes > max_memory_gib * 2**30:
+            raise InputError(
+                f"path: {path}: {ds.nbytes / 2**30:.3g} GiB of data, more than max_memory_gib = "
+                f"{max_memory_gib:g} GiB at once; read(path, lazy=True) reads values as they "
+                "are used"
+            )
+        try:
+            return ds.load()
+        except (OSError, ValueError, KeyError) as exc:
+            first = str(exc).strip().splitlines()[0] if str(exc).strip() else type(exc).__name__
+            raise InputError(f"path: {path}: not a readable {fmt} results file ({first})") from None
