@@ -285,3 +285,36 @@ def test_running_the_same_samples_twice_gives_the_same_run_and_leaves_them_as_th
     for name, value in before.items():
         assert np.array_equal(getattr(samples, name), value), name
     assert np.array_equal(first.q, second.q) and np.array_equal(first.w, second.w)
+
+
+def test_the_vectorised_gate_refuses_exactly_what_its_conditions_say():
+    # _refused's branch-free pass against the same conditions in numpy, sample by sample,
+    # on values at and past each limit: not finite (moments or rates), too small, too
+    # large, too thin, outside the triangle, and good ones.
+    from ga_rotors.body import MIN_MOMENT_RATIO
+    from ga_rotors.ensemble import _refused
+
+    tiny = np.finfo(float).tiny
+    good = [1.0, 2.0, 2.5]
+    bad_moments = [
+        [np.nan, 2.0, 2.5], [1.0, np.inf, 2.5], [tiny / 2, tiny / 2, tiny / 2],
+        [1.0, 1.01 / tiny, 1.01 / tiny], [1.0, 1.0, MIN_MOMENT_RATIO / 2],
+        [1.0, 2.0, 3.0 + 1e-9], [3.5, 1.0, 2.0],
+    ]  # fmt: skip
+    edge_moments = [[1.0, 2.0, 3.0], [tiny, tiny, tiny], [1.0, 1.0, MIN_MOMENT_RATIO]]
+    rates = [[0.1, 0.2, 0.3], [np.nan, 0.0, 0.0], [0.0, 0.0, -np.inf]]
+
+    def expected(m, w):
+        s, lo, hi = sum(m), min(m), max(m)
+        return not (np.all(np.isfinite(m)) and np.all(np.isfinite(w))) or (
+            lo < tiny or hi > 1 / tiny or lo / hi < MIN_MOMENT_RATIO
+            or any(x > s - x for x in m)
+        )  # fmt: skip
+
+    for m in [good, *bad_moments, *edge_moments]:
+        for w in rates:
+            for where in (0, 3, 6):  # alone among good samples: first, middle, last
+                moments = np.tile(good, (7, 1))
+                omega = np.tile(rates[0], (7, 1))
+                moments[where], omega[where] = m, w
+                assert _refused(moments, omega, tiny, MIN_MOMENT_RATIO) == expected(m, w), (m, w)

@@ -335,10 +335,10 @@ def test_chunks_go_through_zarr_when_a_store_is_not_laid_out_raw(tmp_path, refer
 def _disk_full_at(monkeypatch, name: str, chunk: int):
     from ga_rotors.sweep import store
 
-    def disk_full(path, variable, block, c):
+    def disk_full(path, variable, block, c, *rest):
         if variable == name and c == chunk:
             raise OSError(28, "No space left on device")
-        return real(path, variable, block, c)
+        return real(path, variable, block, c, *rest)
 
     real = store.write_chunk
     monkeypatch.setattr(store, "write_chunk", disk_full)
@@ -520,3 +520,82 @@ def test_threads_loading_the_same_loop_at_once_wait_for_one_another(monkeypatch)
     assert slowed and errors == []
     for run in results:  # the same samples run three times: the same numbers each time
         assert (run.q == expected.q).all()
+
+
+def _direct_writes_work_in(folder) -> bool:
+    flag = getattr(os, "O_DIRECT", 0)
+    if not flag:
+        return False
+    try:
+        fd = os.open(folder / "probe", os.O_WRONLY | os.O_CREAT | flag, 0o666)
+    except OSError:
+        return False
+    os.close(fd)
+    os.unlink(folder / "probe")
+    return True
+
+
+@pytest.mark.parametrize("doubles", [100, 512, 1000, 1536, 4096])
+@pytest.mark.parametrize("how", ["direct", "no O_DIRECT", "open refused", "write refused"])
+def test_a_chunk_file_holds_its_bytes_however_it_is_written(tmp_path, monkeypatch, doubles, how):
+    # Direct writes from a page-aligned copy, the end past the last whole 4 KiB through
+    # the page cache; the plain write where the system has no O_DIRECT, or the file
+    # system refuses it at open (tmpfs) or at the write. Sizes: under a page, one page,
+    # a page and a ragged end, whole pages. An older, longer file is replaced.
+    import errno
+    import fcntl
+
+    from ga_rotors.sweep import store
+
+    if how == "direct" and not _direct_writes_work_in(tmp_path):
+        pytest.skip("no direct writes on this file system")
+    real_open, real_write_all, opened = os.open, store._write_all, []
+
+    def spied_open(path, flags, *mode):
+        direct = bool(flags & getattr(os, "O_DIRECT", 0))
+        opened.append(direct)
+        if direct and how == "open refused":
+            raise OSError(errno.EINVAL, "Invalid argument")
+        return real_open(path, flags, *mode)
+
+    def refusing_write_all(fd, data):
+        if fcntl.fcntl(fd, fcntl.F_GETFL) & getattr(os, "O_DIRECT", 0):
+            raise OSError(errno.EINVAL, "Invalid argument")
+        real_write_all(fd, data)
+
+    monkeypatch.setattr(store.os, "open", spied_open)
+    if how == "no O_DIRECT":
+        monkeypatch.setattr(store, "_O_DIRECT", 0)
+    if how == "write refused":
+        monkeypatch.setattr(store, "_write_all", refusing_write_all)
+    out = tmp_path / "x.zarr"
+    ds = xr.Dataset({"a": (("s",), np.broadcast_to(np.nan, (2 * doubles,)))})
+    store.create(out, ds, {"s": doubles}, {"a"})
+    (out / "a" / "1").write_bytes(b"\1" * (8 * doubles + 9000))  # an older, longer file
+    data = np.random.default_rng(doubles).normal(size=doubles)
+    store.write_chunk(out, "a", data, 1)
+    assert (out / "a" / "1").read_bytes() == data.tobytes()
+    read = xr.open_zarr(out)["a"].values
+    assert np.array_equal(read[doubles:], data) and np.isnan(read[:doubles]).all()
+    direct = doubles * 8 >= store.DIRECT_ALIGN and how != "no O_DIRECT"
+    assert any(opened) == direct  # tried direct only where a whole page is written
+
+
+def test_a_sweep_written_direct_is_the_sweep_written_through_the_page_cache(tmp_path, monkeypatch):
+    # Chunks of 200 samples at two times: q and w files of 12,800 and 9,600 bytes (whole
+    # pages and a ragged end), the angle's 3,200 (under a page): the same store bytes.
+    from ga_rotors.sweep import store
+
+    if not _direct_writes_work_in(tmp_path):
+        pytest.skip("no direct writes on this file system")
+    text = SWEEP.replace("samples = 5", "samples = 300").replace("chunk = 4", "chunk = 200")
+    direct = run_sweep(text, tmp_path / "direct.zarr")
+    monkeypatch.setattr(store, "_O_DIRECT", 0)
+    cached = run_sweep(text, tmp_path / "cached.zarr")
+    for name in ("q", "w", "angle_from_nominal", "value_0", "chunk_done"):
+        files = sorted(p.name for p in (direct / name).iterdir())
+        assert files == sorted(p.name for p in (cached / name).iterdir()), name
+        for f in files:
+            assert (direct / name / f).read_bytes() == (cached / name / f).read_bytes(), f
+    assert (direct / "q" / "0.0.0").stat().st_size == 12800
+    xr.testing.assert_identical(open_sweep(direct).load(), open_sweep(cached).load())

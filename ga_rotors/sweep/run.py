@@ -16,8 +16,11 @@ Where the tasks run:
   compiled loops, numpy and the writes release the GIL, so the threads integrate side by
   side with no scheduler, serialisation or worker processes in between (a local
   ``distributed`` cluster of two processes cost 30-45 % of a 100-step sweep's kernel time
-  on two cores; see benchmarks/bench_ensemble.py). The last chunks are cut into pieces
-  that several threads integrate, so that no thread idles at the end;
+  on two cores; see benchmarks/bench_ensemble.py). Each thread hands its integrated
+  chunk to this process's writer thread, which reduces and writes it (the chunk files
+  go straight to the disk, so the writer mostly waits) while the thread integrates the
+  next. The last chunks are cut into pieces that several threads integrate, so that no
+  thread idles at the end;
 * on a Dask cluster, through a ``distributed.Client`` (of a ``--scheduler`` address, or
   one given): one worker process per core with one thread each is the layout to start.
   A worker integrates one chunk while its writer thread writes the previous one;
@@ -33,7 +36,7 @@ import shutil
 import tempfile
 import threading
 from concurrent.futures import ThreadPoolExecutor
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from math import atan2, inf, nan
 from pathlib import Path
 
@@ -62,12 +65,17 @@ __all__ = [
 
 @dataclass(frozen=True)
 class _Task:
-    """What a worker needs: the sweep's text and base directory, the store, the nominal."""
+    """What a worker needs: the sweep's text and base directory, the store, the nominal.
+
+    ``layouts`` is :func:`ga_rotors.sweep.store.write_chunk`'s memory of the store's
+    variables, shared by the threads of this process (a worker process fills its copy).
+    """
 
     text: str
     file: str
     store: str
     nominal: np.ndarray
+    layouts: dict = field(default_factory=dict, compare=False)
 
 
 _SWEEPS: dict[tuple[str, str], Sweep] = {}
@@ -124,7 +132,7 @@ def run_chunk(task: _Task, c: int, wait: bool = True, inputs=None) -> int:
     sweep = _sweep(task)
     values, samples = inputs if inputs is not None else _inputs(sweep, *_bounds(sweep, c))
     run = run_samples(samples, sweep.times, parallel=False)
-    job = functools.partial(_finish, task.store, c, run, values, task.nominal)
+    job = functools.partial(_finish, task, c, run, values)
     if wait:
         job()
     else:
@@ -132,14 +140,14 @@ def run_chunk(task: _Task, c: int, wait: bool = True, inputs=None) -> int:
     return c
 
 
-def _finish(store: str, c: int, run, values: dict, nominal: np.ndarray) -> None:
+def _finish(task: _Task, c: int, run, values: dict) -> None:
     """Reduce chunk ``c`` and write its blocks, then its flag.
 
     Each block covers one whole chunk of its variable, so tasks never share a chunk; the
     flag goes last: the chunk counts as done only once all of it is written.
     """
     angle = np.empty(run.q.shape[1::-1])
-    _angles(run.q, nominal, angle)
+    _angles(run.q, task.nominal, angle)
     blocks = {
         "q": run.q.transpose(1, 0, 2),  # (sample, time, 4)
         "w": run.w.transpose(1, 0, 2),
@@ -149,9 +157,9 @@ def _finish(store: str, c: int, run, values: dict, nominal: np.ndarray) -> None:
     blocks["chunk_done"] = np.ones(1, dtype=np.int8)
     for name, block in blocks.items():
         try:
-            zstore.write_chunk(store, name, block, c)
+            zstore.write_chunk(task.store, name, block, c, task.layouts)
         except OSError as exc:  # a full disk, a store removed under the sweep...
-            raise _write_error(store, exc, f"chunk {c} of {name}") from None
+            raise _write_error(task.store, exc, f"chunk {c} of {name}") from None
 
 
 def _write_error(store, exc: OSError, what: str) -> InputError:
@@ -393,7 +401,8 @@ def _run_part(task: _Task, c: int, first: int, end: int, pieces: _Pieces | None,
         w = np.concatenate([r.w for _, r in parts], axis=1)
         run = EnsembleRun(run.t, q, w)
     ready()
-    _finish(task.store, c, run, values, task.nominal)
+    # reduced and written on this process's writer thread while this one integrates on
+    _write_behind(functools.partial(_finish, task, c, run, values))
     return True
 
 
@@ -401,8 +410,10 @@ def _run_threads(task: _Task, sweep: Sweep, todo: list[int], threads: int, done,
     """Run chunks ``todo`` on Dask's threaded scheduler, ``threads`` at a time.
 
     Each task integrates a chunk (or a piece of one, see :func:`_parts`) on the serial
-    loop and writes its own blocks, so the threads overlap one another's writes with
-    their integration. ``done()`` is called in this thread as each chunk is flagged.
+    loop and hands it to the writer thread (:func:`_write_behind`: at most one chunk
+    pending), so the writes overlap the integration. ``done()`` is called in this thread
+    as each chunk is handed over; every handed chunk is written and flagged before this
+    returns or raises.
     The pool is this call's own and is shut down before it returns or raises: an
     interrupted sweep (Ctrl-C reaches this thread, waiting for the next task) first lets
     the running tasks finish (Dask starts no more than ``threads`` tasks at a time, so
@@ -434,6 +445,7 @@ def _run_threads(task: _Task, sweep: Sweep, todo: list[int], threads: int, done,
         threaded.get(graph, list(graph), pool=pool, callbacks=[(None, None, None, posttask, None)])
     finally:
         pool.shutdown(wait=True, cancel_futures=True)
+        flush_writes()  # the last chunk handed to the writer
 
 
 #: Dask settings of the local cluster a sweep starts. Its workers' sampling profiler off,

@@ -10,12 +10,18 @@ milliseconds (xarray's ``to_zarr(compute=False)`` took 60-180 ms for the same st
 tenth of a 10⁶-sample sweep's integration at 100 steps per sample); the tests check that
 xarray reads it back identical to the store xarray itself writes from that template.
 :func:`write_chunk` writes one chunk of one variable, falling back on zarr's own write
-for any other layout (a store made by another tool).
+for any other layout (a store made by another tool). Chunk files go straight to the disk
+(``O_DIRECT``) where the system allows it, not through the page cache: see
+:func:`_write_chunk_file`.
 """
 
 from __future__ import annotations
 
+import errno
 import json
+import mmap
+import os
+import threading
 from pathlib import Path
 
 import numpy as np
@@ -112,12 +118,7 @@ def create(path, template, chunks: dict, empty) -> None:
 
 
 def _layout(store, name: str):
-    """(chunk shape, dtype, fill, separator) of a variable stored as raw chunks, or None.
-
-    Read for every chunk, not remembered: a store deleted and made again under the same
-    name by another sweep may have other chunks (and one small file is nothing beside a
-    chunk).
-    """
+    """(chunk shape, dtype, fill, separator) of a variable stored as raw chunks, or None."""
     try:
         meta = json.loads((Path(store) / name / ".zarray").read_text(encoding="utf-8"))
     except (OSError, ValueError):
@@ -132,12 +133,86 @@ def _layout(store, name: str):
     return tuple(meta["chunks"]), np.dtype(meta["dtype"]), meta["fill_value"], sep
 
 
-def write_chunk(store, name: str, block: np.ndarray, c: int) -> None:
+#: Bytes that a direct write's memory address, file offset and length are multiples of
+#: (the page size: a multiple of every disk's logical block size Linux allows).
+DIRECT_ALIGN = 4096
+
+#: The ``O_DIRECT`` flag where the system has it (Linux), else 0: chunks are then written
+#: through the page cache.
+_O_DIRECT = getattr(os, "O_DIRECT", 0)
+
+_STAGING = threading.local()
+
+
+def _staging(size: int) -> np.ndarray:
+    """This thread's page-aligned buffer of at least ``size`` bytes (kept for the next)."""
+    buf = getattr(_STAGING, "buffer", None)
+    if buf is None or buf.size < size:
+        buf = np.frombuffer(mmap.mmap(-1, -(-size // DIRECT_ALIGN) * DIRECT_ALIGN), np.uint8)
+        _STAGING.buffer = buf
+    return buf[:size]
+
+
+def _write_all(fd: int, data) -> None:
+    view = memoryview(data).cast("B")
+    while view:
+        view = view[os.write(fd, view) :]
+
+
+def _write_chunk_file(path: Path, data: np.ndarray) -> None:
+    """Write the bytes of the C-contiguous ``data`` as the file ``path``, replacing it.
+
+    Straight to the disk (``O_DIRECT``) where the system and the file system allow it,
+    from a page-aligned copy: a chunk through the page cache cost 1-5 ms of CPU a
+    megabyte on this machine (the kernel's copy, and allocating the cache's pages, the
+    dearest part when those pages had not been used in a while), against about 0.1 ms
+    direct, whose time is spent waiting on the disk, not computing. The unaligned end of
+    the file (its last bytes short of a multiple of :data:`DIRECT_ALIGN`) follows through
+    the page cache. A file system that refuses direct writes (tmpfs) gets the plain write.
+    """
+    raw = data.reshape(-1).view(np.uint8)
+    head = raw.size - raw.size % DIRECT_ALIGN if _O_DIRECT else 0
+    if head:
+        try:
+            fd = os.open(path, os.O_WRONLY | os.O_CREAT | os.O_TRUNC | _O_DIRECT, 0o666)
+        except OSError as exc:
+            if exc.errno != errno.EINVAL:
+                raise
+            head = 0
+    if not head:
+        _write(path, raw.data)
+        return
+    try:
+        staged = _staging(head)
+        staged[:] = raw[:head]
+        try:
+            _write_all(fd, staged)
+        except OSError as exc:
+            if exc.errno != errno.EINVAL:
+                raise
+            os.close(fd)  # direct open but not write (some file systems): the plain write
+            fd = -1
+            _write(path, raw.data)
+            return
+        if head < raw.size:  # the rest through the page cache
+            import fcntl  # Linux, as O_DIRECT
+
+            fcntl.fcntl(fd, fcntl.F_SETFL, fcntl.fcntl(fd, fcntl.F_GETFL) & ~_O_DIRECT)
+            _write_all(fd, raw[head:])
+    finally:
+        if fd >= 0:
+            os.close(fd)
+
+
+def write_chunk(store, name: str, block: np.ndarray, c: int, layouts: dict | None = None) -> None:
     """Write ``block`` as chunk ``c`` along the first dimension of variable ``name``.
 
     Raw bytes straight into the chunk's file (nothing to encode; zarr's own write path
     cost about a quarter of a 10⁶-sample sweep's time); zarr's write when the variable's
-    layout is not the raw one.
+    layout is not the raw one. ``layouts``, a dict the caller keeps for this store (and
+    drops if the store is made again), remembers each variable's layout after its first
+    chunk: reading and parsing six metadata files a chunk was 3-4 ms of CPU per 10⁶
+    samples.
 
     Examples
     --------
@@ -149,7 +224,11 @@ def write_chunk(store, name: str, block: np.ndarray, c: int) -> None:
     >>> xr.open_zarr(out)["a"].values.tolist()
     [[nan, nan], [nan, nan], [5.0, 6.0]]
     """
-    layout = _layout(store, name)
+    if layouts is None or name not in layouts:
+        layout = _layout(store, name)
+        if layouts is not None:
+            layouts[name] = layout
+    layout = layouts[name] if layouts is not None else layout
     if layout is None:
         zarr = require("zarr", "results")
         array = zarr.open_group(store, mode="r+", zarr_format=2)[name]
@@ -164,4 +243,4 @@ def write_chunk(store, name: str, block: np.ndarray, c: int) -> None:
         data = full
     if data.shape != chunks:
         raise ValueError(f"{name}: block of shape {data.shape} for chunks of {chunks}")
-    _write(Path(store, name, sep.join([str(c)] + ["0"] * (len(chunks) - 1))), data.data)
+    _write_chunk_file(Path(store, name, sep.join([str(c)] + ["0"] * (len(chunks) - 1))), data)
