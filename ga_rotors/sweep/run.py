@@ -16,11 +16,11 @@ Where the tasks run:
   compiled loops, numpy and the writes release the GIL, so the threads integrate side by
   side with no scheduler, serialisation or worker processes in between (a local
   ``distributed`` cluster of two processes cost 30-45 % of a 100-step sweep's kernel time
-  on two cores; see benchmarks/bench_ensemble.py). Each thread hands its integrated
-  chunk to this process's writer thread, which reduces and writes it (the chunk files
-  go straight to the disk, so the writer mostly waits) while the thread integrates the
-  next. The last chunks are cut into pieces that several threads integrate, so that no
-  thread idles at the end;
+  on two cores; see benchmarks/bench_ensemble.py). Each thread integrates a chunk,
+  reduces it and hands it to this process's writer thread, which writes it (the chunk
+  files go straight to the disk, so the writer mostly waits) while the thread
+  integrates the next. The last chunks are cut into pieces that several threads
+  integrate, so that no thread idles at the end;
 * on a Dask cluster, through a ``distributed.Client`` (of a ``--scheduler`` address, or
   one given): one worker process per core with one thread each is the layout to start.
   A worker integrates one chunk while its writer thread writes the previous one;
@@ -140,18 +140,23 @@ def run_chunk(task: _Task, c: int, wait: bool = True, inputs=None) -> int:
     return c
 
 
-def _finish(task: _Task, c: int, run, values: dict) -> None:
-    """Reduce chunk ``c`` and write its blocks, then its flag.
+def _angle(task: _Task, run) -> np.ndarray:
+    """The angle from the nominal of each sample of ``run`` at each time: (sample, time)."""
+    angle = np.empty(run.q.shape[1::-1])
+    _angles(run.q, task.nominal, angle)
+    return angle
+
+
+def _finish(task: _Task, c: int, run, values: dict, angle: np.ndarray | None = None) -> None:
+    """Reduce chunk ``c`` (unless its ``angle`` is given) and write its blocks, then its flag.
 
     Each block covers one whole chunk of its variable, so tasks never share a chunk; the
     flag goes last: the chunk counts as done only once all of it is written.
     """
-    angle = np.empty(run.q.shape[1::-1])
-    _angles(run.q, task.nominal, angle)
     blocks = {
         "q": run.q.transpose(1, 0, 2),  # (sample, time, 4)
         "w": run.w.transpose(1, 0, 2),
-        "angle_from_nominal": angle,
+        "angle_from_nominal": _angle(task, run) if angle is None else angle,
         **{f"value_{j}": v for j, v in enumerate(values.values())},
     }
     blocks["chunk_done"] = np.ones(1, dtype=np.int8)
@@ -369,7 +374,7 @@ class _Pieces:
 
     def __init__(self, count: int):
         self.left = count
-        self.done: dict[int, tuple] = {}  # first sample -> (values, run)
+        self.done: dict[int, tuple] = {}  # first sample -> (values, run, angle)
         self.lock = threading.Lock()
 
 
@@ -389,20 +394,24 @@ def _run_part(task: _Task, c: int, first: int, end: int, pieces: _Pieces | None,
     start = c * sweep.chunk
     values, samples = _inputs(sweep, start + first, start + end)
     run = run_samples(samples, sweep.times, parallel=False)
+    # reduced here, so that the pieces of the last chunks reduce side by side and the
+    # writer thread, which the end of the sweep waits for, only writes
+    angle = _angle(task, run)
     if pieces is not None:
         with pieces.lock:
-            pieces.done[first] = (values, run)
+            pieces.done[first] = (values, run, angle)
             pieces.left -= 1
             if pieces.left:
                 return False
         parts = [pieces.done[k] for k in sorted(pieces.done)]
-        values = {key: np.concatenate([v[key] for v, _ in parts]) for key in parts[0][0]}
-        q = np.concatenate([r.q for _, r in parts], axis=1)
-        w = np.concatenate([r.w for _, r in parts], axis=1)
+        values = {key: np.concatenate([p[0][key] for p in parts]) for key in parts[0][0]}
+        q = np.concatenate([p[1].q for p in parts], axis=1)
+        w = np.concatenate([p[1].w for p in parts], axis=1)
         run = EnsembleRun(run.t, q, w)
+        angle = np.concatenate([p[2] for p in parts])
     ready()
-    # reduced and written on this process's writer thread while this one integrates on
-    _write_behind(functools.partial(_finish, task, c, run, values))
+    # written on this process's writer thread while this one integrates on
+    _write_behind(functools.partial(_finish, task, c, run, values, angle))
     return True
 
 
