@@ -141,6 +141,9 @@ DIRECT_ALIGN = 4096
 #: through the page cache.
 _O_DIRECT = getattr(os, "O_DIRECT", 0)
 
+#: What a file system that does not do direct writes answers (EINVAL: tmpfs and most).
+_NO_DIRECT = {errno.EINVAL, errno.EOPNOTSUPP}
+
 _STAGING = threading.local()
 
 
@@ -176,7 +179,7 @@ def _write_chunk_file(path: Path, data: np.ndarray) -> None:
         try:
             fd = os.open(path, os.O_WRONLY | os.O_CREAT | os.O_TRUNC | _O_DIRECT, 0o666)
         except OSError as exc:
-            if exc.errno != errno.EINVAL:
+            if exc.errno not in _NO_DIRECT:
                 raise
             head = 0
     if not head:
@@ -188,7 +191,7 @@ def _write_chunk_file(path: Path, data: np.ndarray) -> None:
         try:
             _write_all(fd, staged)
         except OSError as exc:
-            if exc.errno != errno.EINVAL:
+            if exc.errno not in _NO_DIRECT:
                 raise
             os.close(fd)  # direct open but not write (some file systems): the plain write
             fd = -1
