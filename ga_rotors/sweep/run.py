@@ -48,6 +48,7 @@ from ..errors import InputError
 from ..optional import require
 from . import budget as sweep_budget
 from . import store as zstore
+from .percentiles import percentiles
 from .spec import Sweep, load_sweep
 
 __all__ = [
@@ -729,8 +730,16 @@ def open_sweep(store):
     return ds
 
 
+#: Bytes of angles :func:`summary` reads at once; a larger store is read a chunk at a time.
+SUMMARY_IN_MEMORY = 2**28
+
+
 def summary(ds) -> str:
     """Spread of the samples from the base scene at each output time, as text lines.
+
+    Exact medians and 95th percentiles (:func:`~ga_rotors.sweep.percentiles.percentiles`)
+    in bounded memory: a store of more than :data:`SUMMARY_IN_MEMORY` bytes of angles is
+    read a chunk of samples at a time.
 
     Examples
     --------
@@ -741,15 +750,23 @@ def summary(ds) -> str:
     t [s]  median [deg]  95% [deg]  max [deg]  (2 samples)
     1  0.2865  0.5443  0.573
     """
-    a = np.degrees(ds["angle_from_nominal"].values)
-    lines = [f"t [s]  median [deg]  95% [deg]  max [deg]  ({a.shape[0]} samples)"]
+    a = ds["angle_from_nominal"]
+    n = a.shape[0]
+    if a.size * 8 <= SUMMARY_IN_MEMORY:
+        whole = np.degrees(a.values)
+
+        def column(j):
+            return lambda: (whole[:, j],)
+    else:  # read a block of samples at a time, a few passes per output time
+        step = (a.chunks[0][0] if a.chunks else n) or 1
+
+        def column(j):
+            return lambda: (np.degrees(a[lo : lo + step, j].values) for lo in range(0, n, step))
+
+    lines = [f"t [s]  median [deg]  95% [deg]  max [deg]  ({n} samples)"]
     for j, t in enumerate(ds["t"].values):
-        col = a[:, j]
-        col = col[~np.isnan(col)]  # samples that blew up have no angle
-        if col.size:
-            m, p95, top = np.median(col), np.percentile(col, 95), np.max(col)
-        else:  # every sample blew up by then: no spread to give
-            m = p95 = top = np.nan
+        # samples that blew up have no angle (NaN, skipped); none left: nan
+        m, (p95,), top, _ = percentiles(column(j), [95])
         lines.append(f"{t:.6g}  {m:.4g}  {p95:.4g}  {top:.4g}")
     return "\n".join(lines)
 
