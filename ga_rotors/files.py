@@ -32,10 +32,12 @@ Faults, and what each leaves:
 from __future__ import annotations
 
 import contextlib
+import functools
 import hashlib
 import os
 import shutil
 import signal
+import sys
 import tempfile
 import threading
 import time
@@ -44,7 +46,14 @@ from pathlib import Path
 
 from .errors import InputError
 
-__all__ = ["LOCK_TIMEOUT", "atomic_write", "output_set", "write_text", "write_together"]
+__all__ = [
+    "LOCK_TIMEOUT",
+    "atomic_write",
+    "output_set",
+    "start_writeback",
+    "write_text",
+    "write_together",
+]
 
 #: Seconds a command waits for another one writing the same ``--out`` before giving up.
 LOCK_TIMEOUT = 120.0
@@ -106,6 +115,57 @@ def write_text(path, text: str) -> Path:
     'θ'
     """
     return atomic_write(path, lambda fh: fh.write(text.encode("utf-8")))
+
+
+@functools.cache
+def _sync_file_range():
+    """Linux's ``sync_file_range`` from the C library, or None (another system; no libc)."""
+    if not sys.platform.startswith("linux"):
+        return None
+    try:
+        import ctypes
+
+        call = ctypes.CDLL(None, use_errno=True).sync_file_range
+    except (OSError, AttributeError):
+        return None
+    call.argtypes = (ctypes.c_int, ctypes.c_int64, ctypes.c_int64, ctypes.c_uint)
+    call.restype = ctypes.c_int
+    return call
+
+
+_SYNC_FILE_RANGE_WRITE = 2  # <fcntl.h>: start writing dirty pages, do not wait for them
+
+
+def start_writeback(path) -> bool:
+    """Ask the system to start writing a finished file's data to disk now, without
+    waiting for it; return whether it was asked (Linux only: elsewhere, or if the call
+    fails, nothing is done and nothing is said).
+
+    This promises nothing about a power cut (it is not ``fsync``); it moves work earlier.
+    ext4 (``auto_da_alloc``) starts this writeback itself when a file is renamed over an
+    existing one, and the rename waits while it does: 0.24 s for a 577 MB CSV moved over
+    the previous run's. Started on another thread while the run draws its figure, it is
+    done before the moves.
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> path = pathlib.Path(tempfile.mkdtemp()) / "data.csv"
+    >>> _ = path.write_text("t [s],x [m]")
+    >>> type(start_writeback(path)), path.read_text()     # True on Linux
+    (<class 'bool'>, 't [s],x [m]')
+    """
+    call = _sync_file_range()
+    if call is None:
+        return False
+    try:
+        fd = os.open(path, os.O_RDONLY)
+    except OSError:
+        return False
+    try:
+        return call(fd, 0, 0, _SYNC_FILE_RANGE_WRITE) == 0
+    finally:
+        os.close(fd)
 
 
 def _check_name(name: str, argument: str) -> None:

@@ -184,3 +184,28 @@ def test_a_writer_that_waits_too_long_fails_with_one_line(tmp_path, monkeypatch)
     finally:
         os.close(fd)
     assert _listing(tmp_path) == []
+
+
+def test_writeback_is_started_on_linux_and_changes_nothing(tmp_path):
+    import sys
+
+    path = tmp_path / "data.csv"
+    path.write_bytes(b"t [s]\n" + b"0.5\n" * 100_000)
+    before = path.read_bytes()
+    assert files.start_writeback(path) is sys.platform.startswith("linux")
+    assert path.read_bytes() == before
+    assert files.start_writeback(tmp_path / "missing.csv") is False  # nothing said either
+
+
+def test_writeback_elsewhere_or_refused_is_silently_nothing(tmp_path, monkeypatch):
+    import warnings
+
+    path = tmp_path / "data.csv"
+    path.write_bytes(b"x\n")
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        monkeypatch.setattr(files, "_sync_file_range", lambda: None)  # not Linux
+        assert files.start_writeback(path) is False
+        monkeypatch.setattr(files, "_sync_file_range", lambda: lambda fd, lo, n, flags: -1)
+        assert files.start_writeback(path) is False  # the call failed: nothing raised
+    assert path.read_bytes() == b"x\n"

@@ -646,3 +646,70 @@ def test_a_failure_in_the_summary_stops_the_run_and_leaves_nothing(tmp_path, mon
     with pytest.raises(ValueError, match="injected"):
         stream_scene(scene, tmp_path / "o", chunk_steps=1000)
     assert not (tmp_path / "o").exists() and threading.active_count() == before
+
+
+@pytest.mark.parametrize("writeback", [True, False], ids=["linux", "elsewhere"])
+def test_the_data_files_are_finished_and_their_writeback_started_before_the_moves(
+    tmp_path, monkeypatch, writeback
+):
+    """Each data file is finished, then its writeback started (the rename over the
+    previous run's file would wait for it, ext4's auto_da_alloc), on the files' thread
+    while the figure is drawn; where the call is missing the files are the same and
+    nothing is said."""
+    import threading
+
+    from ga_rotors import files as _files
+    from ga_rotors.scene.figures import DIGEST_PREFIX
+
+    started, start = [], _files.start_writeback
+
+    def spy(path):
+        started.append((path.name, path.read_bytes(), threading.current_thread().name))
+        return start(path)
+
+    monkeypatch.setattr(_files, "start_writeback", spy)
+    if not writeback:
+        monkeypatch.setattr(_files, "_sync_file_range", lambda: None)
+    scene = load_scene("heavy_top").replace({"time.duration": 0.5, "output.data": ALL_FORMATS})
+    written = ["heavy_top.csv", "heavy_top.npz", "heavy_top.nc"]  # not the store (.zarr)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        for _ in range(2):  # the second run's files replace the first's
+            stream_scene(scene, tmp_path / "o", chunk_steps=1000)
+    streamed = list(started)
+    tr = run_scene(scene)
+    write_outputs(scene, tr, tmp_path / "whole", str(report(scene, tr)))
+    assert [name for name, _, _ in streamed] == written * 2
+    assert all(thread.startswith("ga_rotors-writer") for _, _, thread in streamed)
+    for name, data, _ in streamed[len(written) :]:  # complete when started: the files moved in
+        assert data == (tmp_path / "o" / name).read_bytes()
+    _compare_files(scene, tmp_path / "o", tmp_path / "whole")
+    png = [(tmp_path / k / "heavy_top.png").read_bytes() for k in ("o", "whole")]
+    digest = [p[p.index(DIGEST_PREFIX.encode()) :][:60] for p in png]
+    assert digest[0] == digest[1]
+
+
+def test_a_failure_finishing_the_data_files_stops_the_run_and_leaves_the_previous(
+    tmp_path, monkeypatch
+):
+    import threading
+
+    from ga_rotors.errors import InputError
+    from ga_rotors.results import streams
+
+    scene = load_scene("heavy_top").replace({"time.duration": 0.5, "output.data": ["csv"]})
+    stream_scene(scene, tmp_path / "o", chunk_steps=1000)
+    before = {p.name: p.read_bytes() for p in (tmp_path / "o").iterdir()}
+
+    close = streams.CsvStream.close
+
+    def failing(self, meta):
+        close(self, meta)
+        raise OSError(28, "No space left on device (injected)")
+
+    monkeypatch.setattr(streams.CsvStream, "close", failing)
+    threads = threading.active_count()
+    with pytest.raises(InputError, match=r"^--out: cannot write .*No space left on device"):
+        stream_scene(scene.replace({"time.duration": 0.6}), tmp_path / "o", chunk_steps=1000)
+    assert {p.name: p.read_bytes() for p in (tmp_path / "o").iterdir()} == before
+    assert threading.active_count() == threads

@@ -45,10 +45,15 @@ CHUNK_STEPS = 2**17
 #: last ones while the figure is drawn (:mod:`ga_rotors.scene.output`).
 SUMMARY_LAG = 8
 
+#: Pieces a streamed run's summary is held back when a figure is drawn: the figure is
+#: drawn on one core at the end, and these pieces are measured on the other meanwhile
+#: rather than during the run, where both cores are busy (:mod:`ga_rotors.scene.output`).
+SUMMARY_DELAY = 24
+
 #: Samples per piece of a streamed run kept at once (the piece, its quantities, the
 #: writers' copies, the pieces the summary has yet to measure) on top of the thinned
 #: copy's rows (COLUMNS x (2 + 2 x columns)).
-_STREAM_COPIES = 4 + SUMMARY_LAG
+_STREAM_COPIES = 4 + SUMMARY_LAG + SUMMARY_DELAY
 
 #: Columns a path's state occupies per sample.
 _PATH_COLUMNS = {"rotor": 4, "quaternion": 4, "euler": 3}
@@ -129,7 +134,7 @@ def estimate(scene, streamed: bool = False) -> Estimate:
     >>> print(estimate(long))
     1e+07 steps, 1e+06 samples: about 412 MiB of memory, 429 MiB of files
     >>> print(estimate(long, streamed=True))
-    1e+07 steps, 1e+06 samples: about 53.9 MiB of memory, 429 MiB of files
+    1e+07 steps, 1e+06 samples: about 140 MiB of memory, 429 MiB of files
     """
     from .thinning import COLUMNS
 

@@ -32,7 +32,7 @@ from pathlib import Path
 import numpy as np
 
 from ..trajectory import Trajectory
-from .budget import CHUNK_STEPS, SUMMARY_LAG
+from .budget import CHUNK_STEPS, SUMMARY_DELAY, SUMMARY_LAG
 from .formats import FORMATS
 from .loading import load_scene
 from .model import Scene
@@ -80,7 +80,8 @@ def _write(scene: Scene, pieces, stage: Path | None, summarise: bool):
             ThreadPoolExecutor(max_workers=1, thread_name_prefix="ga_rotors-writer") as files,
             ThreadPoolExecutor(max_workers=1, thread_name_prefix="ga_rotors-summary") as measures,
         ):
-            writing, measuring = None, deque()
+            writing, measuring, held = None, deque(), deque()
+            delay = SUMMARY_DELAY if sink.figure and sink.summary is not None else 0
             try:
                 for piece in pieces:  # integrated here, consumed there
                     if writing is not None:
@@ -90,15 +91,22 @@ def _write(scene: Scene, pieces, stage: Path | None, summarise: bool):
                     sink.meta = piece.meta
                     writing = files.submit(sink.write, piece)
                     if sink.summary is not None:
-                        measuring.append(measures.submit(sink.measure, piece))
+                        held.append(piece)
+                        if len(held) > delay:
+                            measuring.append(measures.submit(sink.measure, held.popleft()))
                 if writing is not None:
                     writing.result()
-                sink.close()
+                # the data files are finished there, the last pieces measured there, while
+                # the figure is drawn here
+                writing = files.submit(sink.close)
+                measuring.extend(measures.submit(sink.measure, p) for p in held)
+                held.clear()
                 if stage is not None and sink.thin is not None:
                     from . import figures
 
                     figure = figures.render(scene, sink.thin.trajectory(sink.meta))
                     (stage / f"{scene.name}.{out['figure_format']}").write_bytes(figure)
+                writing.result()
                 while measuring:
                     measuring.popleft().result()
             except BaseException:
@@ -131,11 +139,12 @@ class _Sink:
 
         out, name = scene.data["output"], scene.name
         self.scene, self.meta = scene, None
-        self.writers = []
+        self.writers, self.paths = [], []
         if stage is not None:
             for fmt in out["data"]:
                 path = stage / f"{name}{FORMATS[fmt].suffix}"
                 self.writers.append(FORMATS[fmt].open(path, scene))
+                self.paths.append(path)
         self.summary = RunSummary(scene) if summarise else None
         self.figure = stage is not None and bool(out["plots"])
         self.thin = self.balance = None
@@ -168,8 +177,15 @@ class _Sink:
             self.thin.add(piece if self.balance is None else self.balance.add(piece))
 
     def close(self) -> None:
+        """Finish the data files and start writing them to disk: the moves into place
+        would otherwise wait for that (:func:`ga_rotors.files.start_writeback`)."""
+        from ..files import start_writeback
+
         for writer in self.writers:
             writer.close(self.meta)
+        for path in self.paths:
+            if path.is_file():  # a store (a folder) is many small files: left to the system
+                start_writeback(path)
 
     def abort(self) -> None:
         for writer in self.writers:
