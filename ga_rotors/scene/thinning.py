@@ -162,26 +162,33 @@ def _extremes(slices, a, keep):
     smallest and the first where it is largest; a run holding a NaN marks its first row
     (NaN is the extreme)."""
     n, m = a.shape
+    lo, hi = np.empty(m, np.int64), np.empty(m, np.int64)
+    low, high, nan = np.empty(m), np.empty(m), np.empty(m, np.bool_)
     start = 0
     while start < n:
         end = start + 1
         while end < n and slices[end] == slices[start]:
             end += 1
         for j in range(m):
-            lo = hi = start
-            low = high = a[start, j]
-            nan = low != low
-            for i in range(start + 1, end):
+            lo[j] = hi[j] = start
+            low[j] = high[j] = a[start, j]
+            nan[j] = a[start, j] != a[start, j]
+        # row by row, as the values lie in memory (a column at a time was 1.7x the time);
+        # a NaN compares false both ways, so it only sets its column's flag (a NaN first
+        # value leaves its column's low and high NaN: the flag is set already)
+        for i in range(start + 1, end):
+            for j in range(m):
                 v = a[i, j]
-                if v != v:
-                    nan = True
-                elif v < low or low != low:
-                    low, lo = v, i
-                elif v > high or high != high:
-                    high, hi = v, i
-            if nan:
+                if v < low[j]:
+                    low[j], lo[j] = v, i
+                elif v > high[j]:
+                    high[j], hi[j] = v, i
+                elif v != v:
+                    nan[j] = True
+        for j in range(m):
+            if nan[j]:
                 keep[start] = True
             else:
-                keep[lo] = True
-                keep[hi] = True
+                keep[lo[j]] = True
+                keep[hi[j]] = True
         start = end
