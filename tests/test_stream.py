@@ -649,40 +649,51 @@ def test_a_failure_in_the_summary_stops_the_run_and_leaves_nothing(tmp_path, mon
 
 
 @pytest.mark.parametrize("writeback", [True, False], ids=["linux", "elsewhere"])
-def test_the_data_files_are_finished_and_their_writeback_started_before_the_moves(
+def test_the_data_files_are_finished_and_their_writeback_started_while_the_figure_is_drawn(
     tmp_path, monkeypatch, writeback
 ):
     """Each data file is finished, then its writeback started (the rename over the
     previous run's file would wait for it, ext4's auto_da_alloc), on the files' thread
-    while the figure is drawn; where the call is missing the files are the same and
-    nothing is said."""
+    while the figure is drawn (here the figure waits for it); where the call is missing
+    the files are the same and nothing is said."""
     import threading
 
     from ga_rotors import files as _files
+    from ga_rotors.scene import figures
     from ga_rotors.scene.figures import DIGEST_PREFIX
 
-    started, start = [], _files.start_writeback
+    written = ["heavy_top.csv", "heavy_top.npz", "heavy_top.nc"]  # not the store (.zarr)
+    started, start, render = [], _files.start_writeback, figures.render
+    all_started, waited = threading.Event(), []
 
-    def spy(path):
+    def spy(path, offset, length):
         started.append((path.name, path.read_bytes(), threading.current_thread().name))
-        return start(path)
+        if len(started) % len(written) == 0:
+            all_started.set()
+        return start(path, offset, length)
+
+    def slow_render(*args, **kwargs):
+        waited.append(all_started.wait(60))
+        all_started.clear()
+        return render(*args, **kwargs)
 
     monkeypatch.setattr(_files, "start_writeback", spy)
+    monkeypatch.setattr(figures, "render", slow_render)
     if not writeback:
         monkeypatch.setattr(_files, "_sync_file_range", lambda: None)
     scene = load_scene("heavy_top").replace({"time.duration": 0.5, "output.data": ALL_FORMATS})
-    written = ["heavy_top.csv", "heavy_top.npz", "heavy_top.nc"]  # not the store (.zarr)
     with warnings.catch_warnings():
         warnings.simplefilter("error")
         for _ in range(2):  # the second run's files replace the first's
             stream_scene(scene, tmp_path / "o", chunk_steps=1000)
-    streamed = list(started)
+    assert waited == [True, True]
+    assert [name for name, _, _ in started] == written * 2  # one slice each: small files
+    assert all(thread.startswith("ga_rotors-writer") for _, _, thread in started)
+    for name, data, _ in started[len(written) :]:  # complete when started: the files moved in
+        assert data == (tmp_path / "o" / name).read_bytes()
+    monkeypatch.setattr(figures, "render", render)
     tr = run_scene(scene)
     write_outputs(scene, tr, tmp_path / "whole", str(report(scene, tr)))
-    assert [name for name, _, _ in streamed] == written * 2
-    assert all(thread.startswith("ga_rotors-writer") for _, _, thread in streamed)
-    for name, data, _ in streamed[len(written) :]:  # complete when started: the files moved in
-        assert data == (tmp_path / "o" / name).read_bytes()
     _compare_files(scene, tmp_path / "o", tmp_path / "whole")
     png = [(tmp_path / k / "heavy_top.png").read_bytes() for k in ("o", "whole")]
     digest = [p[p.index(DIGEST_PREFIX.encode()) :][:60] for p in png]
@@ -713,3 +724,33 @@ def test_a_failure_finishing_the_data_files_stops_the_run_and_leaves_the_previou
         stream_scene(scene.replace({"time.duration": 0.6}), tmp_path / "o", chunk_steps=1000)
     assert {p.name: p.read_bytes() for p in (tmp_path / "o").iterdir()} == before
     assert threading.active_count() == threads
+
+
+def test_the_writeback_goes_a_slice_at_a_time_until_the_run_is_done(tmp_path, monkeypatch):
+    """The writeback of a finished file is asked for a slice at a time, and no more once
+    the run has nothing else to do (the call can wait on a slow disk's queue)."""
+    import threading
+
+    from ga_rotors import files as _files
+    from ga_rotors.scene import output
+
+    scene = load_scene("heavy_top").replace({"time.duration": 0.5, "output.data": ["csv"]})
+    tr = run_scene(scene)
+    monkeypatch.setattr(output, "WRITEBACK_SLICE", 4096)
+    for done_after in (None, 3, 0):  # never set, set while the third slice is asked, set
+        asked, done = [], threading.Event()
+
+        def spy(path, start, length, asked=asked, done=done, done_after=done_after):
+            asked.append((start, length))
+            if len(asked) == done_after:
+                done.set()
+
+        monkeypatch.setattr(_files, "start_writeback", spy)
+        if done_after == 0:
+            done.set()
+        sink = output._Sink(scene, tmp_path, False)
+        sink.write(tr)
+        sink.close(done)
+        size = (tmp_path / "heavy_top.csv").stat().st_size
+        slices = [(start, 4096) for start in range(0, size, 4096)]
+        assert len(slices) > 3 and asked == slices[:done_after], done_after

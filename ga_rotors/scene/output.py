@@ -39,6 +39,10 @@ from .model import Scene
 
 __all__ = ["stream_scene", "write_outputs"]
 
+#: Bytes of a finished data file whose writeback is started at a time (about 15 ms of
+#: this machine's disk queue): the run stops asking between slices once it is done.
+WRITEBACK_SLICE = 32 * 2**20
+
 
 def _declared(scene: Scene) -> bool:
     out = scene.data["output"]
@@ -70,6 +74,7 @@ def _write(scene: Scene, pieces, stage: Path | None, summarise: bool):
     drawn (here) while it catches up. Every consumer has finished before this returns or
     raises: nothing writes into the staging folder after a failure or an interrupt.
     """
+    import threading
     from collections import deque
     from concurrent.futures import ThreadPoolExecutor
 
@@ -80,7 +85,7 @@ def _write(scene: Scene, pieces, stage: Path | None, summarise: bool):
             ThreadPoolExecutor(max_workers=1, thread_name_prefix="ga_rotors-writer") as files,
             ThreadPoolExecutor(max_workers=1, thread_name_prefix="ga_rotors-summary") as measures,
         ):
-            writing, measuring, held = None, deque(), deque()
+            writing, measuring, held, done = None, deque(), deque(), threading.Event()
             delay = SUMMARY_DELAY if sink.figure and sink.summary is not None else 0
             try:
                 for piece in pieces:  # integrated here, consumed there
@@ -98,7 +103,7 @@ def _write(scene: Scene, pieces, stage: Path | None, summarise: bool):
                     writing.result()
                 # the data files are finished there, the last pieces measured there, while
                 # the figure is drawn here
-                writing = files.submit(sink.close)
+                writing = files.submit(sink.close, done)
                 measuring.extend(measures.submit(sink.measure, p) for p in held)
                 held.clear()
                 if stage is not None and sink.thin is not None:
@@ -106,10 +111,12 @@ def _write(scene: Scene, pieces, stage: Path | None, summarise: bool):
 
                     figure = figures.render(scene, sink.thin.trajectory(sink.meta))
                     (stage / f"{scene.name}.{out['figure_format']}").write_bytes(figure)
-                writing.result()
                 while measuring:
                     measuring.popleft().result()
+                done.set()
+                writing.result()
             except BaseException:
+                done.set()
                 for future in (writing, *measuring):
                     if future is not None:  # not started: dropped; started: its pool waits
                         future.cancel()
@@ -176,16 +183,23 @@ class _Sink:
         if self.thin is not None:
             self.thin.add(piece if self.balance is None else self.balance.add(piece))
 
-    def close(self) -> None:
-        """Finish the data files and start writing them to disk: the moves into place
-        would otherwise wait for that (:func:`ga_rotors.files.start_writeback`)."""
+    def close(self, done=None) -> None:
+        """Finish the data files, then start writing them to disk, a slice at a time
+        until ``done`` (a ``threading.Event``) is set, when the run has nothing else to
+        do: on ext4 the moves into place would otherwise start it and wait
+        (:func:`ga_rotors.files.start_writeback`); what is left then is left to them (or,
+        on other file systems, to the system)."""
         from ..files import start_writeback
 
         for writer in self.writers:
             writer.close(self.meta)
         for path in self.paths:
-            if path.is_file():  # a store (a folder) is many small files: left to the system
-                start_writeback(path)
+            if not path.is_file():  # a store (a folder) is many small files: left alone
+                continue
+            for start in range(0, path.stat().st_size, WRITEBACK_SLICE):
+                if done is not None and done.is_set():
+                    return
+                start_writeback(path, start, WRITEBACK_SLICE)
 
     def abort(self) -> None:
         for writer in self.writers:
