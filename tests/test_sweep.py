@@ -599,3 +599,28 @@ def test_a_sweep_written_direct_is_the_sweep_written_through_the_page_cache(tmp_
             assert (direct / name / f).read_bytes() == (cached / name / f).read_bytes(), f
     assert (direct / "q" / "0.0.0").stat().st_size == 12800
     xr.testing.assert_identical(open_sweep(direct).load(), open_sweep(cached).load())
+
+
+def test_the_draws_are_the_documented_function_of_the_seed_and_the_sample():
+    # What fixes the numbers of every store written: sample s, draw j is the
+    # ((s mod BLOCK)·draws + j)-th of its block's Generator.integers(0, 2**53) (the oracle:
+    # numpy's own Generator on SeedSequence(seed, spawn_key=(block,))), as u = (k + ½)·2⁻⁵³,
+    # then the normal's inverse CDF (scipy's ndtri) or the uniform's affine map.
+    from scipy.special import ndtri
+
+    sweep = load_sweep(SWEEP.replace("samples = 5", f"samples = {BLOCK + 300}"))
+    lo, hi = BLOCK - 200, BLOCK + 500  # across a block's end
+    got = sweep.values(lo, hi)
+    expected = {key: np.empty(hi - lo) for key in ("normal", "uniform")}
+    for s in range(lo, hi):
+        block, at = divmod(s, BLOCK)
+        if s == lo or at == 0:
+            gen = np.random.Generator(
+                np.random.PCG64(np.random.SeedSequence(42, spawn_key=(block,)))
+            )
+            k = gen.integers(0, 2**53, size=2 * BLOCK, dtype=np.uint64)
+        u = (k[2 * at : 2 * at + 2].astype(np.float64) + 0.5) * 2.0**-53
+        expected["normal"][s - lo] = ndtri(u[0]) * 0.1 + 0.0
+        expected["uniform"][s - lo] = u[1] * (0.35 - 0.25) + 0.25
+    assert np.array_equal(got["initial.angular_velocity.body[0]"], expected["normal"])
+    assert np.array_equal(got["body.mass"], expected["uniform"])
