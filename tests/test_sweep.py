@@ -624,3 +624,23 @@ def test_the_draws_are_the_documented_function_of_the_seed_and_the_sample():
         expected["uniform"][s - lo] = u[1] * (0.35 - 0.25) + 0.25
     assert np.array_equal(got["initial.angular_velocity.body[0]"], expected["normal"])
     assert np.array_equal(got["body.mass"], expected["uniform"])
+
+
+def test_the_buffer_of_direct_writes_is_page_aligned_and_kept_only_when_small(monkeypatch):
+    # Kept for the next chunk up to KEPT_STAGING; a larger file gets a buffer of its own,
+    # so a writer thread holds at most KEPT_STAGING once the sweep is over.
+    import threading
+
+    from ga_rotors.sweep import store
+
+    monkeypatch.setattr(store, "KEPT_STAGING", 8 * store.DIRECT_ALIGN)
+    monkeypatch.setattr(store, "_STAGING", threading.local())
+    small = store._staging(3 * store.DIRECT_ALIGN + 5)
+    again = store._staging(2 * store.DIRECT_ALIGN)
+    large = store._staging(9 * store.DIRECT_ALIGN)
+    for buf in (small, again, large):
+        assert buf.ctypes.data % store.DIRECT_ALIGN == 0
+    assert small.size == 3 * store.DIRECT_ALIGN + 5 and large.size == 9 * store.DIRECT_ALIGN
+    assert np.shares_memory(small, again)  # kept and reused
+    assert not np.shares_memory(large, store._staging(store.DIRECT_ALIGN))  # not kept
+    assert store._STAGING.buffer.size < 9 * store.DIRECT_ALIGN

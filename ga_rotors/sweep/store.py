@@ -144,14 +144,22 @@ _O_DIRECT = getattr(os, "O_DIRECT", 0)
 #: What a file system that does not do direct writes answers (EINVAL: tmpfs and most).
 _NO_DIRECT = {errno.EINVAL, errno.EOPNOTSUPP}
 
+#: Largest page-aligned buffer a thread keeps between direct writes (a chunk's file is
+#: usually a few MB; a larger one gets a buffer of its own, freed after its write, so a
+#: sweep's writer thread never holds more than this once the sweep is over).
+KEPT_STAGING = 16 << 20
+
 _STAGING = threading.local()
 
 
 def _staging(size: int) -> np.ndarray:
-    """This thread's page-aligned buffer of at least ``size`` bytes (kept for the next)."""
+    """A page-aligned buffer of ``size`` bytes: this thread's, unless it is too large."""
+    pages = -(-size // DIRECT_ALIGN) * DIRECT_ALIGN
+    if pages > KEPT_STAGING:
+        return np.frombuffer(mmap.mmap(-1, pages), np.uint8)[:size]
     buf = getattr(_STAGING, "buffer", None)
     if buf is None or buf.size < size:
-        buf = np.frombuffer(mmap.mmap(-1, -(-size // DIRECT_ALIGN) * DIRECT_ALIGN), np.uint8)
+        buf = np.frombuffer(mmap.mmap(-1, pages), np.uint8)
         _STAGING.buffer = buf
     return buf[:size]
 
