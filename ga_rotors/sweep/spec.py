@@ -51,6 +51,9 @@ DISTRIBUTIONS = {"normal": ("mean", "std"), "uniform": ("low", "high")}
 
 _VARYING = ("body.", "initial.", "effects[")
 
+#: The largest float64 below 1: where a normal draw's u = 1 goes (ndtri(1) is inf).
+_BELOW_ONE = np.nextafter(1.0, 0.0)
+
 
 @dataclass(frozen=True)
 class Sweep:
@@ -141,6 +144,7 @@ class Sweep:
                 if dist == "normal":
                     from scipy.special import ndtri
 
+                    np.minimum(x, _BELOW_ONE, out=x)  # u = 1 (once in 2⁵³): ndtri gives inf
                     ndtri(x, out=x)
                     x *= b
                     x += a
@@ -156,8 +160,9 @@ def _uniforms(seed: int, lo: int, hi: int, nvars: int) -> np.ndarray:
 
     Sample s, variable j takes the (s mod BLOCK)·nvars + j-th 64-bit output x of its
     block's PCG64 stream, as k = x >> 11 (what ``Generator.integers(0, 2**53)`` gives:
-    Lemire's method never rejects for a range of 2⁵³), then u = (k + ½)·2⁻⁵³, strictly
-    inside (0, 1) so the normal's inverse CDF stays finite.
+    Lemire's method never rejects for a range of 2⁵³), then u = (k + ½)·2⁻⁵³ in float64:
+    in (0, 1], since k = 2⁵³ − 1 rounds to 1 (k + ½ rounds to even above 2⁵²), which a
+    normal draw takes as :data:`_BELOW_ONE` so its inverse CDF stays finite.
     """
     out = np.empty((hi - lo, nvars))
     for block in range(lo // BLOCK, -(-hi // BLOCK)):
