@@ -48,7 +48,9 @@ SUMMARY_LAG = 8
 #: Pieces a streamed run's summary is held back when a figure is drawn: the figure is
 #: drawn on one core at the end, and these pieces are measured on the other meanwhile
 #: rather than during the run, where both cores are busy (:mod:`ga_rotors.scene.output`).
-SUMMARY_DELAY = 24
+#: Measured on the 10⁷-step heavy top (two cores, idle): 12 pieces finish with the figure
+#: (the summary also lags up to SUMMARY_LAG more on its own); 24 outlast it by 0.1 s.
+SUMMARY_DELAY = 12
 
 #: Samples per piece of a streamed run kept at once (the piece, its quantities, the
 #: writers' copies, the pieces the summary has yet to measure) on top of the thinned
@@ -134,7 +136,7 @@ def estimate(scene, streamed: bool = False) -> Estimate:
     >>> print(estimate(long))
     1e+07 steps, 1e+06 samples: about 412 MiB of memory, 429 MiB of files
     >>> print(estimate(long, streamed=True))
-    1e+07 steps, 1e+06 samples: about 140 MiB of memory, 429 MiB of files
+    1e+07 steps, 1e+06 samples: about 97.1 MiB of memory, 429 MiB of files
     """
     from .thinning import COLUMNS
 
