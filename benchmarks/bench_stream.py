@@ -90,11 +90,13 @@ def _child(mode: str, steps: float, data: str, quantities: str, summary: str = "
     with tempfile.TemporaryDirectory(prefix="bench_stream-") as tmp:
         env = {**os.environ, "PYTHONPATH": str(ROOT)}
         log = Path(tmp) / "log"
+        # cwd: `python -c` puts its working folder first on sys.path, so a checkout there
+        # would be measured instead of this one
         with open(log, "w") as sink:  # a file, not a pipe: a chatty child never blocks
             proc = subprocess.Popen(
                 [sys.executable, "-c", CHILD, mode, str(steps), str(Path(tmp) / "out"), data,
                  quantities, summary],
-                stdout=sink, stderr=subprocess.STDOUT, env=env,
+                stdout=sink, stderr=subprocess.STDOUT, env=env, cwd=ROOT,
             )  # fmt: skip
             _, status, usage = os.wait4(proc.pid, 0)  # this child's own peak memory
         proc.returncode = os.waitstatus_to_exitcode(status)
