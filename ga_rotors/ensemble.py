@@ -180,6 +180,12 @@ def rk4_free(inertia, q, w, h: float, nsteps: int, chunk: int = CHUNK) -> None:
     _rk4_soa(q, w, tuple(float(i) for i in inertia), float(h), int(nsteps), int(chunk))
 
 
+#: Bytes of arrays and body-steps a repeat that :func:`benchmark` takes at most: a
+#: benchmark's size is a number typed on a command line, refused when absurd.
+BENCHMARK_MEMORY = 2 * 2**30
+BENCHMARK_BODY_STEPS = 10**10
+
+
 def benchmark(bodies: int = 10_000, steps: int = 1000, repeats: int = 5) -> str:
     """Body-steps per second of :func:`rk4_free` (minimum time of repeats after a warm-up).
 
@@ -189,9 +195,29 @@ def benchmark(bodies: int = 10_000, steps: int = 1000, repeats: int = 5) -> str:
     --------
     >>> print(benchmark(bodies=64, steps=10, repeats=1))
     RK4 ensemble: 64 bodies x 10 steps in ... ms (min of 1) = ... million body-steps/s on ...
+    >>> benchmark(bodies=-5)
+    Traceback (most recent call last):
+    ...
+    ga_rotors.errors.InputError: bodies: expected a positive integer, got -5
     """
     import time
 
+    for name, value in (("bodies", bodies), ("steps", steps), ("repeats", repeats)):
+        if isinstance(value, bool) or not isinstance(value, int) or value < 1:
+            raise InputError(f"expected a positive integer, got {value!r}", key=name)
+    if bodies * 7 * 8 * 2 > BENCHMARK_MEMORY:  # q and ω, and the copies each repeat runs on
+        raise InputError(
+            f"{bodies:.3g} bodies need {bodies * 112 / 2**30:.3g} GiB of arrays "
+            f"(at most {BENCHMARK_MEMORY / 2**30:g} GiB)",
+            key="bodies",
+        )
+    if bodies * steps > BENCHMARK_BODY_STEPS:
+        raise InputError(
+            f"{bodies:.3g} bodies x {steps:.3g} steps is {bodies * steps:.3g} body-steps a "
+            f"repeat, {repeats + 1} times (at most {BENCHMARK_BODY_STEPS:.3g}: about half a "
+            "minute each on two cores)",
+            key="steps",
+        )
     rng = np.random.default_rng(1)
     q = rng.normal(size=(4, bodies))
     q /= np.linalg.norm(q, axis=0)

@@ -36,6 +36,24 @@ def test_benchmark_reports_a_rate():
     assert "million body-steps/s" in benchmark(bodies=512, steps=10, repeats=1)
 
 
+@pytest.mark.parametrize(
+    ("argv", "says"),
+    [
+        (["--bodies", "-5"], "bodies: expected a positive integer, got -5"),  # was a traceback
+        (["--bodies", "0"], "bodies: expected a positive integer, got 0"),  # was "0 million"
+        (["--steps", "0"], "steps: expected a positive integer, got 0"),
+        (["--bodies", "10000000000"], "bodies: 1e+10 bodies need 1.04e+03 GiB of arrays"),
+        (["--steps", "100000000"], "steps: 1e+04 bodies x 1e+08 steps is 1e+12 body-steps"),
+    ],
+)
+def test_bench_ensemble_refuses_absurd_sizes_in_one_line(capsys, argv, says):
+    from ga_rotors.cli import main
+
+    assert main(["bench", "ensemble", *argv]) == 2
+    err = capsys.readouterr().err
+    assert says in err and err.count("\n") == 1 and "Traceback" not in err
+
+
 # ---------------------------------------------------------------------------- real scenes
 
 from ga_rotors import paths as _paths  # noqa: E402
