@@ -267,3 +267,20 @@ def test_symbolic_is_independent_of_the_numeric_package():
         [sys.executable, "-c", code], cwd=ROOT, capture_output=True, text=True, check=True
     ).stdout.split("\n")
     assert out[:2] == ["[]", "[]"]
+
+
+def test_verify_write_that_the_system_refuses_is_a_clean_error(tmp_path, capsys, monkeypatch):
+    # /proc/x.md (an existing folder no file can be made in) was a FileNotFoundError
+    # traceback; a full disk is the same path
+    import errno
+
+    import ga_rotors.files
+
+    def full(path, text):
+        raise OSError(errno.ENOSPC, "No space left on device")
+
+    monkeypatch.setattr(ga_rotors.files, "write_text", full)
+    assert main(["verify", "--write", str(tmp_path / "audit.md")]) == 2
+    err = capsys.readouterr().err
+    assert "--write " in err and "cannot write it (No space left on device)" in err
+    assert err.count("\n") == 1 and "Traceback" not in err

@@ -12,6 +12,9 @@ import argparse
 
 __all__ = ["add_arguments", "run"]
 
+#: Most random pairs ``--count`` takes: each goes through clifford, a few ms apiece.
+MAX_COUNT = 100_000
+
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument(
@@ -32,6 +35,10 @@ def run(args: argparse.Namespace) -> int:
 
     if args.count < 1:
         raise InputError(f"--count: expected a positive number of rotations, got {args.count}")
+    if args.count > MAX_COUNT:  # each pair goes through clifford in Python, one at a time
+        raise InputError(f"--count: at most {MAX_COUNT} rotations (a tour), got {args.count}")
+    if args.seed < 0:
+        raise InputError(f"--seed: expected an integer ≥ 0, got {args.seed}")
     rng = np.random.default_rng(args.seed)
     p = Q.normalize(rng.normal(size=(args.count, 4)))
     q = Q.normalize(rng.normal(size=(args.count, 4)))

@@ -98,7 +98,10 @@ def run(args: argparse.Namespace) -> int:
             file=sys.stderr,
         )
     if args.write is not None:
-        write_text(args.write, audit.markdown())
+        try:
+            write_text(args.write, audit.markdown())
+        except OSError as exc:  # a folder we may not write in (/proc, read-only), a full disk
+            raise InputError(f"--write {args.write}: cannot write it ({exc.strerror})") from None
         print(f"wrote {args.write}")
     if args.check is not None:
         if args.check.read_text(encoding="utf-8") != audit.markdown():
