@@ -65,6 +65,8 @@ def test_undecided_exits_3_with_the_reason(capsys):
         (["prove", "a == a", "--vectors", "a", "--blades", "B"], "--blades|blades"),
         (["prove", "dual(a) == a", "--vectors", "a", "--signature", "3,0,1"], "I² = 0"),
         (["prove", "a == a", "--vectors", "a", "--draws", "0"], "--draws"),
+        (["prove", "a == a", "--vectors", "a", "--draws", "1000000000000"], "from 1 to"),
+        (["prove", "a == a", "--vectors", "a", "--seed", "-1"], "--seed: expected an integer ≥ 0"),
         (["prove", "a == a", "--vectors", "a", "--timeout", "0"], "--timeout"),
         (["prove"], "give an identity"),
         (["prove", "a == a", "--catalogue"], "not both"),

@@ -31,6 +31,9 @@ from pathlib import Path
 
 __all__ = ["add_arguments", "run"]
 
+#: Most random draws of the numeric pre-check (10⁵ take about half a second).
+MAX_DRAWS = 1_000_000
+
 _NAME_OPTIONS = (
     ("scalars", "real numbers"),
     ("vectors", "vectors"),
@@ -180,8 +183,10 @@ def run(args: argparse.Namespace) -> int:
         raise InputError('prove: give an identity "lhs == rhs" (or --catalogue)')
     if args.write is not None or args.check is not None or args.long or args.only:
         raise InputError("--write, --check, --long and --only go with --catalogue")
-    if args.draws < 1:
-        raise InputError(f"--draws: expected a positive integer, got {args.draws}")
+    if not 1 <= args.draws <= MAX_DRAWS:  # 10^12 died allocating 931 GiB
+        raise InputError(f"--draws: expected an integer from 1 to {MAX_DRAWS}, got {args.draws}")
+    if args.seed < 0:
+        raise InputError(f"--seed: expected an integer ≥ 0, got {args.seed}")
     if not args.timeout > 0:
         raise InputError(f"--timeout: expected a positive number of seconds, got {args.timeout}")
 
