@@ -447,3 +447,25 @@ def test_rotor_identities_proved_hold_exactly_on_rotors_built_as_plane_rotations
             assert (env["R"] * ~env["R"]).terms == {0: 1}
             difference = evaluate(lhs, env, basis, _Exact()) - evaluate(rhs, env, basis, _Exact())
             assert difference.is_zero(), (entry.key, basis.label())
+
+
+@pytest.mark.parametrize(
+    ("kinds", "signature", "note"),
+    [
+        ({"kvectors": "T:4", "vectors": "a"}, (3, 0), "T (grade 4) is 0 in Cl(3,0)"),
+        ({"blades": "B:5"}, (2, 0), "B (grade 5) is 0 in Cl(2,0)"),
+        ({"kvectors": "T:3", "blades": "B:4"}, (1, 1), "T (grade 3), B (grade 4) are 0 in"),
+    ],
+)
+def test_a_grade_above_n_is_proved_with_a_note_that_it_is_vacuous(kinds, signature, note):
+    # a grade typed too high makes the symbol 0, and any identity in it "proved"; the
+    # catalogue relies on this in low signatures, so it is a note, not a refusal
+    names = [n.split(":")[0] for v in kinds.values() for n in v.split(",")]
+    identity = f"{names[0]}*{names[-1]} == {names[-1]}*{names[0]}*{names[0]}"
+    v = prove(identity, signature=signature, **kinds)
+    assert v.status == "proved" and any(note in n and "vacuously" in n for n in v.notes), v.notes
+    assert f"note: {note}" in str(v)
+
+
+def test_no_vacuity_note_for_grades_within_n():
+    assert prove("T*T == grade(T*T, 0)", kvectors="T:3").notes == []
