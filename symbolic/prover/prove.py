@@ -342,6 +342,18 @@ def prove(
                         "no random draw satisfied the assumptions over the reals; "
                         "the identity may hold vacuously"
                     )
+                zero = [
+                    f"{name} (grade {k})"
+                    for name, k in {**assumptions.kvectors, **assumptions.blades}.items()
+                    if k > basis.n
+                ]
+                if zero:  # a grade above n declared by mistake would make any identity hold
+                    one = len(zero) == 1
+                    notes.append(
+                        f"{', '.join(zero)} {'is' if one else 'are'} 0 in {basis.label()} (no "
+                        f"grade above n = {basis.n}): the identity holds vacuously for "
+                        f"{'it' if one else 'them'}"
+                    )
                 detail = (
                     f"lhs − rhs = 0: {terms} polynomial terms over ℚ in {len(free)} parameters "
                     f"reduce to 0{how}"
