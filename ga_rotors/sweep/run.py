@@ -734,6 +734,13 @@ def open_sweep(store):
 SUMMARY_IN_MEMORY = 2**28
 
 
+def _by_chunk(a):
+    """A callable giving the blocks of ``a`` along ``sample``, a stored chunk at a time
+    (each call starts again: the reductions below read them in several passes)."""
+    step = (a.chunks[0][0] if a.chunks else a.shape[0]) or 1
+    return lambda: (a[lo : lo + step] for lo in range(0, a.shape[0], step))
+
+
 def summary(ds) -> str:
     """Spread of the samples from the base scene at each output time, as text lines.
 
@@ -758,10 +765,10 @@ def summary(ds) -> str:
         def column(j):
             return lambda: (whole[:, j],)
     else:  # read a block of samples at a time, a few passes per output time
-        step = (a.chunks[0][0] if a.chunks else n) or 1
+        blocks = _by_chunk(a)
 
         def column(j):
-            return lambda: (np.degrees(a[lo : lo + step, j].values) for lo in range(0, n, step))
+            return lambda: (np.degrees(b[:, j].values) for b in blocks())
 
     lines = [f"t [s]  median [deg]  95% [deg]  max [deg]  ({n} samples)"]
     for j, t in enumerate(ds["t"].values):
@@ -789,15 +796,14 @@ def histogram(ds, name: str = "angle_from_nominal", bins: int = 50):
     """
     xr = require("xarray", "results")
     a = ds[name]
-    step = (a.chunks[0][0] if a.chunks else a.shape[0]) or 1
-    n = a.shape[0]
+    blocks = _by_chunk(a)
     top = 0.0
-    for lo in range(0, n, step):
-        top = max(top, float(np.nanmax(a[lo : lo + step].values, initial=0.0)))
+    for b in blocks():
+        top = max(top, float(np.nanmax(b.values, initial=0.0)))
     edges = np.linspace(0.0, top if top > 0 else 1.0, bins + 1)
     counts = np.zeros((a.shape[1], bins), dtype=np.int64)
-    for lo in range(0, n, step):
-        block = a[lo : lo + step].values
+    for b in blocks():
+        block = b.values
         for j in range(a.shape[1]):
             counts[j] += np.histogram(block[:, j], bins=edges)[0]
     units = a.attrs.get("units", "")

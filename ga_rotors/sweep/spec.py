@@ -251,13 +251,11 @@ def load_sweep(source) -> Sweep:
     keys = [k for k, _ in grid] + [k for k, _, _ in draws]
     if len(set(keys)) != len(keys):
         raise r.error("draw", "a key is varied twice (in grid and draw, or in two draws)")
-    seed = None
-    if "seed" in sw:  # checked even when unused: a typo'd seed should not pass silently
-        seed = _count(r, sw["seed"], "sweep.seed", zero=True)
+    # checked even when unused: a typo'd seed should not pass silently
+    seed = _count(r, sw["seed"], "sweep.seed", zero=True) if "seed" in sw else None
     if draws and seed is None:
         raise r.error("sweep.seed", "missing; random draws need a seed")
-    if not draws:
-        seed = None
+    seed = seed if draws else None
     return Sweep(scene, tuple(grid), tuple(draws), samples, seed, chunk, times, text, file)
 
 

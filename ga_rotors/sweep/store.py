@@ -235,11 +235,12 @@ def write_chunk(store, name: str, block: np.ndarray, c: int, layouts: dict | Non
     >>> xr.open_zarr(out)["a"].values.tolist()
     [[nan, nan], [nan, nan], [5.0, 6.0]]
     """
-    if layouts is None or name not in layouts:
+    if layouts is None:
         layout = _layout(store, name)
-        if layouts is not None:
-            layouts[name] = layout
-    layout = layouts[name] if layouts is not None else layout
+    else:
+        if name not in layouts:
+            layouts[name] = _layout(store, name)
+        layout = layouts[name]
     if layout is None:
         zarr = require("zarr", "results")
         array = zarr.open_group(store, mode="r+", zarr_format=2)[name]
