@@ -15,6 +15,7 @@ __all__ = [
     "PrecisionError",
     "SceneError",
     "StepLimitWarning",
+    "first_line",
 ]
 
 
@@ -173,6 +174,21 @@ class SceneError(InputError):
 #: Longest run of non-blank characters a scene error echoes (a value, a key) before it is
 #: cut: a 10,000-character name in a scene gives a readable line, not a screenful.
 ECHO_LIMIT = 80
+
+
+def first_line(exc: BaseException) -> str:
+    """The first line of ``exc``'s message, or its type's name when it has none: what a
+    one-line error keeps of a library's exception.
+
+    Examples
+    --------
+    >>> first_line(ValueError("bad header\\nwhile reading block 3"))
+    'bad header'
+    >>> first_line(KeyError())
+    'KeyError'
+    """
+    text = str(exc).strip()
+    return text.splitlines()[0] if text else type(exc).__name__
 
 
 def _capped(text: str) -> str:

@@ -17,7 +17,7 @@ import shutil
 import tempfile
 from pathlib import Path
 
-from ..errors import InputError
+from ..errors import InputError, first_line
 from ..optional import require
 
 __all__ = ["FORMATS", "ZARR_FORMAT", "format_of", "read", "write"]
@@ -174,8 +174,7 @@ def read(path, lazy: bool = False, max_memory_gib: float = READ_MEMORY_GIB):
             require("zarr", "results")
             ds = xr.open_zarr(path, consolidated=None)
     except (OSError, ValueError, KeyError) as exc:
-        first = str(exc).strip().splitlines()[0] if str(exc).strip() else type(exc).__name__
-        raise InputError(f"path: {path}: not a readable {fmt} results file ({first})") from None
+        raise _unreadable(path, fmt, exc) from None
     if lazy:
         return ds
     with ds:
@@ -188,5 +187,8 @@ def read(path, lazy: bool = False, max_memory_gib: float = READ_MEMORY_GIB):
         try:
             return ds.load()
         except (OSError, ValueError, KeyError) as exc:
-            first = str(exc).strip().splitlines()[0] if str(exc).strip() else type(exc).__name__
-            raise InputError(f"path: {path}: not a readable {fmt} results file ({first})") from None
+            raise _unreadable(path, fmt, exc) from None
+
+
+def _unreadable(path: Path, fmt: str, exc: Exception) -> InputError:
+    return InputError(f"path: {path}: not a readable {fmt} results file ({first_line(exc)})")

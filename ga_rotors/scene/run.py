@@ -29,10 +29,10 @@ __all__ = ["run_pieces", "run_scene"]
 
 
 def _user_compile_error(scene: Scene, exc: Exception):
-    from ..errors import SceneError
+    from ..errors import SceneError, first_line
 
     users = [i for i, e in enumerate(scene.data["effects"]) if e["type"] == "user"]
-    first = str(exc).strip().splitlines()[0] if str(exc).strip() else type(exc).__name__
+    first = first_line(exc)
     key = f"effects[{users[0]}].function" if len(users) == 1 else "effects"
     return SceneError(
         scene.file, key, f"numba could not compile the loop with the user torque: {first}"

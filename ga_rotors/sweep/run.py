@@ -44,7 +44,7 @@ import numpy as np
 
 from .. import _kernels as K
 from .._jit import jit
-from ..errors import InputError
+from ..errors import InputError, first_line
 from ..optional import require
 from . import budget as sweep_budget
 from . import store as zstore
@@ -336,9 +336,7 @@ def _client(client, scheduler: str | None):
         client = distributed.Client(scheduler, timeout=SCHEDULER_TIMEOUT, set_as_default=False)
         return client, True
     except (OSError, TimeoutError) as exc:
-        text = str(exc).strip()
-        first = text.splitlines()[0] if text else type(exc).__name__
-        raise InputError(f"--scheduler: cannot reach {scheduler}: {first}") from None
+        raise InputError(f"--scheduler: cannot reach {scheduler}: {first_line(exc)}") from None
     except ValueError as exc:  # no port, an unknown scheme: distributed parses it first
         raise InputError(
             f"--scheduler: {scheduler!r} is not a scheduler address (tcp://host:port): {exc}"
@@ -695,7 +693,7 @@ def _open(store: Path):
     try:
         ds = xr.open_zarr(store, consolidated=True)
     except (OSError, ValueError, KeyError) as exc:
-        first = str(exc).strip().splitlines()[0] if str(exc).strip() else type(exc).__name__
+        first = first_line(exc)
         raise InputError(f"{store}: not a sweep store ({first})") from None
     # a zarr store of something else: what a sweep's reading relies on, named
     lacking = [v for v in ("chunk_done", "angle_from_nominal", "q_nominal") if v not in ds]
