@@ -205,9 +205,10 @@ def benchmark(bodies: int = 10_000, steps: int = 1000, repeats: int = 5) -> str:
     for name, value in (("bodies", bodies), ("steps", steps), ("repeats", repeats)):
         if isinstance(value, bool) or not isinstance(value, int) or value < 1:
             raise InputError(f"expected a positive integer, got {value!r}", key=name)
-    if bodies * 7 * 8 * 2 > BENCHMARK_MEMORY:  # q and ω, and the copies each repeat runs on
+    arrays = bodies * 7 * 8 * 2  # q and ω, and the copies each repeat runs on
+    if arrays > BENCHMARK_MEMORY:
         raise InputError(
-            f"{bodies:.3g} bodies need {bodies * 112 / 2**30:.3g} GiB of arrays "
+            f"{bodies:.3g} bodies need {arrays / 2**30:.3g} GiB of arrays "
             f"(at most {BENCHMARK_MEMORY / 2**30:g} GiB)",
             key="bodies",
         )
