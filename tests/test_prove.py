@@ -469,3 +469,13 @@ def test_a_grade_above_n_is_proved_with_a_note_that_it_is_vacuous(kinds, signatu
 
 def test_no_vacuity_note_for_grades_within_n():
     assert prove("T*T == grade(T*T, 0)", kvectors="T:3").notes == []
+
+
+def test_draws_beyond_the_bound_are_refused_by_prove_itself():
+    # the command line named the bound first; a Python caller asking 10^12 draws would
+    # have allocated terabytes for the pre-check
+    from ga_rotors.symbolic.prover.prove import MAX_DRAWS
+
+    with pytest.raises(ValueError, match=r"draws: expected an integer from 1 to 1000000, got"):
+        prove("a == a", vectors="a", draws=MAX_DRAWS + 1)
+    assert prove("a == a", vectors="a", draws=MAX_DRAWS // 1000).status == "proved"

@@ -31,9 +31,6 @@ from pathlib import Path
 
 __all__ = ["add_arguments", "run"]
 
-#: Most random draws of the numeric pre-check (10⁵ take about half a second).
-MAX_DRAWS = 1_000_000
-
 _NAME_OPTIONS = (
     ("scalars", "real numbers"),
     ("vectors", "vectors"),
@@ -183,14 +180,14 @@ def run(args: argparse.Namespace) -> int:
         raise InputError('prove: give an identity "lhs == rhs" (or --catalogue)')
     if args.write is not None or args.check is not None or args.long or args.only:
         raise InputError("--write, --check, --long and --only go with --catalogue")
-    if not 1 <= args.draws <= MAX_DRAWS:  # 10^12 died allocating 931 GiB
+    from ..symbolic.prover.prove import MAX_DRAWS, prove
+
+    if not 1 <= args.draws <= MAX_DRAWS:  # named as the option here; prove() checks it too
         raise InputError(f"--draws: expected an integer from 1 to {MAX_DRAWS}, got {args.draws}")
     if args.seed < 0:
         raise InputError(f"--seed: expected an integer ≥ 0, got {args.seed}")
     if not args.timeout > 0:
         raise InputError(f"--timeout: expected a positive number of seconds, got {args.timeout}")
-
-    from ..symbolic.prover.prove import prove
 
     try:
         verdict = prove(

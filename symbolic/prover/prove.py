@@ -52,6 +52,10 @@ __all__ = ["elements", "parse_signature", "prove"]
 
 _DRAWS = 16
 _EXTRA_POINTS = 6
+
+#: Most random draws of the numeric pre-check (10⁵ take about half a second; 10¹² would
+#: allocate terabytes).
+MAX_DRAWS = 1_000_000
 _DIGITS = 50
 
 
@@ -265,8 +269,8 @@ def prove(
     elif kinds:
         raise ValueError("give the symbols either as an Assumptions or as keywords, not both")
     basis = parse_signature(signature)
-    if not isinstance(draws, int) or draws < 1:
-        raise ValueError(f"draws: expected a positive integer, got {draws!r}")
+    if not isinstance(draws, int) or not 1 <= draws <= MAX_DRAWS:
+        raise ValueError(f"draws: expected an integer from 1 to {MAX_DRAWS}, got {draws!r}")
     free, norms = parameter_names(assumptions, basis)
     exps = _exp_nodes(left, right)
     nulls = [n for n, k in assumptions.kinds.items() if k == "null"]
