@@ -209,3 +209,32 @@ def test_writeback_elsewhere_or_refused_is_silently_nothing(tmp_path, monkeypatc
         monkeypatch.setattr(files, "_sync_file_range", lambda: lambda fd, lo, n, flags: -1)
         assert files.start_writeback(path) is False  # the call failed: nothing raised
     assert path.read_bytes() == b"x\n"
+
+
+@pytest.mark.parametrize(
+    "argv",
+    [
+        ["prove", "--catalogue", "--only", "jacobi", "--write", "{out}/identities.md"],
+        ["view", "spinning_disk", "--duration", "0.01", "--out", "{out}/disk.html"],
+    ],
+)
+def test_a_file_the_system_refuses_is_one_line_naming_it(tmp_path, capsys, monkeypatch, argv):
+    # prove --write /proc/x.md and view --out /proc/x.html ended in a FileNotFoundError
+    # traceback naming the temporary file; a full disk takes the same path
+    import errno
+    import tempfile
+
+    from ga_rotors.cli import main
+
+    if argv[0] == "view":
+        pytest.importorskip("plotly")
+
+    def refused(*args, **kwargs):
+        raise OSError(errno.ENOSPC, "No space left on device", "/somewhere/.tmp")
+
+    monkeypatch.setattr(tempfile, "mkstemp", refused)
+    argv = [a.format(out=tmp_path) for a in argv]
+    assert main(argv) == 2
+    err = capsys.readouterr().err
+    assert err == f"ga-rotors: error: {argv[-1]}: No space left on device\n"
+    assert list(tmp_path.iterdir()) == []

@@ -139,6 +139,10 @@ def main(argv: list[str] | None = None) -> int:
     except GaRotorsError as exc:
         print(f"ga-rotors: error: {exc}", file=sys.stderr)
         return 2
+    except OSError as exc:  # a file the command was pointed at, and the system refused it
+        where = f"{exc.filename}: " if exc.filename else ""
+        print(f"ga-rotors: error: {where}{exc.strerror or exc}", file=sys.stderr)
+        return 2
     except KeyboardInterrupt:
         print("ga-rotors: interrupted", file=sys.stderr)
         return 130
