@@ -15,6 +15,8 @@ import sys
 import warnings
 from pathlib import Path
 
+from ..view.saved import load_result
+
 __all__ = ["add_arguments", "load_result", "run"]
 
 
@@ -37,60 +39,6 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         default=None,
         help="run a scene for this long instead of its time.duration",
     )
-
-
-def load_result(path: Path):
-    """(scene, trajectory) of a saved result: a run's directory or its ``.npz`` file.
-
-    Examples
-    --------
-    >>> import tempfile, pathlib
-    >>> load_result(pathlib.Path(tempfile.mkdtemp()))
-    Traceback (most recent call last):
-    ...
-    ga_rotors.errors.InputError: ...: no .npz result here (ga-rotors run writes one ...)
-    """
-    import numpy as np
-
-    from ..errors import InputError
-    from ..scene import load_scene
-    from ..trajectory import Trajectory
-
-    if path.is_dir():
-        found = sorted(path.glob("*.npz"))
-        if len(found) != 1:
-            detail = "no .npz result here" if not found else "more than one .npz result here"
-            raise InputError(
-                f"{path}: {detail} (ga-rotors run writes one when the scene's output.data "
-                'lists "npz")'
-            )
-        path = found[0]
-    scene_file = path.with_name(f"{path.stem}.scene.toml")
-    if not scene_file.is_file():
-        raise InputError(f"{path}: no {scene_file.name} beside it (the scene that made it)")
-    scene = load_scene(scene_file)
-    try:
-        with np.load(path, allow_pickle=False) as npz:
-            arrays = {k: npz[k] for k in npz.files if not k.endswith("__components")}
-    except (OSError, ValueError) as exc:
-        raise InputError(f"{path}: not a readable .npz result ({exc})") from None
-    from .. import paths as _paths
-
-    for name in ("t", "w"):
-        if name not in arrays:
-            raise InputError(f"{path}: the result has no {name!r} array")
-    expected = {"t": 1, "w": 3} | {s.array: s.dim for s in _paths.PATHS.values()}
-    for name, dim in expected.items():
-        a = arrays.get(name)
-        if a is not None and (
-            a.ndim != (1 if name == "t" else 2) or (name != "t" and a.shape[1] != dim)
-        ):
-            shape = "(n,)" if name == "t" else f"(n, {dim})"
-            raise InputError(f"{path}: {name}: expected shape {shape}, got {a.shape}")
-    for name, a in arrays.items():
-        if not np.issubdtype(a.dtype, np.number) or not np.isfinite(a).all():
-            raise InputError(f"{path}: {name}: expected finite numbers")
-    return scene, Trajectory(arrays, meta={"moments": scene.body.moments})
 
 
 def run(args: argparse.Namespace) -> int:
