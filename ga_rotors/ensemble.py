@@ -31,7 +31,7 @@ from numba import prange
 
 from . import _modules
 from ._jit import jit
-from ._kernels import euler_coefficients, free_euler_rates
+from ._kernels import angle_any_norm, euler_coefficients, free_euler_rates
 from .body import MIN_MOMENT_RATIO
 from .errors import InputError
 from .integrators._arith import axpy3, axpy4, rk4_sum3, rk4_sum4
@@ -44,6 +44,7 @@ __all__ = [
     "SceneSamples",
     "benchmark",
     "rk4_free",
+    "run_columns",
     "run_samples",
     "scene_samples",
 ]
@@ -261,7 +262,60 @@ def benchmark(bodies: int = 10_000, steps: int = 1000, repeats: int = 5) -> str:
 #   (``chunk_params``): indexing params[j, lo + i] made LLVM gather them one by one.
 
 
-def _scene_chunk(q, w, inertia, params, lo, hi, t0, h, marks, out_q, out_w):
+@numba.njit(inline="always", error_model="numpy")
+def record_states(out, m, j, x, v):
+    """The batched loop's outputs (``run_samples``): body j's state x, v at output time m
+    into ``out`` = (states (time, 4, body), rates (time, 3, body))."""
+    out_x, out_w = out
+    for k in range(4):
+        out_x[m, k, j] = x[k]
+    for k in range(3):
+        out_w[m, k, j] = v[k]
+
+
+_angle_any_norm = inline_copy(angle_any_norm)
+
+
+@numba.njit(inline="always", error_model="numpy")
+def record_store(out, m, j, x, v):
+    """A sweep's outputs, in its store's layout: ``out`` = (q (sample, time, 4), ω (sample,
+    time, 3), angle from the nominal (sample, time), the nominal (time, 4)); x is the
+    quaternion (the quaternion path's state), the angle
+    :func:`~ga_rotors._kernels.angle_any_norm`'s, computed while the state is at hand."""
+    out_q, out_w, angle, nominal = out
+    for k in range(4):
+        out_q[j, m, k] = x[k]
+    for k in range(3):
+        out_w[j, m, k] = v[k]
+    b = (nominal[m, 0], nominal[m, 1], nominal[m, 2], nominal[m, 3])
+    angle[j, m] = _angle_any_norm(x, b)
+
+
+@numba.njit(inline="always", error_model="numpy")
+def fill_row(dest, cols, j, scale, value, lo, hi):
+    """dest[i] for samples lo + i < hi: cols[j, lo + i] · scale, or ``value`` if j < 0."""
+    if j < 0:
+        dest[: hi - lo] = value
+    else:
+        row = cols[j]
+        for i in range(hi - lo):
+            dest[i] = row[lo + i] * scale
+
+
+_TINY = float(np.finfo(float).tiny)
+
+
+@numba.njit(inline="always", error_model="numpy")
+def refused_rows(inertia, w, n):
+    """:func:`_refused` of the first n samples of moments and rates stored by row."""
+    refused = 0
+    for i in range(n):
+        m = (inertia[0, i], inertia[1, i], inertia[2, i])
+        refused += _refused_one(m, (w[0, i], w[1, i], w[2, i]), _TINY, MIN_MOMENT_RATIO)
+    return refused > 0
+
+
+def _scene_chunk(q, w, inertia, params, lo, hi, t0, h, marks, out):
     q0, q1, q2, q3 = q[0, lo:hi], q[1, lo:hi], q[2, lo:hi], q[3, lo:hi]
     w0, w1, w2 = w[0, lo:hi], w[1, lo:hi], w[2, lo:hi]
     i0, i1, i2 = inertia[0, lo:hi], inertia[1, lo:hi], inertia[2, lo:hi]
@@ -291,27 +345,51 @@ def _scene_chunk(q, w, inertia, params, lo, hi, t0, h, marks, out_q, out_w):
                 w2[i] = v[2]
         done = marks[m]
         for i in range(hi - lo):
-            out_q[m, 0, lo + i] = q0[i]
-            out_q[m, 1, lo + i] = q1[i]
-            out_q[m, 2, lo + i] = q2[i]
-            out_q[m, 3, lo + i] = q3[i]
-            out_w[m, 0, lo + i] = w0[i]
-            out_w[m, 1, lo + i] = w1[i]
-            out_w[m, 2, lo + i] = w2[i]
+            record(out, m, lo + i, (q0[i], q1[i], q2[i], q3[i]), (w0[i], w1[i], w2[i]))  # noqa: F821
 
 
-def _scene_soa(q, w, inertia, params, t0, h, marks, out_q, out_w, chunk):
+def _scene_soa(q, w, inertia, params, t0, h, marks, out, chunk):
     n = q.shape[1]
     nchunks = (n + chunk - 1) // chunk
     for c in prange(nchunks):
         lo = c * chunk
-        chunk_loop(q, w, inertia, params, lo, min(n, lo + chunk), t0, h, marks, out_q, out_w)  # noqa: F821
+        chunk_loop(q, w, inertia, params, lo, min(n, lo + chunk), t0, h, marks, out)  # noqa: F821
+
+
+def _sweep_soa(cols, src, scale, base, params, t0, h, marks, out, chunk):
+    """The samples of ``cols`` (rows, n) through the chunk loop, into ``out``; False if a
+    sample's inputs may be refused (see :func:`_refused`), with ``out`` then unfinished.
+
+    Sample i's moments and rate are ``base``'s (moments, rate, orientation: 10 numbers)
+    but where ``src[k] >= 0``: there cols[src[k], i] · scale[k]. They are made a chunk
+    at a time in small arrays that stay in the cache, and the outputs go straight into
+    ``out``'s arrays, whose first axis is the sample.
+    """
+    n = cols.shape[1]
+    q, w = np.empty((4, chunk)), np.empty((3, chunk))
+    inertia, rows = np.empty((3, chunk)), np.empty((params.size, chunk))
+    for j in range(params.size):
+        rows[j, :] = params[j]
+    out_q, out_w, angle, nominal = out
+    for lo in range(0, n, chunk):
+        hi = min(n, lo + chunk)
+        for k in range(6):
+            fill_row(inertia[k] if k < 3 else w[k - 3], cols, src[k], scale[k], base[k], lo, hi)
+        for k in range(4):
+            q[k, : hi - lo] = base[6 + k]
+        if refused_rows(inertia, w, hi - lo):
+            return False
+        part = (out_q[lo:hi], out_w[lo:hi], angle[lo:hi], nominal)
+        chunk_loop(q, w, inertia, rows, 0, hi - lo, t0, h, marks, part)  # noqa: F821
+    return True
 
 
 _SCENE_LOOPS: dict = {}
 
 
-def _compiled_scene_loop(integrator, problem, path: str, parallel: bool = True, stored=True):
+def _compiled_scene_loop(
+    integrator, problem, path: str, parallel: bool = True, stored=True, sweep=False
+):
     """The batched loop for one specialisation, compiled once per installation.
 
     Thread-safe: made and loaded under :data:`ga_rotors._modules.GENERATED_LOCK` (the
@@ -325,13 +403,14 @@ def _compiled_scene_loop(integrator, problem, path: str, parallel: bool = True, 
     which numba's default threading layer does not allow for parallel loops.
     ``stored=False`` passes each body's moments alone as ``inertia`` (the coefficients
     divided out in every stage): for a step template that unpacks ``inertia`` into three
-    names, which a 9-tuple cannot be.
+    names, which a 9-tuple cannot be. ``sweep=True`` gives :func:`_sweep_soa` instead,
+    the chunk loop recording in a sweep store's layout (:func:`record_store`), serial.
     """
     with _modules.GENERATED_LOCK:
-        return _load_scene_loop(integrator, problem, path, parallel, stored)
+        return _load_scene_loop(integrator, problem, path, parallel, stored, sweep)
 
 
-def _load_scene_loop(integrator, problem, path: str, parallel: bool, stored: bool):
+def _load_scene_loop(integrator, problem, path: str, parallel: bool, stored: bool, sweep: bool):
     import importlib.util
     import inspect
 
@@ -344,7 +423,7 @@ def _load_scene_loop(integrator, problem, path: str, parallel: bool, stored: boo
     # gen_batch-<the single-run module's stem without gen_>: the cache's own naming
     # (version and digest last), so `ga-rotors cache` lists, prunes and clears it too.
     stem = gen.removeprefix("_ga_rotors_gen_")
-    kind = ("par" if parallel else "") + ("" if stored else "div")
+    kind = ("sweep" if sweep else "par" if parallel else "") + ("" if stored else "div")
     name = f"_ga_rotors_gen_batch{kind}-{stem}"
     found = _SCENE_LOOPS.get(name)
     if found is not None:
@@ -357,15 +436,22 @@ def _load_scene_loop(integrator, problem, path: str, parallel: bool, stored: boo
             "import sys\n\nimport numpy as np\nfrom numba import prange\n\n"
             "from ga_rotors._jit import jit\n"
             "from ga_rotors._kernels import euler_coefficients\n"
-            "from ga_rotors.ensemble import STORED, inline_copy\n\n"
-            f"step = inline_copy(sys.modules[{gen!r}].step, {replace})\n\n\n"
+            "from ga_rotors.ensemble import (\n"
+            "    STORED, fill_row, inline_copy, record_states, record_store, refused_rows\n"
+            ")\n\n"
+            f"step = inline_copy(sys.modules[{gen!r}].step, {replace})\n"
+            f"record = {'record_store' if sweep else 'record_states'}\n\n\n"
             f"@jit(cache={cache}, inline='always')\n{_body_inertia_source(stored)}\n\n"
             f"@jit(cache={cache}, inline='always')\n{chunk_params}\n\n"
             f"@jit(cache={cache}, inline='always')\n{body_params}\n\n"
             f"@jit(cache={cache})\n{inspect.getsource(_scene_chunk)}\n\n"
             "chunk_loop = _scene_chunk\n\n\n"
-            f"@jit(cache={cache}, parallel={parallel})\n{inspect.getsource(_scene_soa)}\n\n"
-            "loop = _scene_soa\n"
+            + (
+                f"@jit(cache={cache})\n{inspect.getsource(_sweep_soa)}\n\nloop = _sweep_soa\n"
+                if sweep
+                else f"@jit(cache={cache}, parallel={parallel})\n{inspect.getsource(_scene_soa)}"
+                "\n\nloop = _scene_soa\n"
+            )
         )
 
     file = None if spec.path is None else spec.path.with_name(f"{name[len('_ga_rotors_') :]}.py")
@@ -481,25 +567,38 @@ _CHECKED: dict = {}
 _ELEMENT = re.compile(r"^(?P<key>.*)\[(?P<index>[0-2])\]$")
 
 
-def _fast(scene, changes: dict, n: int):
-    """Vectorised inputs, or None when a key needs a Scene per sample."""
+def _fast_targets(scene, keys) -> list | None:
+    """For each key, (0 for the moments or 1 for the rate, component or None for all
+    three, scale): the vectorised mapping of :data:`FAST_KEYS`; None when a key needs a
+    Scene per sample."""
     d = scene.data
     if scene.principal_rotation != (1.0, 0.0, 0.0, 0.0) or scene.gravity_index is not None:
         return None
-    moments = _repeat(scene.body.moments, n)
-    omega = _repeat(scene.angular_velocity, n)
     av = d["initial"]["angular_velocity"]
-    for key, values in changes.items():
+    out = []
+    for key in keys:
         m = _ELEMENT.match(key)
         base, index = (m["key"], int(m["index"])) if m else (key, None)
         if base == "body.moments" and "moments" in d["body"]:
-            target, scale = moments, 1.0
+            out.append((0, index, 1.0))
         elif base == "initial.angular_velocity.body" and "body" in av:
             from .scene.schema import RATE_UNITS
 
-            target, scale = omega, RATE_UNITS[av["units"]]
+            out.append((1, index, RATE_UNITS[av["units"]]))
         else:
             return None
+    return out
+
+
+def _fast(scene, changes: dict, n: int):
+    """Vectorised inputs, or None when a key needs a Scene per sample."""
+    targets = _fast_targets(scene, changes)
+    if targets is None:
+        return None
+    moments = _repeat(scene.body.moments, n)
+    omega = _repeat(scene.angular_velocity, n)
+    for values, (which, index, scale) in zip(changes.values(), targets, strict=True):
+        target = (moments, omega)[which]
         if index is None:
             target[:] = values.reshape(n, 3) * scale
         else:
@@ -507,6 +606,22 @@ def _fast(scene, changes: dict, n: int):
     if _refused(moments, omega, np.finfo(float).tiny, MIN_MOMENT_RATIO):
         return None  # let the per-sample path name the bad value
     return moments, omega
+
+
+@numba.njit(inline="always", error_model="numpy")
+def _refused_one(m, v, tiny, ratio):
+    """Whether the moments ``m`` and rate ``v`` of a sample are not finite, or the moments
+    may be refused: not normal floats, too thin a body, outside the triangle (the body's
+    own conditions). Every condition evaluated, without a branch (see :func:`_refused`)."""
+    a, b, c = m
+    w0, w1, w2 = v
+    finite = (isfinite(a) & isfinite(b) & isfinite(c)
+              & isfinite(w0) & isfinite(w1) & isfinite(w2))  # fmt: skip
+    s = a + b + c
+    lo, hi = min(a, min(b, c)), max(a, max(b, c))
+    thin = (lo < tiny) | (hi > 1.0 / tiny) | (lo / hi < ratio)  # as the body's
+    outside = (a > s - a) | (b > s - b) | (c > s - c)
+    return (not finite) | thin | outside
 
 
 @jit
@@ -523,15 +638,8 @@ def _refused(moments, omega, tiny, ratio):
     """
     refused = 0
     for i in range(moments.shape[0]):
-        a, b, c = moments[i, 0], moments[i, 1], moments[i, 2]
-        w0, w1, w2 = omega[i, 0], omega[i, 1], omega[i, 2]
-        finite = (isfinite(a) & isfinite(b) & isfinite(c)
-                  & isfinite(w0) & isfinite(w1) & isfinite(w2))  # fmt: skip
-        s = a + b + c
-        lo, hi = min(a, min(b, c)), max(a, max(b, c))
-        thin = (lo < tiny) | (hi > 1.0 / tiny) | (lo / hi < ratio)  # as the body's
-        outside = (a > s - a) | (b > s - b) | (c > s - c)
-        refused += (not finite) | thin | outside
+        m = (moments[i, 0], moments[i, 1], moments[i, 2])
+        refused += _refused_one(m, (omega[i, 0], omega[i, 1], omega[i, 2]), tiny, ratio)
     return refused > 0
 
 
@@ -699,27 +807,13 @@ def run_samples(
     >>> run.q.shape, run.t.tolist(), bool(np.array_equal(run.q[:, 0], run.q[:, 1]))
     ((2, 2, 4), [0.5, 1.0], True)
     """
-    from .integrators import TemplateIntegrator, base
-    from .paths import get as get_path
+    from .integrators import base
 
     scene = samples.scene
+    method, path, module = _method_and_path(scene)
     spec_method = scene.data["integrator"]
-    method = base.get(spec_method["method"])
-    if not isinstance(method, TemplateIntegrator):
-        raise InputError(
-            f"{scene.file}: integrator.method: ensembles run fixed-step methods; "
-            f"{spec_method['method']!r} is adaptive"
-        )
-    path = scene.paths[0]
-    pspec = get_path(path)
-    if pspec.dim != 4:
-        raise InputError(
-            f"{scene.file}: integrator.paths: ensembles integrate the quaternion or rotor "
-            f"path; the scene's first path is {path!r}"
-        )
     t0, h, nsteps = scene.data["time"]["start"], scene.step, scene.steps
     marks = _marks(times, t0, h, nsteps, scene.file)
-    module = pspec.load()
     n = len(samples)
     x = np.ascontiguousarray(module.initial_state(samples.orientation).T)
     # a copy: the loops integrate ω in place, and scene_samples stores it in their layout
@@ -736,7 +830,7 @@ def run_samples(
         if mine is not None:  # this set's samples gathered, their outputs scattered back
             ins = tuple(np.ascontiguousarray(a[:, mine]) for a in ins)
             outs = (np.empty((marks.size, 4, mine.size)), np.empty((marks.size, 3, mine.size)))
-        call = (*ins, float(t0), float(h), marks, *outs, int(chunk))
+        call = (*ins, float(t0), float(h), marks, outs, int(chunk))
         try:
             _compiled_scene_loop(method, problem, path, parallel)(*call)
         except numba.core.errors.TypingError:  # a step that unpacks inertia: see stored=False
@@ -746,6 +840,154 @@ def run_samples(
     q = module.quaternions(out_x.transpose(0, 2, 1))
     w = out_w.transpose(0, 2, 1)
     return EnsembleRun(t0 + marks * h, np.ascontiguousarray(q), np.ascontiguousarray(w))
+
+
+def _method_and_path(scene):
+    """The scene's integrator, first path and that path's module, as an ensemble runs them."""
+    from .integrators import TemplateIntegrator, base
+    from .paths import get as get_path
+
+    spec_method = scene.data["integrator"]
+    method = base.get(spec_method["method"])
+    if not isinstance(method, TemplateIntegrator):
+        raise InputError(
+            f"{scene.file}: integrator.method: ensembles run fixed-step methods; "
+            f"{spec_method['method']!r} is adaptive"
+        )
+    path = scene.paths[0]
+    pspec = get_path(path)
+    if pspec.dim != 4:
+        raise InputError(
+            f"{scene.file}: integrator.paths: ensembles integrate the quaternion or rotor "
+            f"path; the scene's first path is {path!r}"
+        )
+    return method, path, pspec.load()
+
+
+@dataclass
+class _SweepPlan:
+    """What :func:`run_columns` hands :func:`_sweep_soa` for one scene and varied keys."""
+
+    scene: object  # kept alive: plans are found by id(scene)
+    loop: object
+    compile: object  # (stored) -> the loop; stored=False if the step unpacks inertia
+    src: np.ndarray
+    scale: np.ndarray
+    base: np.ndarray
+    params: np.ndarray
+    t0: float
+    h: float
+    marks: np.ndarray
+
+
+#: (id(scene), layout, times) -> _SweepPlan, or None where the sweep's path stays.
+_PLANS: dict = {}
+
+
+def _sweep_plan(scene, layout: tuple, times, cols) -> _SweepPlan | None:
+    from .integrators import base
+
+    targets = _fast_targets(scene, [key for key, _ in layout])
+    if targets is None or scene.paths[0] != "quaternion":
+        return None  # record_store takes the state for the quaternion it is
+    try:
+        method, path, _ = _method_and_path(scene)
+    except InputError:
+        return None  # run_samples says it
+    src, scale = np.full(6, -1, dtype=np.int64), np.ones(6)
+    row = 0
+    for (_, width), (which, index, factor) in zip(layout, targets, strict=True):
+        if width != (3 if index is None else 1):
+            return None
+        for k in range(3) if index is None else (index,):
+            src[3 * which + k], scale[3 * which + k] = row + (k if index is None else 0), factor
+        row += width
+    start = np.array([*scene.body.moments, *scene.angular_velocity, *scene.orientation])
+    terms = tuple(scene.torques())
+    lower = scene.data["integrator"].get("accept_lower_order", False)
+    problem = base.Problem(scene.body.moments, terms, accept_lower_order=lower)
+
+    def compile(stored: bool):
+        return _compiled_scene_loop(method, problem, path, False, stored, sweep=True)
+
+    t0, h = scene.data["time"]["start"], scene.step
+    plan = _SweepPlan(
+        scene, compile(True), compile, src, scale, start, np.ascontiguousarray(_params(scene)),
+        float(t0), float(h), _marks(times, t0, h, scene.steps, scene.file),
+    )  # fmt: skip
+    # the mapping must be the scene's own: checked on the first and last samples
+    changes, row = {}, 0
+    for key, width in layout:
+        changes[key] = cols[row] if width == 1 else cols[row : row + width].T
+        row += width
+    for i in {0, cols.shape[1] - 1}:
+        one = _sample_scene(scene, changes, i)
+        got = [plan.base[k] if src[k] < 0 else cols[src[k], i] * scale[k] for k in range(6)]
+        if tuple(got[:3]) != one.body.moments or not np.array_equal(got[3:], one.angular_velocity):
+            return None
+    return plan
+
+
+def run_columns(scene, layout, cols, times, nominal):
+    """Integrate the samples whose varied values are ``cols``, outputs in a store's layout.
+
+    The compiled pass of a sweep's chunk: each sample's inputs made from its values in
+    the loop, integrated by :func:`run_samples`' loop (the same step, so the same numbers
+    bit for bit), its states and its angle from ``nominal`` recorded straight into arrays
+    whose first axis is the sample.
+
+    Parameters
+    ----------
+    scene : Scene
+    layout : tuple of (key, width)
+        The varied keys in the order of the rows of ``cols``, each with its number of rows
+        (1, or 3 for a whole vector).
+    cols : ndarray, shape (rows, n)
+    times : sequence of float or None
+        As :func:`run_samples`' ``times``.
+    nominal : ndarray, shape (k, 4)
+        The orientation the angle is measured from, at each output time.
+
+    Returns
+    -------
+    (q (n, k, 4), w (n, k, 3), angle (n, k)), or None when the pass does not apply: keys
+    outside :data:`FAST_KEYS`, a scene they cannot be mapped on in one pass (see
+    :func:`scene_samples`), a path other than the quaternion's, or a sample whose values
+    the scene may refuse. :func:`scene_samples` and :func:`run_samples` then do it (and
+    name a bad value).
+
+    Examples
+    --------
+    >>> s = scene_samples("intermediate_axis_flip", n=1)
+    >>> scene = s.scene.replace({"integrator.paths": ["quaternion"]})
+    >>> cols = np.array([[10.0, 10.5]])
+    >>> nominal = run_samples(scene_samples(scene, n=1)).q[:, 0]
+    >>> q, w, angle = run_columns(scene, (("initial.angular_velocity.body[1]", 1),), cols,
+    ...                           None, nominal)
+    >>> q.shape, w[:, 0, 1].tolist(), angle.shape
+    ((2, 1, 4), [..., ...], (2, 1))
+    >>> run = run_samples(scene_samples(scene, {"initial.angular_velocity.body[1]": cols[0]}))
+    >>> bool(np.array_equal(q[:, 0], run.q[0]))
+    True
+    """
+    key = (id(scene), tuple(layout), None if times is None else tuple(np.atleast_1d(times)))
+    if key not in _PLANS or (_PLANS[key] is not None and _PLANS[key].scene is not scene):
+        _PLANS[key] = _sweep_plan(scene, tuple(layout), times, cols)
+    plan = _PLANS[key]
+    if plan is None:
+        return None
+    n, k = cols.shape[1], plan.marks.size
+    q, w, angle = np.empty((n, k, 4)), np.empty((n, k, 3)), np.empty((n, k))
+    out = (q, w, angle, np.ascontiguousarray(nominal, dtype=np.float64))
+    call = (cols, plan.src, plan.scale, plan.base, plan.params, plan.t0, plan.h, plan.marks)
+    try:
+        ok = plan.loop(*call, out, CHUNK)
+    except numba.core.errors.TypingError:  # a step that unpacks inertia: see stored=False
+        plan.loop = plan.compile(False)
+        ok = plan.loop(*call, out, CHUNK)
+    if not ok:
+        return None
+    return q, w, angle
 
 
 def _marks(times, t0: float, h: float, nsteps: int, file: str) -> np.ndarray:

@@ -215,7 +215,9 @@ def test_the_one_uniform_that_rounds_to_one_gives_a_finite_normal_draw(monkeypat
 
     k = np.array([[2.0**53 - 1]])
     assert ((k + 0.5) * 2.0**-53)[0, 0] == 1.0
-    monkeypatch.setattr(spec, "_uniforms", lambda seed, lo, hi, n: np.ones((hi - lo, n)))
+    # every 64-bit output all ones: k = x >> 11 = 2^53 - 1
+    top = np.uint64(2**64 - 1)
+    monkeypatch.setattr(spec, "_raw", lambda seed, lo, hi, n: np.full((hi - lo) * n, top))
     normal = load_sweep(SMALL).values(0, 2)["body.mass"]
     assert np.all(np.isfinite(normal)) and np.all(normal > 2.0 + 0.02 * 8)
     uniform = load_sweep(SMALL.replace("normal = [2.0, 0.02]", "uniform = [1.0, 3.0]"))

@@ -3,10 +3,14 @@
 The store is created whole first (in a staging directory, then renamed into place): every
 variable at its full size, chunked along ``sample`` as the sweep's ``chunk``, plus a
 ``chunk_done`` flag per chunk (:mod:`ga_rotors.sweep.store`). Each Dask task draws one
-chunk's values, builds its inputs, integrates it on the serial batched loop
-(:func:`ga_rotors.ensemble.run_samples`), reduces it (the angle from the nominal) and
-writes its blocks (raw chunk files: nothing to encode), and only then sets the chunk's
-flag. Running the same sweep into the same store again skips the flagged chunks: an
+chunk's values, integrates them and reduces them (the angle from the nominal), writes its
+blocks (raw chunk files: nothing to encode), and only then sets the chunk's flag. Where
+the varied keys are a body's moments and rates on the quaternion path, one compiled pass
+(:func:`ga_rotors.ensemble.run_columns`) makes each sample's inputs from its values,
+integrates it and records its states and angle in the store's layout; otherwise the
+chunk's inputs are built (:func:`ga_rotors.ensemble.scene_samples`, a Scene per sample
+where a key needs it), integrated on the serial batched loop
+(:func:`ga_rotors.ensemble.run_samples`) and reduced. Both give the same numbers. Running the same sweep into the same store again skips the flagged chunks: an
 interrupted sweep resumes from its finished chunks, and a chunk cut off halfway is done
 again. A store holds one sweep (its digest is an attribute); another sweep is refused.
 
@@ -37,7 +41,6 @@ import tempfile
 import threading
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, field
-from math import atan2, inf, nan
 from pathlib import Path
 
 import numpy as np
@@ -93,12 +96,23 @@ def _bounds(sweep: Sweep, c: int) -> tuple[int, int]:
     return c * sweep.chunk, min(sweep.size, (c + 1) * sweep.chunk)
 
 
-def _inputs(sweep: Sweep, lo: int, hi: int):
-    """The drawn values of samples ``lo`` to ``hi - 1`` and their kernel inputs."""
-    from ..ensemble import scene_samples
+def _integrate(task: _Task, sweep: Sweep, lo: int, hi: int, columns=None):
+    """(values, q, w, angle) of samples ``lo`` to ``hi - 1``, in the store's layout.
 
-    values = sweep.values(lo, hi)
-    return values, scene_samples(sweep.scene, values, n=hi - lo)
+    ``columns`` is :meth:`Sweep.columns` of those samples when made beforehand. In one
+    compiled pass from the values (:func:`ga_rotors.ensemble.run_columns`) where it
+    applies; otherwise each sample's inputs are built (:func:`~ga_rotors.ensemble.
+    scene_samples`, which names a bad value), integrated and reduced in turn. Both give
+    the same numbers.
+    """
+    from ..ensemble import run_columns, run_samples, scene_samples
+
+    cols, values = sweep.columns(lo, hi) if columns is None else columns
+    done = run_columns(sweep.scene, sweep.rows, cols, sweep.times, task.nominal)
+    if done is not None:
+        return (values, *done)
+    run = run_samples(scene_samples(sweep.scene, values, n=hi - lo), sweep.times, parallel=False)
+    return values, run.q.transpose(1, 0, 2), run.w.transpose(1, 0, 2), _angle(task, run)
 
 
 def _nominal(sweep: Sweep) -> np.ndarray:
@@ -109,15 +123,16 @@ def _nominal(sweep: Sweep) -> np.ndarray:
     return run_samples(scene_samples(sweep.scene, n=1), sweep.times, parallel=False).q[:, 0]
 
 
-def run_chunk(task: _Task, c: int, wait: bool = True, inputs=None) -> int:
+def run_chunk(task: _Task, c: int, wait: bool = True, columns=None) -> int:
     """Integrate chunk ``c`` of the sweep and write it into the store; return ``c``.
 
     ``wait=False`` returns once the chunk is integrated and leaves its reduction and
     writing to this process's writer thread, which does them while the next chunk is
     integrated (the write is mostly waiting on the disk, the integration on the CPU); it
     first waits for the previous chunk's write, so at most one chunk is pending.
-    :func:`flush_writes` waits for the last one. ``inputs`` are the chunk's values and
-    kernel inputs when they were made beforehand (by :func:`run_sweep` in this process).
+    :func:`flush_writes` waits for the last one. ``columns`` are the chunk's values
+    (:meth:`Sweep.columns`) when they were drawn beforehand (by :func:`run_sweep` in
+    this process).
 
     Examples
     --------
@@ -128,12 +143,8 @@ def run_chunk(task: _Task, c: int, wait: bool = True, inputs=None) -> int:
     >>> open_sweep(run_sweep(text, out, client="sync")).sizes["sample"]
     4
     """
-    from ..ensemble import run_samples
-
     sweep = _sweep(task)
-    values, samples = inputs if inputs is not None else _inputs(sweep, *_bounds(sweep, c))
-    run = run_samples(samples, sweep.times, parallel=False)
-    job = functools.partial(_finish, task, c, run, values)
+    job = functools.partial(_finish, task, c, *_integrate(task, sweep, *_bounds(sweep, c), columns))
     if wait:
         job()
     else:
@@ -148,16 +159,16 @@ def _angle(task: _Task, run) -> np.ndarray:
     return angle
 
 
-def _finish(task: _Task, c: int, run, values: dict, angle: np.ndarray | None = None) -> None:
-    """Reduce chunk ``c`` (unless its ``angle`` is given) and write its blocks, then its flag.
+def _finish(task: _Task, c: int, values: dict, q, w, angle) -> None:
+    """Write chunk ``c``'s blocks (each with the sample first), then its flag.
 
     Each block covers one whole chunk of its variable, so tasks never share a chunk; the
     flag goes last: the chunk counts as done only once all of it is written.
     """
     blocks = {
-        "q": run.q.transpose(1, 0, 2),  # (sample, time, 4)
-        "w": run.w.transpose(1, 0, 2),
-        "angle_from_nominal": _angle(task, run) if angle is None else angle,
+        "q": q,  # (sample, time, 4)
+        "w": w,
+        "angle_from_nominal": angle,
         **{f"value_{j}": v for j, v in enumerate(values.values())},
     }
     blocks["chunk_done"] = np.ones(1, dtype=np.int8)
@@ -176,23 +187,17 @@ def _write_error(store, exc: OSError, what: str) -> InputError:
 
 @jit
 def _angles(q, nominal, out):
-    """out[i, j] = geodesic angle of sample i (q[j, i], times first) from nominal[j].
+    """out[i, j] = the angle of sample i (q[j, i], times first) from nominal[j].
 
-    :func:`ga_rotors._kernels.geodesic_angle`'s 2·atan2(|vec d|, |scalar d|) of
-    d = a* ⊗ b, which does not depend on the norms of a and b (d scales with them): an
+    :func:`ga_rotors._kernels.angle_any_norm`: it does not depend on the norms, so an
     integrator that lets the norm drift (RK4 over a long or fast run) still has its
     angle, where :func:`ga_rotors.quaternion.distance` would refuse the whole chunk. A
-    sample that is zero or stopped being finite gets NaN. |vec d| is ``qnorm``'s (a square
-    root of the sum of squares, scaled only where that under- or overflows) rather than
-    two ``hypot`` calls: within an ulp, and 7x faster (100 ns a sample was most of a
-    chunk's reduction).
+    sample that is zero or stopped being finite gets NaN.
     """
     for j in range(q.shape[0]):
         b = (nominal[j, 0], nominal[j, 1], nominal[j, 2], nominal[j, 3])
         for i in range(q.shape[1]):
-            d = K.qmul(K.qconj((q[j, i, 0], q[j, i, 1], q[j, i, 2], q[j, i, 3])), b)
-            v, s = K.qnorm((0.0, d[1], d[2], d[3])), abs(d[0])
-            out[i, j] = 2.0 * atan2(v, s) if 0.0 < v + s < inf else nan
+            out[i, j] = K.angle_any_norm((q[j, i, 0], q[j, i, 1], q[j, i, 2], q[j, i, 3]), b)
 
 
 #: This process's writer thread and the write it has pending (at most one).
@@ -373,7 +378,7 @@ class _Pieces:
 
     def __init__(self, count: int):
         self.left = count
-        self.done: dict[int, tuple] = {}  # first sample -> (values, run, angle)
+        self.done: dict[int, tuple] = {}  # first sample -> (values, q, w, angle)
         self.lock = threading.Lock()
 
 
@@ -387,30 +392,23 @@ def _run_part(task: _Task, c: int, first: int, end: int, pieces: _Pieces | None,
     pieces is the chunk made at once, bit for bit. ``ready()`` returns once the store
     exists (it is made while the first chunks integrate) and raises what making it raised.
     """
-    from ..ensemble import EnsembleRun, run_samples
-
     sweep = _sweep(task)
     start = c * sweep.chunk
-    values, samples = _inputs(sweep, start + first, start + end)
-    run = run_samples(samples, sweep.times, parallel=False)
     # reduced here, so that the pieces of the last chunks reduce side by side and the
     # writer thread, which the end of the sweep waits for, only writes
-    angle = _angle(task, run)
+    done = _integrate(task, sweep, start + first, start + end)
     if pieces is not None:
         with pieces.lock:
-            pieces.done[first] = (values, run, angle)
+            pieces.done[first] = done
             pieces.left -= 1
             if pieces.left:
                 return False
         parts = [pieces.done[k] for k in sorted(pieces.done)]
         values = {key: np.concatenate([p[0][key] for p in parts]) for key in parts[0][0]}
-        q = np.concatenate([p[1].q for p in parts], axis=1)
-        w = np.concatenate([p[1].w for p in parts], axis=1)
-        run = EnsembleRun(run.t, q, w)
-        angle = np.concatenate([p[2] for p in parts])
+        done = (values, *(np.concatenate([p[k] for p in parts]) for k in (1, 2, 3)))
     ready()
     # written on this process's writer thread while this one integrates on
-    _write_behind(functools.partial(_finish, task, c, run, values, angle))
+    _write_behind(functools.partial(_finish, task, c, *done))
     return True
 
 
@@ -621,16 +619,16 @@ def run_sweep(
         # the GIL).
         prepare = ThreadPoolExecutor(1, thread_name_prefix="ga_rotors-inputs")
         try:
-            ahead = prepare.submit(_inputs, sweep, *_bounds(sweep, todo[0]))
+            ahead = prepare.submit(sweep.columns, *_bounds(sweep, todo[0]))
             if not created:
                 _create(sweep, store, nominal)
             if progress is not None:
                 progress(finished, total)
             for i, c in enumerate(todo):
-                inputs = ahead.result()
+                columns = ahead.result()
                 if i + 1 < len(todo):
-                    ahead = prepare.submit(_inputs, sweep, *_bounds(sweep, todo[i + 1]))
-                run_chunk(task, c, wait=False, inputs=inputs)
+                    ahead = prepare.submit(sweep.columns, *_bounds(sweep, todo[i + 1]))
+                run_chunk(task, c, wait=False, columns=columns)
                 finished += 1
                 if progress is not None:
                     progress(finished, total)

@@ -36,8 +36,10 @@ import tomllib
 from dataclasses import dataclass
 from pathlib import Path
 
+import numba
 import numpy as np
 
+from .._jit import jit
 from ..errors import InputError, SceneError
 from ..scene.reader import Reader, join
 
@@ -121,6 +123,12 @@ class Sweep:
         return [k for k, _ in self.grid] + [k for k, _, _ in self.draws]
 
     @property
+    def rows(self) -> tuple[tuple[str, int], ...]:
+        """Each varied key with its number of rows in :meth:`columns` (3 for a vector)."""
+        widths = [int(np.prod(v.shape[1:])) for _, v in self.grid] + [1] * len(self.draws)
+        return tuple(zip(self.keys, widths, strict=True))
+
+    @property
     def chunks(self) -> int:
         return -(-self.size // self.chunk)
 
@@ -130,50 +138,106 @@ class Sweep:
 
     def values(self, lo: int, hi: int) -> dict[str, np.ndarray]:
         """Each varied key's values for samples ``lo`` to ``hi - 1``."""
-        s = np.arange(lo, hi, dtype=np.int64)
+        return self.columns(lo, hi)[1]
+
+    def columns(self, lo: int, hi: int) -> tuple[np.ndarray, dict[str, np.ndarray]]:
+        """The values of samples ``lo`` to ``hi - 1`` as one array, and by key.
+
+        ``cols`` (rows, n) holds one row per varied number, in the order of :attr:`keys`
+        (a key whose values are vectors takes one row per component); the dict gives each
+        key's values as views of it, what :meth:`values` returns.
+
+        Examples
+        --------
+        >>> s = load_sweep('[sweep]\\nscene = "heavy_top"\\n[grid]\\n"body.mass" = [1.0, 2.0]')
+        >>> cols, values = s.columns(0, 2)
+        >>> cols.tolist(), values["body.mass"].tolist()
+        ([[1.0, 2.0]], [1.0, 2.0])
+        """
+        n = hi - lo
+        widths = [width for _, width in self.rows]
+        cols = np.empty((sum(widths), n))
         out: dict[str, np.ndarray] = {}
+        row = 0
         if self.grid:
+            s = np.arange(lo, hi, dtype=np.int64)
             shape = [len(v) for _, v in self.grid]
             index = np.unravel_index(s // self.samples, shape)
-            for (key, v), idx in zip(self.grid, index, strict=True):
-                out[key] = v[idx]
+            for (key, v), idx, width in zip(self.grid, index, widths, strict=False):
+                block = cols[row : row + width]
+                block[:] = v[idx].reshape(n, width).T
+                out[key] = block[0] if v.ndim == 1 else block.T.reshape(n, *v.shape[1:])
+                row += width
         if self.draws:
-            u = _uniforms(self.seed, lo, hi, len(self.draws))
-            for j, (key, dist, (a, b)) in enumerate(self.draws):
-                x = u[:, j].copy()  # contiguous, and then worked on in place
-                if dist == "normal":
-                    from scipy.special import ndtri
-
-                    np.minimum(x, _BELOW_ONE, out=x)  # u = 1 (once in 2⁵³): ndtri gives inf
-                    ndtri(x, out=x)
-                    x *= b
-                    x += a
-                else:
-                    x *= b - a
-                    x += a
-                out[key] = x
-        return out
+            kinds = np.array([dist == "normal" for _, dist, _ in self.draws])
+            a = np.array([p[0] for _, _, p in self.draws])
+            # the uniform's width as numpy computed it (b - a in float64), the normal's std
+            b = np.array([p[1] - p[0] if d == "uniform" else p[1] for _, d, p in self.draws])
+            draws = cols[row:]
+            _bind_ndtri()
+            _draw(_raw(self.seed, lo, hi, len(self.draws)), kinds, a, b, draws)
+            for j, (key, _, _) in enumerate(self.draws):
+                out[key] = draws[j]
+        return cols, out
 
 
-def _uniforms(seed: int, lo: int, hi: int, nvars: int) -> np.ndarray:
-    """Uniforms in (0, 1) for samples lo..hi-1, from their blocks' own streams.
+def _raw(seed: int, lo: int, hi: int, nvars: int) -> np.ndarray:
+    """The 64-bit outputs of samples lo..hi-1, ``nvars`` per sample, from their blocks' streams.
 
-    Sample s, variable j takes the (s mod BLOCK)·nvars + j-th 64-bit output x of its
-    block's PCG64 stream, as k = x >> 11 (what ``Generator.integers(0, 2**53)`` gives:
-    Lemire's method never rejects for a range of 2⁵³), then u = (k + ½)·2⁻⁵³ in float64:
-    in (0, 1], since k = 2⁵³ − 1 rounds to 1 (k + ½ rounds to even above 2⁵²), which a
-    normal draw takes as :data:`_BELOW_ONE` so its inverse CDF stays finite.
+    Sample s, variable j takes the (s mod BLOCK)·nvars + j-th 64-bit output of its
+    block's PCG64 stream, seeded by ``SeedSequence(seed, spawn_key=(block,))``.
     """
-    out = np.empty((hi - lo, nvars))
+    parts = []
     for block in range(lo // BLOCK, -(-hi // BLOCK)):
         start = block * BLOCK
         a, b = max(lo, start), min(hi, start + BLOCK)
         bits = np.random.PCG64(np.random.SeedSequence(seed, spawn_key=(block,)))
-        raw = bits.random_raw((b - start) * nvars)[(a - start) * nvars :]
-        out[a - lo : b - lo] = (raw >> np.uint64(11)).reshape(b - a, nvars)
-    out += 0.5
-    out *= 2.0**-53
-    return out
+        parts.append(bits.random_raw((b - start) * nvars)[(a - start) * nvars :])
+    return parts[0] if len(parts) == 1 else np.concatenate(parts)
+
+
+#: The symbol of scipy's ``ndtri`` (the C function behind ``scipy.special.ndtri``) for the
+#: compiled draws, registered with LLVM by :func:`_bind_ndtri` before they are compiled
+#: or loaded from the cache (the machine code calls it by this name, so it caches).
+_NDTRI = "ga_rotors_scipy_special_ndtri"
+_ndtri = numba.types.ExternalFunction(
+    _NDTRI, numba.types.float64(numba.types.float64, numba.types.intc)
+)
+_BOUND: list = []
+
+
+def _bind_ndtri() -> None:
+    if not _BOUND:
+        import llvmlite.binding as ll
+        from numba.extending import get_cython_function_address
+
+        # cython_special's ndtri(double, int skip_dispatch): the same C function as the ufunc
+        ll.add_symbol(_NDTRI, get_cython_function_address("scipy.special.cython_special", "ndtri"))
+        _BOUND.append(True)
+
+
+@jit
+def _draw(raw, normal, a, b, out):
+    """out[j, i]: draw j of sample i from its 64-bit output raw[i·nvars + j].
+
+    k = x >> 11 (what ``Generator.integers(0, 2**53)`` gives: Lemire's method never
+    rejects for a range of 2⁵³), u = (k + ½)·2⁻⁵³ in float64: in (0, 1], since
+    k = 2⁵³ − 1 rounds to 1 (k + ½ rounds to even above 2⁵²), which a normal draw takes
+    as :data:`_BELOW_ONE` so that its inverse CDF stays finite. Then a normal draw is
+    ndtri(u)·std + mean (scipy's own C function, so the numbers are ``scipy.special.ndtri``'s
+    bit for bit), a uniform one u·(high − low) + low (``b`` holds the width). The
+    operations and their order are those of the numpy expressions this replaces, one
+    rounding each: the numbers of every store written stay the same.
+    """
+    nvars = out.shape[0]
+    for j in range(nvars):
+        for i in range(out.shape[1]):
+            u = (float(raw[i * nvars + j] >> np.uint64(11)) + 0.5) * 2.0**-53
+            if normal[j]:
+                x = _ndtri(min(u, _BELOW_ONE), 0) * b[j]
+            else:
+                x = u * b[j]
+            out[j, i] = x + a[j]
 
 
 def load_sweep(source) -> Sweep:

@@ -1,0 +1,215 @@
+"""The sweep's compiled pass per chunk (draws, inputs, loop, angle, store layout in one go)
+against the per-sample path it replaces where it applies: the same numbers, bit for bit."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+xr = pytest.importorskip("xarray")
+pytest.importorskip("zarr")
+pytest.importorskip("distributed")
+
+from ga_rotors import ensemble  # noqa: E402
+from ga_rotors.errors import SceneError  # noqa: E402
+from ga_rotors.sweep import (  # noqa: E402
+    load_sweep,
+    open_sweep,
+    run_sweep,
+    spec,
+)
+from ga_rotors.sweep import run as sweep_run  # noqa: E402
+
+#: A sweep the compiled pass takes: moments and body rates varied, the quaternion path.
+FAST = """
+[sweep]
+scene = "intermediate_axis_flip"
+samples = 7
+seed = 3
+chunk = 5
+times = [0.01, 0.03]
+
+[set]
+"time.duration" = 0.03
+"integrator.paths" = ["quaternion"]
+"body" = {moments = [1.0, 2.0, 2.5]}
+
+[grid]
+"initial.angular_velocity.body[1]" = [9.0, 10.0]
+
+[[draw]]
+key = "body.moments[0]"
+normal = [1.0, 0.01]
+
+[[draw]]
+key = "initial.angular_velocity.body[2]"
+uniform = [-0.5, 0.5]
+"""
+
+VARIANTS = {
+    "grid and draws": FAST,
+    # a whole vector per grid point, rates in deg/s (scaled in the pass)
+    "vectors, deg/s": FAST.replace(
+        '"initial.angular_velocity.body[1]" = [9.0, 10.0]',
+        '"initial.angular_velocity.body" = [[1.0, 500.0, 2.0], [0.0, 600.0, 0.0]]\n'
+        '"body.moments" = [[1.0, 2.0, 2.5], [2.0, 2.0, 3.0]]',
+    )
+    .replace('key = "body.moments[0]"', 'key = "initial.angular_velocity.body[0]"')
+    .replace('"integrator.paths" = ["quaternion"]',
+             '"integrator.paths" = ["quaternion"]\n"initial.angular_velocity.units" = "deg/s"'),
+    # a declared torque: its parameters go into the loop as the batched kernel's do
+    "damping": FAST.replace('scene = "intermediate_axis_flip"', 'scene = "damped_top"').replace(
+        '"body" =', '"output.quantities" = ["energy"]\n"body" ='
+    ),
+    # one sample overflows (NaN from then on, no angle), one drifts off the unit norm
+    "blow-up": FAST.replace("[9.0, 10.0]", "[9.0, 900000.0, 300.0]")
+    .replace('"time.duration" = 0.03', '"time.duration" = 0.1')
+    .replace("times = [0.01, 0.03]", "times = [0.05, 0.1]"),
+}  # fmt: skip
+
+
+@pytest.fixture
+def per_sample(monkeypatch):
+    """Turns the compiled pass off: every chunk takes the per-sample path."""
+
+    def off():
+        monkeypatch.setattr(ensemble, "run_columns", lambda *args: None)
+
+    return off
+
+
+@pytest.fixture
+def used(monkeypatch):
+    """Counts the chunks (and pieces) the compiled pass did."""
+    calls = []
+    real = ensemble.run_columns
+
+    def spy(*args):
+        done = real(*args)
+        calls.append(done is not None)
+        return done
+
+    monkeypatch.setattr(ensemble, "run_columns", spy)
+    return calls
+
+
+def _files(store):
+    """Each chunk file's float64 numbers, as their bits, every NaN made the same one: a
+    state that overflowed holds NaN, whose sign bit the two loops' instructions may set
+    differently (it is no number; xarray reads both as NaN)."""
+    out = {}
+    for name in ("q", "w", "angle_from_nominal", "value_0", "value_1", "value_2"):
+        for p in sorted((store / name).glob("[0-9]*")):
+            x = np.frombuffer(p.read_bytes(), np.float64).copy()
+            x[np.isnan(x)] = np.nan
+            out[f"{name}/{p.name}"] = x.view(np.uint64).tolist()
+    return out
+
+
+@pytest.mark.parametrize("text", list(VARIANTS.values()), ids=list(VARIANTS))
+def test_the_compiled_pass_writes_the_store_the_per_sample_path_writes(
+    tmp_path, text, used, per_sample
+):
+    fused = run_sweep(text, tmp_path / "fused.zarr", client="sync")
+    assert used and all(used)  # every chunk in one pass
+    per_sample()
+    plain = run_sweep(text, tmp_path / "plain.zarr", client="sync")
+    a, b = _files(fused), _files(plain)
+    assert a.keys() == b.keys() and len(a) > 6
+    assert [k for k in a if a[k] != b[k]] == []
+    xr.testing.assert_identical(open_sweep(fused).load(), open_sweep(plain).load())
+
+
+def test_a_sample_of_the_compiled_pass_is_its_own_single_ensemble_run():
+    sweep = load_sweep(FAST)
+    cols, values = sweep.columns(0, sweep.size)
+    nominal = sweep_run._nominal(sweep)
+    q, w, angle = ensemble.run_columns(sweep.scene, sweep.rows, cols, sweep.times, nominal)
+    for i in (0, 5, sweep.size - 1):
+        one = {key: v[i : i + 1] for key, v in values.items()}
+        run = ensemble.run_samples(ensemble.scene_samples(sweep.scene, one), sweep.times)
+        assert np.array_equal(q[i], run.q[:, 0]) and np.array_equal(w[i], run.w[:, 0])
+        expected = np.empty((1, 2))
+        sweep_run._angles(run.q, nominal, expected)
+        assert np.array_equal(angle[i], expected[0])
+
+
+def test_threads_and_pieces_write_what_one_thread_writes(tmp_path, used, monkeypatch):
+    monkeypatch.setattr(sweep_run, "MIN_PIECE", 1)  # the last chunks cut between threads
+    text = FAST.replace("samples = 7", "samples = 20")
+    threads = run_sweep(text, tmp_path / "threads.zarr", workers=2)
+    one = run_sweep(text, tmp_path / "one.zarr", client="sync")
+    assert used and all(used)
+    assert _files(threads) == _files(one)
+
+
+def test_a_store_begun_by_the_per_sample_path_is_finished_by_the_compiled_pass(tmp_path, used):
+    # resuming a store that the other path (an older version) began gives the store
+    # either path writes whole
+    whole = _files(run_sweep(FAST, tmp_path / "whole.zarr", client="sync"))
+    out = tmp_path / "s.zarr"
+
+    def interrupt(done, total):
+        if done == 1:
+            raise KeyboardInterrupt
+
+    with pytest.MonkeyPatch.context() as m:
+        m.setattr(ensemble, "run_columns", lambda *args: None)
+        with pytest.raises(KeyboardInterrupt):
+            run_sweep(FAST, out, client="sync", progress=interrupt)
+    assert 0 < len(_files(out)) < len(whole)
+    used.clear()
+    run_sweep(FAST, out, client="sync")
+    assert used and all(used)
+    assert _files(out) == whole
+
+
+@pytest.mark.parametrize(
+    "change",
+    [
+        ('"integrator.paths" = ["quaternion"]', '"integrator.paths" = ["rotor"]'),
+        ('key = "body.moments[0]"', 'key = "body.mass"'),  # a Scene per sample
+    ],
+    ids=["rotor path", "other key"],
+)
+def test_outside_the_compiled_pass_the_per_sample_path_runs(tmp_path, used, change):
+    text = FAST.replace(*change)
+    out = run_sweep(text, tmp_path / "s.zarr", client="sync")
+    assert used and not any(used)
+    sweep = load_sweep(text)
+    values = sweep.values(0, sweep.size)
+    run = ensemble.run_samples(ensemble.scene_samples(sweep.scene, values), sweep.times)
+    assert np.array_equal(open_sweep(out)["q"].values, run.q.transpose(1, 0, 2))
+
+
+def test_a_value_the_body_refuses_is_named_by_the_per_sample_path(tmp_path, used):
+    # moments outside the triangle inequality for some samples: the pass hands the chunk
+    # back, and the per-sample path names the first bad sample and key as before
+    text = FAST.replace("normal = [1.0, 0.01]", "normal = [4.0, 0.5]")
+    with pytest.raises(SceneError, match=r"sample \d+: .*triangle"):
+        run_sweep(text, tmp_path / "s.zarr", client="sync")
+    assert used and not used[0]
+
+
+def test_the_draws_call_scipys_own_ndtri_bit_for_bit():
+    from scipy.special import ndtri
+
+    rng = np.random.default_rng(7)
+    raw = rng.integers(0, 2**64, size=10**6, dtype=np.uint64, endpoint=False)
+    # hard cases: k = 0 (the smallest u), 2^53 - 1 (u rounds to 1), the centre, and the
+    # ends of ndtri's central branch (exp(-2) and 1 - exp(-2)) and their neighbours
+    edges = [np.exp(-2), 1 - np.exp(-2), 0.5]
+    ks = [0, 1, 2**53 - 1, 2**53 - 2, 2**52]
+    for e in edges:
+        k = int(e * 2**53)
+        ks += [k - 1, k, k + 1]
+    raw[: len(ks)] = np.array(ks, dtype=np.uint64) << np.uint64(11)
+    out = np.empty((2, raw.size // 2))
+    spec._bind_ndtri()
+    normal = np.array([True, True])
+    spec._draw(raw, normal, np.array([0.0, -3.0]), np.array([1.0, 2.5]), out)
+    u = ((raw >> np.uint64(11)).astype(np.float64) + 0.5) * 2.0**-53
+    u = np.minimum(u, np.nextafter(1.0, 0.0)).reshape(-1, 2)
+    expected = np.stack([ndtri(u[:, 0]) * 1.0 + 0.0, ndtri(u[:, 1]) * 2.5 + -3.0])
+    assert np.all(np.isfinite(out))
+    assert np.array_equal(out.view(np.uint64), expected.view(np.uint64))
