@@ -32,8 +32,10 @@ Faults, and what each leaves:
 from __future__ import annotations
 
 import contextlib
+import errno
 import functools
 import hashlib
+import mmap
 import os
 import shutil
 import signal
@@ -47,10 +49,15 @@ from pathlib import Path
 from .errors import InputError
 
 __all__ = [
+    "DIRECT_ALIGN",
+    "KEPT_STAGING",
     "LOCK_TIMEOUT",
+    "DirectWriter",
     "atomic_write",
     "output_set",
+    "staging",
     "start_writeback",
+    "write_direct",
     "write_text",
     "write_together",
 ]
@@ -171,6 +178,252 @@ def start_writeback(path, start: int = 0, length: int = 0) -> bool:
         return call(fd, start, length, _SYNC_FILE_RANGE_WRITE) == 0
     finally:
         os.close(fd)
+
+
+#: Bytes that a direct write's memory address, file offset and length are multiples of
+#: (the page size: a multiple of every disk's logical block size Linux allows).
+DIRECT_ALIGN = 4096
+
+#: The ``O_DIRECT`` flag where the system has it (Linux), else 0: files are then written
+#: through the page cache.
+_O_DIRECT = getattr(os, "O_DIRECT", 0)
+
+#: What a file system that does not do direct writes answers (EINVAL: tmpfs and most).
+_NO_DIRECT = frozenset({errno.EINVAL, errno.EOPNOTSUPP})
+
+#: Largest page-aligned buffer a thread keeps between calls of :func:`write_direct` (a
+#: sweep's chunk file is usually a few MB; a larger file gets a buffer of its own, freed
+#: after its write, so a writer thread never holds more than this once it is done).
+KEPT_STAGING = 16 << 20
+
+#: Bytes of the page-aligned buffer a :class:`DirectWriter` collects before each write.
+DIRECT_BUFFER = 8 << 20
+
+_STAGING = threading.local()
+
+
+def _aligned_buffer(size: int) -> memoryview:
+    """``size`` bytes (a multiple of :data:`DIRECT_ALIGN`) of fresh page-aligned memory."""
+    return memoryview(mmap.mmap(-1, size))
+
+
+def staging(size: int):
+    """A page-aligned writable buffer of ``size`` bytes (a numpy ``uint8`` array), for
+    :func:`write_direct`: the calling thread's own, kept for its next call, unless it is
+    larger than :data:`KEPT_STAGING` (then a buffer of its own, freed with it).
+
+    Examples
+    --------
+    >>> buf = staging(5000)
+    >>> buf.size, buf.ctypes.data % DIRECT_ALIGN, buf.flags.writeable
+    (5000, 0, True)
+    """
+    import numpy as np
+
+    pages = -(-size // DIRECT_ALIGN) * DIRECT_ALIGN
+    if pages > KEPT_STAGING:
+        return np.frombuffer(_aligned_buffer(pages), np.uint8)[:size]
+    buf = getattr(_STAGING, "buffer", None)
+    if buf is None or buf.size < size:
+        buf = np.frombuffer(_aligned_buffer(max(pages, DIRECT_ALIGN)), np.uint8)
+        _STAGING.buffer = buf
+    return buf[:size]
+
+
+def _bytes(data) -> memoryview:
+    """The bytes of a C-contiguous buffer, as a flat memoryview."""
+    view = memoryview(data)
+    if view.format in ("B", "b", "c") and view.ndim == 1:
+        return view.cast("B")
+    if not view.c_contiguous:
+        raise ValueError("expected a C-contiguous buffer")
+    try:
+        return view.cast("B")
+    except TypeError:  # a format memoryview cannot cast (big-endian, structured): numpy can
+        import numpy as np
+
+        return memoryview(np.frombuffer(view, np.uint8))
+
+
+def _write_all(fd: int, data) -> None:
+    view = _bytes(data)
+    while view:
+        view = view[os.write(fd, view) :]
+
+
+def _clear_direct(fd: int) -> None:
+    import fcntl  # Linux, as O_DIRECT
+
+    fcntl.fcntl(fd, fcntl.F_SETFL, fcntl.fcntl(fd, fcntl.F_GETFL) & ~_O_DIRECT)
+
+
+class DirectWriter:
+    """A file written in order, straight to the disk (``O_DIRECT``) where the system and
+    the file system allow it, not through the page cache.
+
+    :meth:`write` copies the bytes it is given into a page-aligned buffer of
+    ``buffer_size`` bytes (one per file, reused, freed at :meth:`close`); each time the
+    buffer is full it is written whole, from an offset that is a multiple of
+    :data:`DIRECT_ALIGN`. :meth:`close` writes what is left: its whole pages direct, the
+    last bytes short of a page through the page cache. Through the page cache a write
+    costs the kernel's copy and, the dearest part, allocating the cache's pages when they
+    have not been used in a while: 1.5 s of CPU for 600 MB on this machine the first time,
+    against 0.1 s direct (the copy into the buffer; the rest of its time is spent waiting
+    on the disk, not computing).
+
+    Where the system has no ``O_DIRECT`` (not Linux), or the file system refuses it at
+    the open or at a write (EINVAL or EOPNOTSUPP: tmpfs, some network file systems), the
+    same bytes are written through the page cache, a buffer at a time, silently.
+    :attr:`direct` says which it was (True: no direct write has been refused; a file
+    shorter than a page never has one to refuse). Use it as a context manager, or call :meth:`close`
+    (after an error, :meth:`abort`: the file is left short; its caller removes it).
+
+    Parameters
+    ----------
+    path : str or path
+        Created, or truncated if it exists.
+    buffer_size : int
+        Bytes collected before each write (rounded up to a multiple of
+        :data:`DIRECT_ALIGN`).
+    direct : bool
+        False: write through the page cache from the start.
+    buffer : writable buffer, optional
+        Page-aligned memory to collect in instead of a buffer of its own (its length a
+        multiple of :data:`DIRECT_ALIGN`; not freed at :meth:`close`).
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> path = pathlib.Path(tempfile.mkdtemp()) / "rows.csv"
+    >>> rows = [b"%d,%d\\n" % (i, i * i) for i in range(1000)]
+    >>> with DirectWriter(path, buffer_size=4096) as out:  # two whole pages, then the rest
+    ...     for row in rows:
+    ...         _ = out.write(row)
+    >>> path.read_bytes() == b"".join(rows), path.stat().st_size
+    (True, 10427)
+    """
+
+    def __init__(self, path, buffer_size: int = DIRECT_BUFFER, *, direct: bool = True, buffer=None):
+        self.path = Path(path)
+        if buffer is None:
+            size = max(DIRECT_ALIGN, -(-int(buffer_size) // DIRECT_ALIGN) * DIRECT_ALIGN)
+        flags = os.O_WRONLY | os.O_CREAT | os.O_TRUNC
+        self.direct = bool(direct and _O_DIRECT)
+        self._fd = -1
+        if self.direct:
+            try:
+                self._fd = os.open(self.path, flags | _O_DIRECT, 0o666)
+            except OSError as exc:
+                if exc.errno not in _NO_DIRECT:
+                    raise
+                self.direct = False
+        if self._fd < 0:
+            self._fd = os.open(self.path, flags, 0o666)
+        # the caller's buffer (write_direct's, kept by its thread) is not released here
+        self._own = buffer is None
+        self._buffer = _aligned_buffer(size) if self._own else memoryview(buffer).cast("B")
+        self._used = 0
+
+    def write(self, data) -> int:
+        """Append the bytes of ``data`` (any buffer); return their number."""
+        view = _bytes(data)
+        n = len(view)
+        buffer, size = self._buffer, len(self._buffer)
+        while view:
+            if not self.direct and not self._used and len(view) >= size:
+                _write_all(self._fd, view)  # through the page cache: no need to collect
+                break
+            take = min(size - self._used, len(view))
+            buffer[self._used : self._used + take] = view[:take]
+            self._used += take
+            view = view[take:]
+            if self._used == size:
+                self._flush(size)
+        return n
+
+    def _flush(self, length: int) -> None:
+        """Write the buffer's first ``length`` bytes (whole pages while direct)."""
+        data = self._buffer[:length]
+        if self.direct:
+            start = os.lseek(self._fd, 0, os.SEEK_CUR)
+            try:
+                _write_all(self._fd, data)
+                self._used = 0
+                return
+            except OSError as exc:
+                if exc.errno not in _NO_DIRECT:
+                    raise
+                # refused at the write (some file systems): the rest through the page
+                # cache, from wherever the direct writes stopped
+                self.direct = False
+                _clear_direct(self._fd)
+                data = data[os.lseek(self._fd, 0, os.SEEK_CUR) - start :]
+        _write_all(self._fd, data)
+        self._used = 0
+
+    def close(self) -> None:
+        """Write what is left and close the file (its last bytes short of a page through
+        the page cache)."""
+        if self._fd < 0:
+            return
+        try:
+            used = self._used
+            head = used - used % DIRECT_ALIGN if self.direct else 0
+            if head:
+                self._flush(head)
+                self._buffer[: used - head] = self._buffer[head:used]
+                self._used = used - head
+            if self._used:
+                if self.direct:
+                    _clear_direct(self._fd)
+                _write_all(self._fd, self._buffer[: self._used])
+                self._used = 0
+        finally:
+            self.abort()
+
+    def abort(self) -> None:
+        """Close the file without writing what is left (after an error)."""
+        if self._fd >= 0:
+            os.close(self._fd)
+            self._fd = -1
+        if self._own:
+            self._buffer.release()
+
+    def __enter__(self) -> DirectWriter:
+        return self
+
+    def __exit__(self, kind, exc, tb) -> None:
+        if kind is None:
+            self.close()
+        else:
+            self.abort()
+
+
+def write_direct(path, data) -> None:
+    """Write the bytes of ``data`` (a C-contiguous array or any buffer) as the file
+    ``path``, replacing it, straight to the disk where the system allows it.
+
+    A page-aligned copy of the file's whole pages is written with ``O_DIRECT`` (from this
+    thread's :func:`staging` buffer), the end past the last whole page through the page
+    cache; a file shorter than a page, a system without ``O_DIRECT`` or a file system
+    that refuses it gets the plain write (see :class:`DirectWriter`, which this is). A
+    sweep's chunk through the page cache cost 1-5 ms of CPU a megabyte on this machine,
+    against about 0.1 ms direct.
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> import numpy as np
+    >>> path = pathlib.Path(tempfile.mkdtemp()) / "0.0"
+    >>> write_direct(path, np.arange(1000.0))
+    >>> np.fromfile(path).sum(), path.stat().st_size
+    (np.float64(499500.0), 8000)
+    """
+    raw = _bytes(data)
+    head = len(raw) - len(raw) % DIRECT_ALIGN if _O_DIRECT else 0
+    buffer = staging(head or DIRECT_ALIGN)  # exactly the whole pages: one direct write
+    with DirectWriter(path, direct=head > 0, buffer=buffer) as out:
+        out.write(raw)
 
 
 def _check_name(name: str, argument: str) -> None:

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import pytest
+from _direct_io import PATHS
 
 from ga_rotors import files
 from ga_rotors.errors import InputError
@@ -238,3 +239,123 @@ def test_a_file_the_system_refuses_is_one_line_naming_it(tmp_path, capsys, monke
     err = capsys.readouterr().err
     assert err == f"ga-rotors: error: {argv[-1]}: No space left on device\n"
     assert list(tmp_path.iterdir()) == []
+
+
+# Direct writes (O_DIRECT): the same bytes whichever way the file system lets them go.
+
+
+@pytest.fixture
+def how_written(request, tmp_path, monkeypatch):
+    """Files in tmp_path written one way (one of PATHS); yields (how, opened): whether
+    each open asked for O_DIRECT."""
+    from _direct_io import arrange
+
+    return request.param, arrange(request.param, tmp_path, monkeypatch)
+
+
+def _data(n: int) -> bytes:
+    import numpy as np
+
+    return np.random.default_rng(n).integers(0, 256, n, dtype=np.uint8).tobytes()
+
+
+ALIGN = files.DIRECT_ALIGN
+SIZES = [0, 1, ALIGN - 1, ALIGN, ALIGN + 1, 3 * ALIGN, 5 * ALIGN + 17]
+
+
+@pytest.mark.parametrize("how_written", PATHS, indirect=True)
+@pytest.mark.parametrize("size", SIZES)
+def test_a_file_written_direct_holds_its_bytes_however_it_went(tmp_path, how_written, size):
+    # Whole pages direct, the ragged end through the page cache; an older longer file
+    # is replaced; direct is tried only where there is a whole page to write.
+    how, opened = how_written
+    path = tmp_path / "chunk"
+    path.write_bytes(b"\1" * (size + 9000))
+    data = _data(size)
+    files.write_direct(path, data)
+    assert path.read_bytes() == data
+    assert any(opened) == (size >= ALIGN and how != "no O_DIRECT")
+
+
+@pytest.mark.parametrize("how_written", PATHS, indirect=True)
+@pytest.mark.parametrize(
+    "pieces",
+    [
+        [1] * 3000,  # many tiny appends across several buffers
+        [ALIGN - 1, 1, ALIGN + 1, ALIGN - 1],  # around a page
+        [3 * 8192 + 5],  # one append larger than the buffer, ragged
+        [2 * 8192],  # exactly the buffer twice
+        [0, 8191, 0, 1, 8192, 8193, 3],
+        [],
+    ],
+    ids=["tiny", "around-a-page", "large-single", "two-buffers", "mixed", "empty"],
+)
+def test_a_streamed_file_is_the_bytes_appended_however_it_went(tmp_path, how_written, pieces):
+    how, opened = how_written
+    data = _data(sum(pieces))
+    path = tmp_path / "stream.csv"
+    path.write_bytes(b"\2" * (len(data) + 50_000))  # an older, longer file: truncated
+    at = 0
+    with files.DirectWriter(path, buffer_size=8192) as out:
+        for n in pieces:
+            assert out.write(memoryview(data)[at : at + n]) == n
+            at += n
+    assert path.read_bytes() == data
+    assert opened[0] == (how != "no O_DIRECT")  # asked for at the open
+    # refused at a write: known only once a whole page was written
+    refused = how == "write refused" and len(data) >= ALIGN
+    assert out.direct == (how in ("direct", "write refused") and not refused)
+
+
+def test_a_streamed_file_takes_arrays_and_text_of_any_layout(tmp_path):
+    import numpy as np
+
+    a = np.arange(5000.0).reshape(1000, 5)
+    big = np.arange(3000, dtype=">i8")  # a format memoryview cannot cast
+    with files.DirectWriter(tmp_path / "x", buffer_size=4096) as out:
+        out.write(a)
+        out.write(b"text")
+        out.write(big)
+    assert (tmp_path / "x").read_bytes() == a.tobytes() + b"text" + big.tobytes()
+    with pytest.raises(ValueError, match="C-contiguous"), files.DirectWriter(tmp_path / "y") as out:
+        out.write(a[:, ::2])
+
+
+def test_a_failed_direct_write_is_raised_and_the_file_closed(tmp_path, monkeypatch):
+    import errno
+
+    def full(fd, data):
+        raise OSError(errno.ENOSPC, "No space left on device")
+
+    out = files.DirectWriter(tmp_path / "x", buffer_size=4096)
+    monkeypatch.setattr(files, "_write_all", full)
+    with pytest.raises(OSError, match="No space left"):
+        out.write(b"x" * 5000)  # the first full buffer goes out
+    out.abort()
+    monkeypatch.undo()
+    with pytest.raises(OSError, match="No space left"):
+        with files.DirectWriter(tmp_path / "y", buffer_size=4096) as out:
+            out.write(b"y" * 100)
+            monkeypatch.setattr(files, "_write_all", full)
+            out.close()  # the tail fails: still closed, once
+    out.close()  # nothing left to do
+
+
+def test_the_buffer_of_direct_writes_is_page_aligned_and_kept_only_when_small(monkeypatch):
+    # Kept for the next file up to KEPT_STAGING; a larger file gets a buffer of its own,
+    # so a writer thread holds at most KEPT_STAGING once it is done.
+    import threading
+
+    import numpy as np
+
+    monkeypatch.setattr(files, "KEPT_STAGING", 8 * ALIGN)
+    monkeypatch.setattr(files, "_STAGING", threading.local())
+    small = files.staging(3 * ALIGN + 5)
+    again = files.staging(2 * ALIGN)
+    large = files.staging(9 * ALIGN)
+    for buf in (small, again, large):
+        assert buf.ctypes.data % ALIGN == 0
+    assert small.size == 3 * ALIGN + 5 and large.size == 9 * ALIGN
+    assert np.shares_memory(small, again)  # kept and reused
+    assert not np.shares_memory(large, files.staging(ALIGN))  # not kept
+    assert files._STAGING.buffer.size < 9 * ALIGN

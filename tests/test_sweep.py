@@ -11,6 +11,7 @@ import warnings
 
 import numpy as np
 import pytest
+from _direct_io import PATHS
 
 from ga_rotors import optional
 from ga_rotors.errors import InputError, SceneError
@@ -522,52 +523,19 @@ def test_threads_loading_the_same_loop_at_once_wait_for_one_another(monkeypatch)
         assert (run.q == expected.q).all()
 
 
-def _direct_writes_work_in(folder) -> bool:
-    flag = getattr(os, "O_DIRECT", 0)
-    if not flag:
-        return False
-    try:
-        fd = os.open(folder / "probe", os.O_WRONLY | os.O_CREAT | flag, 0o666)
-    except OSError:
-        return False
-    os.close(fd)
-    os.unlink(folder / "probe")
-    return True
-
-
 @pytest.mark.parametrize("doubles", [100, 512, 1000, 1536, 4096])
-@pytest.mark.parametrize("how", ["direct", "no O_DIRECT", "open refused", "write refused"])
+@pytest.mark.parametrize("how", PATHS)
 def test_a_chunk_file_holds_its_bytes_however_it_is_written(tmp_path, monkeypatch, doubles, how):
     # Direct writes from a page-aligned copy, the end past the last whole 4 KiB through
     # the page cache; the plain write where the system has no O_DIRECT, or the file
     # system refuses it at open (tmpfs) or at the write. Sizes: under a page, one page,
     # a page and a ragged end, whole pages. An older, longer file is replaced.
-    import errno
-    import fcntl
+    from _direct_io import arrange
 
+    from ga_rotors import files
     from ga_rotors.sweep import store
 
-    if how == "direct" and not _direct_writes_work_in(tmp_path):
-        pytest.skip("no direct writes on this file system")
-    real_open, real_write_all, opened = os.open, store._write_all, []
-
-    def spied_open(path, flags, *mode):
-        direct = bool(flags & getattr(os, "O_DIRECT", 0))
-        opened.append(direct)
-        if direct and how == "open refused":
-            raise OSError(errno.EINVAL, "Invalid argument")
-        return real_open(path, flags, *mode)
-
-    def refusing_write_all(fd, data):
-        if fcntl.fcntl(fd, fcntl.F_GETFL) & getattr(os, "O_DIRECT", 0):
-            raise OSError(errno.EINVAL, "Invalid argument")
-        real_write_all(fd, data)
-
-    monkeypatch.setattr(store.os, "open", spied_open)
-    if how == "no O_DIRECT":
-        monkeypatch.setattr(store, "_O_DIRECT", 0)
-    if how == "write refused":
-        monkeypatch.setattr(store, "_write_all", refusing_write_all)
+    opened = arrange(how, tmp_path, monkeypatch)
     out = tmp_path / "x.zarr"
     ds = xr.Dataset({"a": (("s",), np.broadcast_to(np.nan, (2 * doubles,)))})
     store.create(out, ds, {"s": doubles}, {"a"})
@@ -577,20 +545,22 @@ def test_a_chunk_file_holds_its_bytes_however_it_is_written(tmp_path, monkeypatc
     assert (out / "a" / "1").read_bytes() == data.tobytes()
     read = xr.open_zarr(out)["a"].values
     assert np.array_equal(read[doubles:], data) and np.isnan(read[:doubles]).all()
-    direct = doubles * 8 >= store.DIRECT_ALIGN and how != "no O_DIRECT"
+    direct = doubles * 8 >= files.DIRECT_ALIGN and how != "no O_DIRECT"
     assert any(opened) == direct  # tried direct only where a whole page is written
 
 
 def test_a_sweep_written_direct_is_the_sweep_written_through_the_page_cache(tmp_path, monkeypatch):
     # Chunks of 200 samples at two times: q and w files of 12,800 and 9,600 bytes (whole
     # pages and a ragged end), the angle's 3,200 (under a page): the same store bytes.
-    from ga_rotors.sweep import store
+    from _direct_io import direct_writes_work_in
 
-    if not _direct_writes_work_in(tmp_path):
+    from ga_rotors import files as _files
+
+    if not direct_writes_work_in(tmp_path):
         pytest.skip("no direct writes on this file system")
     text = SWEEP.replace("samples = 5", "samples = 300").replace("chunk = 4", "chunk = 200")
     direct = run_sweep(text, tmp_path / "direct.zarr")
-    monkeypatch.setattr(store, "_O_DIRECT", 0)
+    monkeypatch.setattr(_files, "_O_DIRECT", 0)
     cached = run_sweep(text, tmp_path / "cached.zarr")
     for name in ("q", "w", "angle_from_nominal", "value_0", "chunk_done"):
         files = sorted(p.name for p in (direct / name).iterdir())
@@ -624,23 +594,3 @@ def test_the_draws_are_the_documented_function_of_the_seed_and_the_sample():
         expected["uniform"][s - lo] = u[1] * (0.35 - 0.25) + 0.25
     assert np.array_equal(got["initial.angular_velocity.body[0]"], expected["normal"])
     assert np.array_equal(got["body.mass"], expected["uniform"])
-
-
-def test_the_buffer_of_direct_writes_is_page_aligned_and_kept_only_when_small(monkeypatch):
-    # Kept for the next chunk up to KEPT_STAGING; a larger file gets a buffer of its own,
-    # so a writer thread holds at most KEPT_STAGING once the sweep is over.
-    import threading
-
-    from ga_rotors.sweep import store
-
-    monkeypatch.setattr(store, "KEPT_STAGING", 8 * store.DIRECT_ALIGN)
-    monkeypatch.setattr(store, "_STAGING", threading.local())
-    small = store._staging(3 * store.DIRECT_ALIGN + 5)
-    again = store._staging(2 * store.DIRECT_ALIGN)
-    large = store._staging(9 * store.DIRECT_ALIGN)
-    for buf in (small, again, large):
-        assert buf.ctypes.data % store.DIRECT_ALIGN == 0
-    assert small.size == 3 * store.DIRECT_ALIGN + 5 and large.size == 9 * store.DIRECT_ALIGN
-    assert np.shares_memory(small, again)  # kept and reused
-    assert not np.shares_memory(large, store._staging(store.DIRECT_ALIGN))  # not kept
-    assert store._STAGING.buffer.size < 9 * store.DIRECT_ALIGN

@@ -12,20 +12,17 @@ xarray reads it back identical to the store xarray itself writes from that templ
 :func:`write_chunk` writes one chunk of one variable, falling back on zarr's own write
 for any other layout (a store made by another tool). Chunk files go straight to the disk
 (``O_DIRECT``) where the system allows it, not through the page cache: see
-:func:`_write_chunk_file`.
+:func:`ga_rotors.files.write_direct`.
 """
 
 from __future__ import annotations
 
-import errno
 import json
-import mmap
-import os
-import threading
 from pathlib import Path
 
 import numpy as np
 
+from ..files import write_direct
 from ..optional import require
 
 __all__ = ["create", "write_chunk"]
@@ -133,88 +130,6 @@ def _layout(store, name: str):
     return tuple(meta["chunks"]), np.dtype(meta["dtype"]), meta["fill_value"], sep
 
 
-#: Bytes that a direct write's memory address, file offset and length are multiples of
-#: (the page size: a multiple of every disk's logical block size Linux allows).
-DIRECT_ALIGN = 4096
-
-#: The ``O_DIRECT`` flag where the system has it (Linux), else 0: chunks are then written
-#: through the page cache.
-_O_DIRECT = getattr(os, "O_DIRECT", 0)
-
-#: What a file system that does not do direct writes answers (EINVAL: tmpfs and most).
-_NO_DIRECT = {errno.EINVAL, errno.EOPNOTSUPP}
-
-#: Largest page-aligned buffer a thread keeps between direct writes (a chunk's file is
-#: usually a few MB; a larger one gets a buffer of its own, freed after its write, so a
-#: sweep's writer thread never holds more than this once the sweep is over).
-KEPT_STAGING = 16 << 20
-
-_STAGING = threading.local()
-
-
-def _staging(size: int) -> np.ndarray:
-    """A page-aligned buffer of ``size`` bytes: this thread's, unless it is too large."""
-    pages = -(-size // DIRECT_ALIGN) * DIRECT_ALIGN
-    if pages > KEPT_STAGING:
-        return np.frombuffer(mmap.mmap(-1, pages), np.uint8)[:size]
-    buf = getattr(_STAGING, "buffer", None)
-    if buf is None or buf.size < size:
-        buf = np.frombuffer(mmap.mmap(-1, pages), np.uint8)
-        _STAGING.buffer = buf
-    return buf[:size]
-
-
-def _write_all(fd: int, data) -> None:
-    view = memoryview(data).cast("B")
-    while view:
-        view = view[os.write(fd, view) :]
-
-
-def _write_chunk_file(path: Path, data: np.ndarray) -> None:
-    """Write the bytes of the C-contiguous ``data`` as the file ``path``, replacing it.
-
-    Straight to the disk (``O_DIRECT``) where the system and the file system allow it,
-    from a page-aligned copy: a chunk through the page cache cost 1-5 ms of CPU a
-    megabyte on this machine (the kernel's copy, and allocating the cache's pages, the
-    dearest part when those pages had not been used in a while), against about 0.1 ms
-    direct, whose time is spent waiting on the disk, not computing. The unaligned end of
-    the file (its last bytes short of a multiple of :data:`DIRECT_ALIGN`) follows through
-    the page cache. A file system that refuses direct writes (tmpfs) gets the plain write.
-    """
-    raw = data.reshape(-1).view(np.uint8)
-    head = raw.size - raw.size % DIRECT_ALIGN if _O_DIRECT else 0
-    if head:
-        try:
-            fd = os.open(path, os.O_WRONLY | os.O_CREAT | os.O_TRUNC | _O_DIRECT, 0o666)
-        except OSError as exc:
-            if exc.errno not in _NO_DIRECT:
-                raise
-            head = 0
-    if not head:
-        _write(path, raw.data)
-        return
-    try:
-        staged = _staging(head)
-        staged[:] = raw[:head]
-        try:
-            _write_all(fd, staged)
-        except OSError as exc:
-            if exc.errno not in _NO_DIRECT:
-                raise
-            os.close(fd)  # direct open but not write (some file systems): the plain write
-            fd = -1
-            _write(path, raw.data)
-            return
-        if head < raw.size:  # the rest through the page cache
-            import fcntl  # Linux, as O_DIRECT
-
-            fcntl.fcntl(fd, fcntl.F_SETFL, fcntl.fcntl(fd, fcntl.F_GETFL) & ~_O_DIRECT)
-            _write_all(fd, raw[head:])
-    finally:
-        if fd >= 0:
-            os.close(fd)
-
-
 def write_chunk(store, name: str, block: np.ndarray, c: int, layouts: dict | None = None) -> None:
     """Write ``block`` as chunk ``c`` along the first dimension of variable ``name``.
 
@@ -255,4 +170,4 @@ def write_chunk(store, name: str, block: np.ndarray, c: int, layouts: dict | Non
         data = full
     if data.shape != chunks:
         raise ValueError(f"{name}: block of shape {data.shape} for chunks of {chunks}")
-    _write_chunk_file(Path(store, name, sep.join([str(c)] + ["0"] * (len(chunks) - 1))), data)
+    write_direct(Path(store, name, sep.join([str(c)] + ["0"] * (len(chunks) - 1))), data)
