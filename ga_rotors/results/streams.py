@@ -31,6 +31,7 @@ from pathlib import Path
 
 import numpy as np
 
+from ..files import DirectWriter
 from ..optional import require
 
 __all__ = ["CHUNK_ROWS", "CsvStream", "NetcdfStream", "NpzStream", "ZarrStream"]
@@ -38,9 +39,14 @@ __all__ = ["CHUNK_ROWS", "CsvStream", "NetcdfStream", "NpzStream", "ZarrStream"]
 #: Rows per chunk of the netCDF and zarr variables along ``time``.
 CHUNK_ROWS = 16_384
 
+#: Bytes each array of an :class:`NpzStream` collects before writing them to its rows
+#: file (one buffer per array: a run's NPZ has up to a dozen).
+ROWS_BUFFER = 2 << 20
+
 
 class CsvStream:
-    """CSV written piece by piece (:func:`ga_rotors.results.write_csv`'s text).
+    """CSV written piece by piece (:func:`ga_rotors.results.write_csv`'s text), straight
+    to the disk where the system allows it (:class:`ga_rotors.files.DirectWriter`).
 
     Where the machine has a second core, the rows of each piece are formatted by two
     threads, half the blocks each (the text of a CSV is most of a long run's output
@@ -69,6 +75,7 @@ class CsvStream:
 
         self.path = Path(path)
         self._fh = None
+        self._direct = False
         self._buffers = []
         self._helper = None
         self._threads = min(2, os.cpu_count() or 1) if threads is None else threads
@@ -81,7 +88,7 @@ class CsvStream:
         from .table import csv_buffer_size, csv_header
 
         if self._fh is None:
-            self._fh = open(self.path, "wb")
+            self._fh = DirectWriter(self.path)
             self._fh.write((",".join(csv_header(piece)) + "\n").encode())
             # one buffer a thread for every block of the run: each written before the next
             size = csv_buffer_size(piece, self._block_rows)
@@ -109,18 +116,30 @@ class CsvStream:
                 wait([later])  # the helper is done with its buffer, even after an error
             self._fh.write(later.result())
 
+    @property
+    def direct(self) -> bool:
+        """Whether the file went straight to the disk (no writeback left to start)."""
+        return self._direct
+
     def close(self, meta: dict) -> None:
         """Finish the file."""
+        self._stop(finish=True)
+
+    def abort(self) -> None:
+        """Stop writing (the run failed; the staging folder goes away with the file)."""
+        self._stop(finish=False)
+
+    def _stop(self, finish: bool) -> None:
         if self._helper is not None:
             self._helper.shutdown()
             self._helper = None
         if self._fh is not None:
-            self._fh.close()
-            self._fh = None
-
-    def abort(self) -> None:
-        """Stop writing (the run failed; the staging folder goes away with the file)."""
-        self.close({})
+            fh, self._fh = self._fh, None
+            if finish:
+                fh.close()
+                self._direct = fh.direct
+            else:
+                fh.abort()
 
 
 def _csv_text(piece, start: int, stop: int, buffer):
@@ -163,10 +182,10 @@ class NpzStream:
         for name in piece.names:
             a = np.ascontiguousarray(piece[name], dtype=np.float64)
             if name not in self._files:
-                fh = open(self._dir / f"{len(self._files)}.rows", "wb")
+                fh = DirectWriter(self._dir / f"{len(self._files)}.rows", ROWS_BUFFER)
                 self._files[name] = [fh, a.shape[1:], 0]
             entry = self._files[name]
-            entry[0].write(a.tobytes())
+            entry[0].write(a)
             entry[2] += a.shape[0]
         for name, labels in piece.components.items():
             if name in self._files:
@@ -181,7 +200,7 @@ class NpzStream:
                 header["shape"] = (rows, *trailing)
                 with archive.open(f"{name}.npy", "w", force_zip64=True) as member:
                     np.lib.format.write_array_header_1_0(member, header)
-                    with open(fh.name, "rb") as rows_file:
+                    with open(fh.path, "rb") as rows_file:
                         shutil.copyfileobj(rows_file, member, 1 << 22)
             for name, labels in self._components.items():
                 with archive.open(f"{name}__components.npy", "w", force_zip64=True) as member:
@@ -191,7 +210,7 @@ class NpzStream:
     def abort(self) -> None:
         """Remove the rows collected so far."""
         for fh, _, _ in self._files.values():
-            fh.close()
+            fh.abort()
         self._files = {}
         shutil.rmtree(self._dir, ignore_errors=True)
 

@@ -184,18 +184,20 @@ class _Sink:
             self.thin.add(piece if self.balance is None else self.balance.add(piece))
 
     def close(self, done=None) -> None:
-        """Finish the data files, then start writing them to disk, a slice at a time
-        until ``done`` (a ``threading.Event``) is set, when the run has nothing else to
-        do: on ext4 the moves into place would otherwise start it and wait
-        (:func:`ga_rotors.files.start_writeback`); what is left then is left to them (or,
-        on other file systems, to the system)."""
+        """Finish the data files, then start writing those that went through the page
+        cache to disk, a slice at a time until ``done`` (a ``threading.Event``) is set,
+        when the run has nothing else to do: on ext4 the moves into place would otherwise
+        start it and wait (:func:`ga_rotors.files.start_writeback`); what is left then is
+        left to them (or, on other file systems, to the system). A file written straight
+        to the disk (its writer's ``direct``: the CSV, where the file system allows it)
+        is already there."""
         from ..files import start_writeback
 
         for writer in self.writers:
             writer.close(self.meta)
-        for path in self.paths:
-            if not path.is_file():  # a store (a folder) is many small files: left alone
-                continue
+        for writer, path in zip(self.writers, self.paths, strict=True):
+            if getattr(writer, "direct", False) or not path.is_file():
+                continue  # on the disk already; a store (a folder) is many small files
             for start in range(0, path.stat().st_size, WRITEBACK_SLICE):
                 if done is not None and done.is_set():
                     return
