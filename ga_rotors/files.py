@@ -16,9 +16,13 @@ Faults, and what each leaves:
 * a power cut or a crash of the operating system: the same for the files' names, but
   their contents are not forced to disk (an ``fsync`` of a long run's CSV, hundreds of
   megabytes, would cost more than the run), so a file written in the seconds before the
-  cut may come back short or empty, as with any unsynced write. On ext4 with its default
-  ``auto_da_alloc``, a file renamed over the previous run's has its data written before
-  the rename is committed, which covers re-running into the same ``--out``;
+  cut may come back short or empty, as with any unsynced write. A file written straight
+  to the disk (:class:`DirectWriter`: a streamed run's CSV, a sweep's chunks) has handed
+  its data to the device before it is renamed, all but its last bytes short of a page
+  (the device's own cache may still hold them). On ext4 with its default
+  ``auto_da_alloc``, a file renamed over the previous run's has its page-cache data
+  written before the rename is committed, which covers re-running into the same
+  ``--out``;
 * two commands writing one ``--out``: serialised by a lock on the folder holding it
   (``fcntl.flock``, no lock file left behind); the second waits up to
   :data:`LOCK_TIMEOUT` seconds, then fails with one line;
@@ -157,7 +161,8 @@ def start_writeback(path, start: int = 0, length: int = 0) -> bool:
     existing one, and the rename waits while it does: 0.24 s for a 577 MB CSV moved over
     the previous run's. Started on another thread while the run draws its figure, it is
     done before the moves. The call itself can wait while the disk's queue is full, so a
-    caller with a deadline asks a slice at a time.
+    caller with a deadline asks a slice at a time. A file written straight to the disk
+    (:class:`DirectWriter`) has nothing to start.
 
     Examples
     --------
