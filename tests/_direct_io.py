@@ -28,8 +28,8 @@ def direct_writes_work_in(folder) -> bool:
         os.unlink(probe)
 
 
-#: The ways a file can be written: direct; no O_DIRECT on the system; the file system
-#: refusing it at the open (tmpfs) or at the first write.
+#: The ways a file can be written (or read): direct; no O_DIRECT on the system; the file
+#: system refusing it at the open (tmpfs) or at the first write (or read).
 PATHS = ["direct", "no O_DIRECT", "open refused", "write refused"]
 
 
@@ -46,23 +46,30 @@ def arrange(how: str, folder, monkeypatch) -> list:
 
     if how == "direct" and not direct_writes_work_in(folder):
         pytest.skip("no direct writes on this file system")
-    real_open, real_write_all, opened = os.open, files._write_all, []
+    real_open, real_write_all, real_read = os.open, files._write_all, files._read_into
+    opened = []
     flag = getattr(os, "O_DIRECT", 0)
 
-    def spied_open(path, flags, *mode):
+    def spied_open(path, flags, *mode, **where):  # where: dir_fd (shutil.rmtree's)
         opened.append(bool(flags & flag))
         if flags & flag and how == "open refused":
             raise OSError(errno.EINVAL, "Invalid argument")
-        return real_open(path, flags, *mode)
+        return real_open(path, flags, *mode, **where)
 
     def refusing_write_all(fd, data):
         if fcntl.fcntl(fd, fcntl.F_GETFL) & flag:
             raise OSError(errno.EINVAL, "Invalid argument")
         real_write_all(fd, data)
 
+    def refusing_read(fd, buffer):
+        if fcntl.fcntl(fd, fcntl.F_GETFL) & flag:
+            raise OSError(errno.EINVAL, "Invalid argument")
+        return real_read(fd, buffer)
+
     monkeypatch.setattr(files.os, "open", spied_open)
     if how == "no O_DIRECT":
         monkeypatch.setattr(files, "_O_DIRECT", 0)
     if how == "write refused":
         monkeypatch.setattr(files, "_write_all", refusing_write_all)
+        monkeypatch.setattr(files, "_read_into", refusing_read)
     return opened

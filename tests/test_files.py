@@ -307,6 +307,22 @@ def test_a_streamed_file_is_the_bytes_appended_however_it_went(tmp_path, how_wri
     assert out.direct == (how in ("direct", "write refused") and not refused)
 
 
+@pytest.mark.parametrize("how_written", PATHS, indirect=True)
+@pytest.mark.parametrize("size", SIZES)
+def test_a_file_read_direct_is_its_bytes_however_it_went(tmp_path, how_written, size):
+    # The tail of a file written direct is in the page cache, not yet on the disk: a
+    # direct read still sees it (the kernel writes it first).
+    how, opened = how_written
+    data = _data(size)
+    with files.DirectWriter(tmp_path / "rows", buffer_size=8192) as out:
+        out.write(data)
+    del opened[:]
+    blocks = [bytes(block) for block in files.read_direct(tmp_path / "rows", 8192)]
+    assert b"".join(blocks) == data
+    assert all(len(b) == 8192 for b in blocks[:-1]) and len(blocks) == -(-size // 8192)
+    assert opened[0] == (how != "no O_DIRECT")  # asked for at the open
+
+
 def test_a_streamed_file_takes_arrays_and_text_of_any_layout(tmp_path):
     import numpy as np
 

@@ -31,7 +31,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..files import DirectWriter
+from ..files import DirectWriter, read_direct
 from ..optional import require
 
 __all__ = ["CHUNK_ROWS", "CsvStream", "NetcdfStream", "NpzStream", "ZarrStream"]
@@ -176,6 +176,7 @@ class NpzStream:
         self._dir = Path(tempfile.mkdtemp(dir=self.path.parent, prefix=".npz-rows-"))
         self._files: dict = {}  # name -> (open file, trailing shape, rows)
         self._components: dict = {}
+        self._direct = False
 
     def append(self, piece) -> None:
         """Add the rows of ``piece`` to each array's file."""
@@ -191,20 +192,33 @@ class NpzStream:
             if name in self._files:
                 self._components[name] = labels
 
+    @property
+    def direct(self) -> bool:
+        """Whether the archive went straight to the disk (no writeback left to start)."""
+        return self._direct
+
     def close(self, meta: dict) -> None:
-        """Write the archive: each array's header, then its rows copied from disk."""
-        with zipfile.ZipFile(self.path, "w", zipfile.ZIP_STORED, allowZip64=True) as archive:
-            for name, (fh, trailing, rows) in self._files.items():
-                fh.close()
-                header = np.lib.format.header_data_from_array_1_0(np.empty((0, *trailing)))
-                header["shape"] = (rows, *trailing)
-                with archive.open(f"{name}.npy", "w", force_zip64=True) as member:
-                    np.lib.format.write_array_header_1_0(member, header)
-                    with open(fh.path, "rb") as rows_file:
-                        shutil.copyfileobj(rows_file, member, 1 << 22)
-            for name, labels in self._components.items():
-                with archive.open(f"{name}__components.npy", "w", force_zip64=True) as member:
-                    np.lib.format.write_array(member, np.array(labels))
+        """Write the archive: each array's header, then its rows copied from disk.
+
+        The rows are read and the archive written straight from and to the disk where
+        the file system allows it (:func:`ga_rotors.files.read_direct`,
+        :class:`~ga_rotors.files.DirectWriter`): the archive is then written in one
+        pass, each member's sizes and checksum after its data (a zip "data descriptor",
+        which every zip reader, numpy's ``load`` included, reads)."""
+        with DirectWriter(self.path) as out:
+            with zipfile.ZipFile(_Appended(out), "w", zipfile.ZIP_STORED, allowZip64=True) as zf:
+                for name, (fh, trailing, rows) in self._files.items():
+                    fh.close()
+                    header = np.lib.format.header_data_from_array_1_0(np.empty((0, *trailing)))
+                    header["shape"] = (rows, *trailing)
+                    with zf.open(f"{name}.npy", "w", force_zip64=True) as member:
+                        np.lib.format.write_array_header_1_0(member, header)
+                        for block in read_direct(fh.path, ROWS_BUFFER):
+                            member.write(block)
+                for name, labels in self._components.items():
+                    with zf.open(f"{name}__components.npy", "w", force_zip64=True) as member:
+                        np.lib.format.write_array(member, np.array(labels))
+        self._direct = out.direct
         self.abort()
 
     def abort(self) -> None:
@@ -213,6 +227,17 @@ class NpzStream:
             fh.abort()
         self._files = {}
         shutil.rmtree(self._dir, ignore_errors=True)
+
+
+class _Appended:
+    """A file written in order, for :class:`zipfile.ZipFile`: no ``seek`` or ``tell``,
+    so the archive is written in one pass (each member's sizes after its data)."""
+
+    def __init__(self, out):
+        self.write = out.write
+
+    def flush(self) -> None:
+        """Nothing to do: the writer's bytes go out when it is closed."""
 
 
 class _DatasetStream:
