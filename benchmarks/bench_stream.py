@@ -5,6 +5,7 @@ Run from the repository root::
     python benchmarks/bench_stream.py                        # 1e7 steps per path, 3 repeats
     python benchmarks/bench_stream.py --steps 1e8 --repeats 1 --only stream
     python benchmarks/bench_stream.py --quick                # the suite's smoke run
+    python benchmarks/bench_stream.py --settle 10            # freed memory cold again
 
 The scene is the bundled heavy top (RK4 at 0.1 ms on the rotor and quaternion paths, a
 sample every 5 steps: t, ω, both orientations, the ZYZ angles and the total energy),
@@ -28,7 +29,20 @@ Times are measured inside the child around the call (interpreter start-up and im
 excluded, the same for every mode): wall time, and the CPU time of all the child's
 threads (on a loaded machine the wall times stretch, the CPU times much less; a streamed
 run's wall time on two cores cannot fall below half its CPU time); peak memory is the
-child's maximum resident set (``os.wait4``'s ``ru_maxrss``), start-up included.
+child's maximum resident set (``os.wait4``'s ``ru_maxrss``), start-up included. (The
+kernel's own threads writing the page cache back to the disk, which the child's CPU time
+does not count, took 0.01-0.04 s of CPU over a streamed run here: left out.)
+
+The streamed run writes its CSV straight to the disk (``O_DIRECT``,
+:class:`ga_rotors.files.DirectWriter`) where the file system allows it; a file written
+through the page cache costs the kernel's pages, dearest when they have not been used in
+a while (a user's run), cheapest when it reuses the pages just freed by deleting the
+previous child's output, as each repeat here does. On this virtual machine, memory freed
+more than a few seconds earlier costs again when it is reused (the host seems to take it
+back: a virtio balloon is loaded): 600 MB written through the page cache took 0.1 s of
+CPU right after the previous 600 MB were deleted, 0.7-1.0 s five seconds later, 1.3 s ten
+seconds later. ``--settle 10`` waits that long before each child; how cold the memory
+then is depends on what else the machine freed meanwhile.
 Reported: median and min–max over the repeats, and stream / bare (wall and CPU). No
 number here is a test: the suite only runs ``--quick``.
 """
@@ -42,6 +56,7 @@ import statistics
 import subprocess
 import sys
 import tempfile
+import time
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -132,6 +147,14 @@ def main(argv=None) -> int:
         help="output.summary = false: the streamed run measures nothing (its report says only "
         "whether the run completed)",
     )
+    parser.add_argument(
+        "--settle",
+        type=float,
+        default=0.0,
+        metavar="SECONDS",
+        help="wait this long before each measurement, so that the memory freed by the "
+        "previous one is cold again, as on a user's machine (default 0)",
+    )
     parser.add_argument("--quick", action="store_true", help="a tiny run, bare and stream")
     parser.add_argument("--json", metavar="FILE", help="also write the results as JSON")
     args = parser.parse_args(argv)
@@ -141,6 +164,7 @@ def main(argv=None) -> int:
     results: dict[str, list[dict]] = {m: [] for m in modes}
     for _ in range(args.repeats):
         for mode in modes:  # interleaved: the machine's load falls on every mode alike
+            time.sleep(args.settle)
             summary = "off" if args.no_summary else "on"
             results[mode].append(_child(mode, args.steps, args.data, args.quantities, summary))
     print(
