@@ -347,6 +347,45 @@ class DirectWriter:
                 self._flush(size)
         return n
 
+    def reserve(self, size: int):
+        """Room for the next ``size`` bytes inside the buffer, to be filled in place (no
+        copy): a writable numpy ``uint8`` array of ``size`` bytes, or None when ``size``
+        is more than the buffer can promise (its size less a page; then :meth:`write`
+        the bytes). Put the
+        bytes at its start, then :meth:`commit` their number, before any other call.
+
+        Examples
+        --------
+        >>> import tempfile, pathlib
+        >>> path = pathlib.Path(tempfile.mkdtemp()) / "x.csv"
+        >>> with DirectWriter(path, buffer_size=8192) as out:
+        ...     room = out.reserve(10)
+        ...     room[:3] = list(b"1,2")
+        ...     out.commit(3)
+        ...     out.reserve(8192) is None
+        True
+        >>> path.read_bytes()
+        b'1,2'
+        """
+        import numpy as np
+
+        size_all = len(self._buffer)
+        if size > size_all - DIRECT_ALIGN:
+            return None
+        used = self._used
+        if size_all - used < size:  # out with what can go (whole pages if direct)
+            head = used - used % DIRECT_ALIGN if self.direct else used
+            self._flush(head)
+            self._buffer[: used - head] = self._buffer[head:used]  # under a page: to the front
+            self._used = used - head
+        return np.frombuffer(self._buffer, np.uint8)[self._used : self._used + size]
+
+    def commit(self, n: int) -> None:
+        """Append the first ``n`` bytes put into the room :meth:`reserve` gave."""
+        self._used += n
+        if self._used == len(self._buffer):
+            self._flush(self._used)
+
     def _flush(self, length: int) -> None:
         """Write the buffer's first ``length`` bytes (whole pages while direct)."""
         data = self._buffer[:length]

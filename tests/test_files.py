@@ -323,6 +323,30 @@ def test_a_file_read_direct_is_its_bytes_however_it_went(tmp_path, how_written, 
     assert opened[0] == (how != "no O_DIRECT")  # asked for at the open
 
 
+@pytest.mark.parametrize("how_written", PATHS, indirect=True)
+def test_bytes_put_in_place_and_appended_make_one_file_however_it_went(tmp_path, how_written):
+    # reserve/commit (formatting straight into the buffer) mixed with write, across the
+    # buffer's end and page boundaries: the file is every committed and written byte in
+    # order; a reservation larger than the buffer can promise is refused.
+    import numpy as np
+
+    rng = np.random.default_rng(3)
+    expected = bytearray()
+    with files.DirectWriter(tmp_path / "x", buffer_size=8192) as out:
+        assert out.reserve(8192 - ALIGN + 1) is None
+        for k in range(300):
+            n = int(rng.integers(0, 3000))
+            data = _data(n + k)[:n]
+            if k % 3:
+                room = out.reserve(n + int(rng.integers(0, 500)))  # more than is used
+                room[:n] = np.frombuffer(data, np.uint8)
+                out.commit(n)
+            else:
+                out.write(data)
+            expected += data
+    assert (tmp_path / "x").read_bytes() == bytes(expected)
+
+
 def test_a_streamed_file_takes_arrays_and_text_of_any_layout(tmp_path):
     import numpy as np
 

@@ -50,8 +50,9 @@ class CsvStream:
 
     Where the machine has a second core, the rows of each piece are formatted by two
     threads, half the blocks each (the text of a CSV is most of a long run's output
-    work): the caller's, which writes every block in order, and a helper that only
-    formats into a buffer of its own. The helper has finished with a piece before
+    work): the caller's, which formats its blocks in place in the file's buffer
+    (:meth:`~ga_rotors.files.DirectWriter.reserve`) and writes every block in order, and
+    a helper that only formats into a buffer of its own. The helper has finished with a piece before
     :meth:`append` returns or raises.
 
     Examples
@@ -101,7 +102,7 @@ class CsvStream:
         step = self._block_rows
         if self._helper is None:
             for lo in range(0, n, step):
-                self._fh.write(_csv_text(piece, lo, min(n, lo + step), self._buffers[0]))
+                self._format(piece, lo, min(n, lo + step))
             return
         # blocks of equal size in pairs, no more rows than a buffer holds: this thread
         # formats and writes the first of each pair while the helper formats the second
@@ -111,10 +112,20 @@ class CsvStream:
             mid, hi = min(n, lo + rows), min(n, lo + 2 * rows)
             later = self._helper.submit(_csv_text, piece, mid, hi, self._buffers[1])
             try:
-                self._fh.write(_csv_text(piece, lo, mid, self._buffers[0]))
+                self._format(piece, lo, mid)
             finally:
                 wait([later])  # the helper is done with its buffer, even after an error
             self._fh.write(later.result())
+
+    def _format(self, piece, start: int, stop: int) -> None:
+        """Append rows ``start:stop``, formatted in place in the file's buffer."""
+        from .table import csv_buffer_size
+
+        room = self._fh.reserve(csv_buffer_size(piece, stop - start))
+        if room is None:  # more than the writer's buffer holds: through our own
+            self._fh.write(_csv_text(piece, start, stop, self._buffers[0]))
+        else:
+            self._fh.commit(len(_csv_text(piece, start, stop, room)))
 
     @property
     def direct(self) -> bool:
