@@ -15,9 +15,7 @@ import sys
 import warnings
 from pathlib import Path
 
-from ..view.saved import load_result
-
-__all__ = ["add_arguments", "load_result", "run"]
+__all__ = ["add_arguments", "run"]
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
@@ -46,6 +44,7 @@ def run(args: argparse.Namespace) -> int:
     from ..scene import load_scene
     from ..view import View
     from ..view.page import require_plotly
+    from ..view.saved import load_result
 
     require_plotly()
     source = Path(args.source)
