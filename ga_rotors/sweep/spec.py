@@ -200,10 +200,22 @@ def _raw(seed: int, lo: int, hi: int, nvars: int) -> np.ndarray:
 #: compiled draws, registered with LLVM by :func:`_bind_ndtri` before they are compiled
 #: or loaded from the cache (the machine code calls it by this name, so it caches).
 _NDTRI = "ga_rotors_scipy_special_ndtri"
-_ndtri = numba.types.ExternalFunction(
-    _NDTRI, numba.types.float64(numba.types.float64, numba.types.intc)
-)
 _BOUND: list = []
+
+
+def _plain_ndtri(u: float, skip_dispatch: int) -> float:
+    """The ufunc, for the draws run uncompiled (``NUMBA_DISABLE_JIT=1``)."""
+    from scipy.special import ndtri
+
+    return float(ndtri(u))
+
+
+if numba.config.DISABLE_JIT:
+    _ndtri = _plain_ndtri
+else:
+    _ndtri = numba.types.ExternalFunction(
+        _NDTRI, numba.types.float64(numba.types.float64, numba.types.intc)
+    )
 
 
 def _bind_ndtri() -> None:
