@@ -10,7 +10,8 @@ the varied keys are a body's moments and rates on the quaternion path, one compi
 integrates it and records its states and angle in the store's layout; otherwise the
 chunk's inputs are built (:func:`ga_rotors.ensemble.scene_samples`, a Scene per sample
 where a key needs it), integrated on the serial batched loop
-(:func:`ga_rotors.ensemble.run_samples`) and reduced. Both give the same numbers. Running the same sweep into the same store again skips the flagged chunks: an
+(:func:`ga_rotors.ensemble.run_samples`) and reduced. Both give the same numbers.
+Running the same sweep into the same store again skips the flagged chunks: an
 interrupted sweep resumes from its finished chunks, and a chunk cut off halfway is done
 again. A store holds one sweep (its digest is an attribute); another sweep is refused.
 
