@@ -213,3 +213,16 @@ def test_the_draws_call_scipys_own_ndtri_bit_for_bit():
     expected = np.stack([ndtri(u[:, 0]) * 1.0 + 0.0, ndtri(u[:, 1]) * 2.5 + -3.0])
     assert np.all(np.isfinite(out))
     assert np.array_equal(out.view(np.uint64), expected.view(np.uint64))
+
+
+def test_the_edge_chunk_file_is_extended_to_the_full_chunk_not_padded(tmp_path):
+    # 14 samples in chunks of 5: the last chunk holds 4 samples; its file has the size of
+    # a full chunk (what zarr reads), its last sample's bytes a hole, and reads back
+    out = run_sweep(FAST, tmp_path / "s.zarr", client="sync")
+    edge = out / "q" / "2.0.0"
+    assert edge.stat().st_size == 5 * 2 * 4 * 8
+    ds = open_sweep(out).load()
+    assert ds.sizes["sample"] == 14 and not np.isnan(ds["q"].values[10:]).any()
+    zarr = pytest.importorskip("zarr")
+    direct = zarr.open_group(out, mode="r", zarr_format=2)["q"][:]
+    assert np.array_equal(direct, ds["q"].values)
