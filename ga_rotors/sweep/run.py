@@ -383,7 +383,25 @@ class _Pieces:
         self.lock = threading.Lock()
 
 
-def _run_part(task: _Task, c: int, first: int, end: int, pieces: _Pieces | None, ready) -> bool:
+class _Started:
+    """How many of a run's tasks have started, of ``total``."""
+
+    def __init__(self, total: int):
+        self.count, self.total = 0, total
+        self.lock = threading.Lock()
+
+    def one(self) -> None:
+        with self.lock:
+            self.count += 1
+
+    def all(self) -> bool:
+        with self.lock:
+            return self.count == self.total
+
+
+def _run_part(
+    task: _Task, c: int, first: int, end: int, pieces: _Pieces | None, ready, started=None
+) -> bool:
     """Integrate samples ``first`` to ``end - 1`` of chunk ``c``; True if it wrote the chunk.
 
     A whole chunk (``pieces`` None) is written by its task. A piece keeps its values and
@@ -392,7 +410,12 @@ def _run_part(task: _Task, c: int, first: int, end: int, pieces: _Pieces | None,
     numbers depend on its index only (its draws, its own integration): a chunk made of
     pieces is the chunk made at once, bit for bit. ``ready()`` returns once the store
     exists (it is made while the first chunks integrate) and raises what making it raised.
+    Once every task has started (``started``, a :class:`_Started`), a chunk is written in
+    this thread, which has nothing left to integrate, beside the writer thread's pending
+    write rather than after it: the end of the sweep waits for both.
     """
+    if started is not None:
+        started.one()
     sweep = _sweep(task)
     start = c * sweep.chunk
     # reduced here, so that the pieces of the last chunks reduce side by side and the
@@ -408,8 +431,10 @@ def _run_part(task: _Task, c: int, first: int, end: int, pieces: _Pieces | None,
         values = {key: np.concatenate([p[0][key] for p in parts]) for key in parts[0][0]}
         done = (values, *(np.concatenate([p[k] for p in parts]) for k in (1, 2, 3)))
     ready()
-    # written on this process's writer thread while this one integrates on
-    _write_behind(functools.partial(_finish, task, c, *done))
+    if started is not None and started.all():
+        _finish(task, c, *done)
+    else:  # written on this process's writer thread while this one integrates on
+        _write_behind(functools.partial(_finish, task, c, *done))
     return True
 
 
@@ -418,7 +443,8 @@ def _run_threads(task: _Task, sweep: Sweep, todo: list[int], threads: int, done,
 
     Each task integrates a chunk (or a piece of one, see :func:`_parts`) on the serial
     loop and hands it to the writer thread (:func:`_write_behind`: at most one chunk
-    pending), so the writes overlap the integration. ``done()`` is called in this thread
+    pending), so the writes overlap the integration; the tasks that end the run write
+    their chunks themselves, beside the writer. ``done()`` is called in this thread
     as each chunk is handed over; every handed chunk is written and flagged before this
     returns or raises.
     The pool is this call's own and is shut down before it returns or raises: an
@@ -436,8 +462,9 @@ def _run_threads(task: _Task, sweep: Sweep, todo: list[int], threads: int, done,
     # start, and the pieces run last. Only a preference: any order writes the same store.
     width = len(str(len(parts)))
     keys = [f"ga_rotors-chunk-{len(parts) - 1 - i:0{width}d}" for i in range(len(parts))]
+    started = _Started(len(parts))
     graph = {
-        key: (_run_part, task, c, first, end, shared.get(c), ready)
+        key: (_run_part, task, c, first, end, shared.get(c), ready, started)
         for key, (c, first, end, _) in zip(keys, parts, strict=True)
     }
 
