@@ -883,6 +883,9 @@ class _SweepPlan:
 #: (id(scene), layout, times) -> _SweepPlan, or None where the sweep's path stays.
 _PLANS: dict = {}
 
+#: Plans kept at most (a sweep run has one; each run of a sweep file loads its scene anew).
+MAX_PLANS = 16
+
 
 def _sweep_plan(scene, layout: tuple, times, cols) -> _SweepPlan | None:
     from .integrators import base
@@ -972,6 +975,8 @@ def run_columns(scene, layout, cols, times, nominal):
     """
     key = (id(scene), tuple(layout), None if times is None else tuple(np.atleast_1d(times)))
     if key not in _PLANS or (_PLANS[key] is not None and _PLANS[key].scene is not scene):
+        if len(_PLANS) >= MAX_PLANS:  # each holds its scene: a long process keeps a few
+            _PLANS.clear()
         _PLANS[key] = _sweep_plan(scene, tuple(layout), times, cols)
     plan = _PLANS[key]
     if plan is None:

@@ -226,3 +226,22 @@ def test_the_edge_chunk_file_is_extended_to_the_full_chunk_not_padded(tmp_path):
     zarr = pytest.importorskip("zarr")
     direct = zarr.open_group(out, mode="r", zarr_format=2)["q"][:]
     assert np.array_equal(direct, ds["q"].values)
+
+
+@pytest.mark.parametrize("client", ["sync", None])
+def test_a_scene_file_changed_between_two_runs_of_one_sweep_is_read_again(tmp_path, client):
+    # the chunks run in this process took the Sweep (and its scene) of the first run
+    scene = tmp_path / "body.toml"
+    body = "[body]\nmoments = [1.0, 2.0, 2.5]\n[initial.angular_velocity]\n"
+    body += 'body = [0.1, 3.0, 0.2]\nunits = "rad/s"\n'
+    body += '[time]\nduration = 0.02\n[integrator]\nstep = 0.01\npaths = ["quaternion"]\n'
+    scene.write_text(body)
+    sweep = tmp_path / "s.toml"
+    sweep.write_text('[sweep]\nscene = "body.toml"\n[grid]\n"body.moments[0]" = [1.0, 1.1]\n')
+    first = open_sweep(run_sweep(sweep, tmp_path / "a.zarr", client=client)).load()
+    scene.write_text(body.replace("[0.1, 3.0, 0.2]", "[0.1, 4.0, 0.2]"))
+    second = open_sweep(run_sweep(sweep, tmp_path / "b.zarr", client=client)).load()
+    assert second["w"].values[0, 0, 1] != first["w"].values[0, 0, 1]
+    values = {"body.moments[0]": np.array([1.0, 1.1])}
+    run = ensemble.run_samples(ensemble.scene_samples(load_sweep(sweep).scene, values))
+    assert np.array_equal(second["q"].values, run.q.transpose(1, 0, 2))

@@ -637,7 +637,9 @@ def run_sweep(
         done = np.zeros(sweep.chunks, dtype=bool)
     text = sweep.text
     file = str(Path(sweep.file).resolve()) if sweep.file != "<string>" else "<string>"
-    _SWEEPS.setdefault((text, file), sweep)  # chunks run here reuse it
+    # chunks run here use this one: a scene file the sweep names may have changed since
+    # an earlier run of the same sweep text in this process
+    _SWEEPS[(text, file)] = sweep
     task = _Task(text, file, str(store.resolve()), nominal)
     todo = [int(c) for c in np.flatnonzero(~done)]
     total, finished = sweep.chunks, int(done.sum())
