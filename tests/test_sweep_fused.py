@@ -245,3 +245,17 @@ def test_a_scene_file_changed_between_two_runs_of_one_sweep_is_read_again(tmp_pa
     values = {"body.moments[0]": np.array([1.0, 1.1])}
     run = ensemble.run_samples(ensemble.scene_samples(load_sweep(sweep).scene, values))
     assert np.array_equal(second["q"].values, run.q.transpose(1, 0, 2))
+
+
+def test_a_local_cluster_writes_what_one_thread_writes(tmp_path, used):
+    distributed = pytest.importorskip("distributed")
+    one = run_sweep(FAST, tmp_path / "one.zarr", client="sync")
+    with (
+        distributed.LocalCluster(
+            n_workers=2, threads_per_worker=1, processes=False, dashboard_address=None
+        ) as cluster,
+        distributed.Client(cluster) as client,
+    ):
+        out = run_sweep(FAST, tmp_path / "cluster.zarr", client=client)
+    assert used and all(used)
+    assert _files(out) == _files(one)
