@@ -974,11 +974,14 @@ def run_columns(scene, layout, cols, times, nominal):
     True
     """
     key = (id(scene), tuple(layout), None if times is None else tuple(np.atleast_1d(times)))
-    if key not in _PLANS or (_PLANS[key] is not None and _PLANS[key].scene is not scene):
+    plan = _PLANS.get(key, False)
+    if plan is False or (plan is not None and plan.scene is not scene):
         if len(_PLANS) >= MAX_PLANS:  # each holds its scene: a long process keeps a few
             _PLANS.clear()
-        _PLANS[key] = _sweep_plan(scene, tuple(layout), times, cols)
-    plan = _PLANS[key]
+        try:
+            plan = _PLANS[key] = _sweep_plan(scene, tuple(layout), times, cols)
+        except InputError:  # a first or last sample the scene refuses: the per-sample
+            return None  # path names the first bad one (nothing kept: checked again)
     if plan is None:
         return None
     n, k = cols.shape[1], plan.marks.size

@@ -259,3 +259,20 @@ def test_a_local_cluster_writes_what_one_thread_writes(tmp_path, used):
         out = run_sweep(FAST, tmp_path / "cluster.zarr", client=client)
     assert used and all(used)
     assert _files(out) == _files(one)
+
+
+def test_a_bad_value_is_named_as_the_per_sample_path_names_it(tmp_path, monkeypatch):
+    # samples 7 to 13 have a negative moment; in chunks of 10 the first chunk's last
+    # sample is one of them, which the pass's check of its mapping meets first: it must
+    # leave the naming to the per-sample path (the first bad sample), not name its own
+    text = FAST.replace("chunk = 5", "chunk = 10").replace(
+        '"initial.angular_velocity.body[1]" = [9.0, 10.0]', '"body.moments[1]" = [2.0, -2.0]'
+    )
+    errors = []
+    for off in (False, True):
+        if off:
+            monkeypatch.setattr(ensemble, "run_columns", lambda *args: None)
+        with pytest.raises(SceneError) as raised:
+            run_sweep(text, tmp_path / f"{off}.zarr", client="sync")
+        errors.append(str(raised.value))
+    assert errors[0] == errors[1] and "sample 7" in errors[0]
