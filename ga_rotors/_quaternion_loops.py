@@ -9,6 +9,10 @@ suffices is noted per loop: NaN or inf inputs always reach the result there.
 
 from __future__ import annotations
 
+import math
+
+import numpy as np
+
 from . import _kernels as K
 from ._batch import put, residue, row3, row4
 from ._jit import jit
@@ -21,6 +25,7 @@ __all__ = [
     "from_axis_angle_loop",
     "from_rotvec_loop",
     "inverse_loop",
+    "largest_distance_loop",
     "log_loop",
     "multiply_loop",
     "norm_loop",
@@ -193,3 +198,54 @@ def two_vectors_loop(u, su, v, sv, out):
         put(out, n, r)
         bad += residue(r)
     return bad == 0.0
+
+
+#: Rows screened at a time by :func:`largest_distance_loop`.
+_BLOCK = 1024
+
+
+@jit
+def largest_distance_loop(a, b, tol):
+    """(the largest of :func:`distance_loop`'s angles from a[n] to b[n] over the rows of
+    ``b`` (n, 4; ``a`` has at least as many), the first row holding it, whether every row
+    was finite), without computing every angle.
+
+    The angle is 2 asin |vec(a* ⊗ b)| for unit a, b, increasing in |vec|; |vec| without
+    the normalisations is within 5e-14 + 4 tol |vec| of the normalised one (rounding, a
+    few ulps of unit inputs; the inputs' allowed departure from unit, tol each), so two
+    rows' |vec| and angles are in the same order unless their |vec| are within
+    1e-13 + 8 tol |vec|. Only a row whose |vec| is that close to the largest |vec| seen
+    so far (this block's or an earlier one's, whose
+    row was then measured) can hold the largest angle: the full angle (two
+    normalisations, two hypot, an atan2) is computed for those alone. Between paths that
+    agree to rounding the angles grow slowly along a run, and few rows come that close.
+    No rows: (−1.0, 0, True).
+    """
+    keys = np.empty(_BLOCK)
+    best, at, ok, largest = -1.0, 0, True, 0.0
+    for start in range(0, b.shape[0], _BLOCK):
+        stop = min(start + _BLOCK, b.shape[0])
+        top = 0.0
+        for n in range(start, stop):
+            d = K.qmul(K.qconj((a[n, 0], a[n, 1], a[n, 2], a[n, 3])),
+                       (b[n, 0], b[n, 1], b[n, 2], b[n, 3]))  # fmt: skip
+            key = d[1] * d[1] + d[2] * d[2] + d[3] * d[3]
+            keys[n - start] = key
+            if key > top:
+                top = key
+            elif not key <= top:  # nan
+                ok = False
+        largest = max(largest, math.sqrt(top))
+        floor = max(largest - 1e-13 - 8.0 * tol * largest, 0.0)
+        floor = floor * floor
+        for n in range(start, stop):
+            if keys[n - start] >= floor:
+                r = K.geodesic_angle(
+                    K.qunit((a[n, 0], a[n, 1], a[n, 2], a[n, 3]), tol),
+                    K.qunit((b[n, 0], b[n, 1], b[n, 2], b[n, 3]), tol),
+                )
+                if r > best:
+                    best, at = r, n
+                elif not r <= best:
+                    ok = False
+    return best, at, ok

@@ -14,6 +14,8 @@ from itertools import combinations
 import numpy as np
 
 from . import paths as _paths
+from ._quaternion_loops import largest_distance_loop
+from ._validate import UNIT_TOLERANCE
 from .errors import InputError
 from .trajectory import Trajectory
 
@@ -82,7 +84,12 @@ def cross_check(trajectory: Trajectory, normalised=None) -> list[PathComparison]
     out = []
     for a, b in combinations(present, 2):
         n = min(quats[a].shape[0], quats[b].shape[0])
-        d = np.atleast_1d(distance(quats[a][:n], quats[b][:n]))
-        i = int(np.argmax(d))
-        out.append(PathComparison((a, b), float(d[i]), float(trajectory.t[i]), n))
+        qa, qb = (np.ascontiguousarray(quats[p][:n], dtype=np.float64) for p in (a, b))
+        # the largest of distance(qa, qb) and its first row, without every angle
+        angle, i, ok = largest_distance_loop(qa, qb, UNIT_TOLERANCE)
+        if not ok or n == 0:  # what distance says of these rows: raises, or nan (or none)
+            d = np.atleast_1d(distance(qa, qb))
+            i = int(np.argmax(d))
+            angle = d[i]
+        out.append(PathComparison((a, b), float(angle), float(trajectory.t[i]), n))
     return out

@@ -16,7 +16,7 @@ import numpy as np
 
 from .. import quaternion as Q
 from .._jit import jit
-from .._kernels import geodesic_angle, qconj, qmul, qunit
+from .._quaternion_loops import largest_distance_loop
 from .._validate import UNIT_TOLERANCE
 from ..errors import SceneError
 
@@ -171,7 +171,7 @@ class Exact:
             if not q.shape[0]:
                 dq[name] = None
                 continue
-            largest, ok = _largest_distance(q_ref, q, UNIT_TOLERANCE)
+            largest, _, ok = largest_distance_loop(q_ref, q, UNIT_TOLERANCE)
             # a non-unit or non-finite orientation: as Q.distance says (raises or nan)
             dq[name] = largest if ok else float(np.max(Q.distance(q_ref[: q.shape[0]], q)))
         return dw, dq
@@ -234,51 +234,6 @@ def _largest_rate_error(w, w_ref):
         elif square > best:
             best = square
     return math.nan if nan_seen else math.sqrt(best)
-
-
-#: Rows screened at a time by :func:`_largest_distance`.
-_BLOCK = 1024
-
-
-@jit
-def _largest_distance(a, b, tol):
-    """(max over rows of the geodesic angle from a[n] to b[n] exactly as
-    :func:`ga_rotors.quaternion.distance` computes it, whether every row was finite).
-
-    The angle is 2 asin |vec(a* ⊗ b)| for unit a, b, increasing in |vec|; |vec| without
-    the normalisations is within 1e-13 + 4 tol |vec| of the normalised one (a few ulps
-    of unit inputs, or their allowed departure from unit). Per block of rows, only those
-    whose |vec| is that close to the block's largest can hold its largest angle: the full
-    angle (two normalisations, two hypot, an atan2) is computed for those alone.
-    """
-    keys = np.empty(_BLOCK)
-    best, ok = 0.0, True
-    for start in range(0, b.shape[0], _BLOCK):
-        stop = min(start + _BLOCK, b.shape[0])
-        top = 0.0
-        for n in range(start, stop):
-            d = qmul(qconj((a[n, 0], a[n, 1], a[n, 2], a[n, 3])),
-                       (b[n, 0], b[n, 1], b[n, 2], b[n, 3]))  # fmt: skip
-            key = d[1] * d[1] + d[2] * d[2] + d[3] * d[3]
-            keys[n - start] = key
-            if key > top:
-                top = key
-            elif not key <= top:  # nan
-                ok = False
-        root = math.sqrt(top)
-        floor = max(root - 1e-13 - 8.0 * tol * root, 0.0)
-        floor = floor * floor
-        for n in range(start, stop):
-            if keys[n - start] >= floor:
-                r = geodesic_angle(
-                    qunit((a[n, 0], a[n, 1], a[n, 2], a[n, 3]), tol),
-                    qunit((b[n, 0], b[n, 1], b[n, 2], b[n, 3]), tol),
-                )
-                if r > best:
-                    best = r
-                elif not r <= best:
-                    ok = False
-    return best, ok
 
 
 def build(name: str | None, body, q0, w0, t0: float, gravity=None, damping=None) -> Exact | None:
