@@ -25,7 +25,8 @@ The per-argument formulas are compiled scalar functions (:func:`reduce_argument`
 loop over and which a reference's own compiled pass calls directly
 (:mod:`ga_rotors.reference.heavy_top` evaluates its whole state per sample that way): one
 implementation of each. R_J is Carlson's duplication algorithm, compiled here rather than
-scipy's ``elliprj`` (a ufunc, called per array): at most 2.7 ulps against mpmath where the
+scipy's ``elliprj`` (a ufunc, called per array), its series taken to the 7th degree so
+that it stops a duplication step earlier: at most 3.1 ulps against mpmath where the
 references call it, scipy's 4.2, and :func:`carlson_rj_pair` serves the heavy top's two
 characteristics at the same (x, y, z) with one duplication.
 """
@@ -142,8 +143,23 @@ def half_period_sign(j):
     return 1.0 - 2.0 * (j - 2.0 * math.floor(0.5 * j))
 
 
-#: Carlson's stopping constant (r/4)^(−1/6) for a relative truncation error r = ε.
-_RJ_STOP = (_EPS / 4.0) ** (-1.0 / 6.0)
+#: Carlson's stopping constant for a relative truncation error ε/4: the duplication stops
+#: once the arguments' relative spread |X| is below 1/_RJ_STOP, and the series of
+#: :func:`_rj_finish` runs to the 7th degree, so its first omitted terms are of the 8th:
+#: (ε/4)^(1/8). Carlson's series to the 5th degree needs (ε/4)^(1/6), a spread 4.8 times
+#: smaller: one more duplication step (square roots and a division) for every argument.
+#: The largest 8th- and 9th-degree terms over |X|, |Y|, |Z|, |P| ≤ 1 (sampled) are
+#: 0.155 |X|⁸ and 0.061 |X|⁹, so the truncation stays near ε/25, as the 5th-degree
+#: series' did near ε/20 (its 6th-degree terms: 0.197 |X|⁶).
+_RJ_STOP = (_EPS / 4.0) ** (-1.0 / 8.0)
+
+
+# The series' rational coefficients as products (a division costs several; each product
+# rounds once more, on terms below 1e-3 next to the series' leading 1).
+_11 = 1.0 / 11.0
+_C2, _C3, _C22, _C4 = -3.0 / 14.0, 1.0 / 6.0, 9.0 / 88.0, -3.0 / 22.0
+_C23, _C5, _C33, _C24, _C222 = -9.0 / 52.0, 3.0 / 26.0, 3.0 / 40.0, 3.0 / 20.0, -1.0 / 16.0
+_C34, _C25, _C223 = -9.0 / 68.0, -9.0 / 68.0, 45.0 / 272.0
 
 
 @jit
@@ -151,7 +167,7 @@ def _rc_one(e):
     """R_C(1, 1 + e) for e > −1: atan(√e)/√e, atanh(√−e)/√−e, or their series near 0
     (truncated after e⁵: the next term is below ε for |e| < 1e-3)."""
     if abs(e) < 1e-3:
-        return 1.0 + e * (-1.0 / 3.0 + e * (0.2 + e * (-1.0 / 7.0 + e * (1.0 / 9.0 - e / 11.0))))
+        return 1.0 + e * (-1.0 / 3.0 + e * (0.2 + e * (-1.0 / 7.0 + e * (1.0 / 9.0 - e * _11))))
     if e > 0.0:
         root = math.sqrt(e)
         return math.atan(root) / root
@@ -163,7 +179,7 @@ def _rc_one(e):
 def _rj_start(x, y, z, p):
     """Carlson's duplication for R_J(x, y, z, p), before its first step:
     (p, A, 4⁻ᵐ, 4⁻³ᵐ, Σ, going on, A₀, δ, Q)."""
-    a = (x + y + z + 2.0 * p) / 5.0
+    a = (x + y + z + 2.0 * p) * 0.2
     q = _RJ_STOP * max(abs(a - x), abs(a - y), abs(a - z), abs(a - p))
     return (p, a, 1.0, 1.0, 0.0, q >= abs(a), a, (p - x) * (p - y) * (p - z), q)
 
@@ -185,9 +201,13 @@ def _rj_step(state, sx, sy, sz, lam):
 @jit
 def _rj_finish(state, x, y, z):
     """R_J from a finished duplication of the arguments x, y, z (their initial values):
-    the fifth-order series at the last step, plus the R_C sum (Carlson 1995, DLMF 19.36.ii)."""
+    the series to the 7th degree at the last step (Carlson 1995, DLMF 19.36.ii; the 6th
+    and 7th degrees' terms −E₂³/16 + 3E₃²/40 + 3E₂E₄/20 + 45E₂²E₃/272 − 9(E₃E₄ + E₂E₅)/68
+    from the integrand's expansion, ``tests/test_elliptic.py``), plus the R_C sum."""
     _, a, f, _, total, _, a0, _, _ = state
-    scale = f / a
+    root = math.sqrt(a)
+    inverse = 1.0 / (a * root)  # A^(−3/2); 1/A = √A · A^(−3/2)
+    scale = f * (root * inverse)
     xx, yy, zz = (a0 - x) * scale, (a0 - y) * scale, (a0 - z) * scale
     pp = -0.5 * (xx + yy + zz)
     xyz, p2 = xx * yy * zz, pp * pp
@@ -195,11 +215,13 @@ def _rj_finish(state, x, y, z):
     e3 = xyz + 2.0 * e2 * pp + 4.0 * p2 * pp
     e4 = (2.0 * xyz + e2 * pp + 3.0 * p2 * pp) * pp
     e5 = xyz * p2
-    series = (
-        1.0 - 3.0 * e2 / 14.0 + e3 / 6.0 + 9.0 * e2 * e2 / 88.0 - 3.0 * e4 / 22.0
-        - 9.0 * e2 * e3 / 52.0 + 3.0 * e5 / 26.0
-    )  # fmt: skip
-    return f * series / (a * math.sqrt(a)) + 6.0 * total
+    series = 1.0 + (
+        e2 * (_C2 + e2 * (_C22 + e2 * _C222) + e4 * _C24)
+        + e3 * (_C3 + e2 * (_C23 + e2 * _C223) + e3 * _C33 + e4 * _C34)
+        + e4 * _C4
+        + e5 * (_C5 + e2 * _C25)
+    )
+    return f * series * inverse + 6.0 * total
 
 
 @jit
