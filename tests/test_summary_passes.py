@@ -1,8 +1,11 @@
 """The summary's compiled passes against the numpy formulas they replace, bit for bit:
-the azimuth's unwrap (numpy's np.unwrap, also piece by piece), the norm drift (numpy's
-norm), gravity's invariants (body.energy, body.momentum, quaternion.rotate)."""
+the azimuth's unwrap (numpy's np.unwrap of the arctangents, also piece by piece), the
+norm drift (numpy's norm), gravity's invariants (body.energy, body.momentum,
+quaternion.rotate)."""
 
 from __future__ import annotations
+
+import math
 
 import numpy as np
 import pytest
@@ -12,23 +15,41 @@ from ga_rotors.scene import load_scene, run_scene
 from ga_rotors.scene import summary as S
 
 
-def _angles(rng, n):
+def _axis(rng, n):
+    """x, y of an axis turning about z by random steps (and |ψ| jumps beyond π), with
+    rows exactly on the x axis (y = ±0, azimuth 0, ±π) and steps of exactly ±π."""
     steps = rng.normal(0.0, rng.choice([0.1, 1.0, 3.0]), n)
-    raw = np.arctan2(np.sin(np.cumsum(steps)), np.cos(np.cumsum(steps)))
-    raw[rng.integers(0, n, 3)] = rng.choice([np.pi, -np.pi], 3)  # jumps of exactly ±π too
-    return raw
+    x, y = np.cos(np.cumsum(steps)), np.sin(np.cumsum(steps))
+    on_axis = rng.integers(0, n, 6)
+    x[on_axis] = rng.choice([-1.0, 1.0, 0.5], 6)
+    y[on_axis] = rng.choice([0.0, -0.0], 6)
+    return x, y
 
 
-@pytest.mark.parametrize("seed", range(20))
-def test_unwrap_is_numpys_whole_and_in_pieces(seed):
+@pytest.mark.parametrize("seed", range(30))
+def test_azimuth_is_numpys_unwrap_whole_and_in_pieces(seed):
+    # ψ read at some rows, piece after piece (each with the previous piece's last row in
+    # front), equals np.unwrap of the whole run's arctangents at those rows, bit for bit
     rng = np.random.default_rng(seed)
-    raw = _angles(rng, int(rng.integers(2, 4000)))
-    whole, _ = S._unwrap(raw, None)
-    assert np.array_equal(whole, np.unwrap(raw))
-    cut = int(rng.integers(1, raw.size))
-    first, carried = S._unwrap(raw[:cut], None)
-    rest, _ = S._unwrap(raw[cut:], carried)
-    assert np.array_equal(np.concatenate([first, rest]), whole)
+    x, y = _axis(rng, int(rng.integers(2, 4000)))
+    # the C library's atan2, as the compiled pass calls it (numpy's may differ by an ulp)
+    whole = np.unwrap([math.atan2(b, a) for a, b in zip(x, y, strict=True)])
+    cuts = np.sort(rng.integers(1, x.size, int(rng.integers(0, 4))))
+    state = (math.atan2(y[0], x[0]), 0.0)
+    start = 0
+    for stop in [*cuts, x.size]:
+        if stop <= start:
+            continue
+        rows = np.arange(start, stop)  # row 0 of the piece: the previous piece's last
+        front = max(start - 1, 0)
+        px, py = x[front:stop], y[front:stop]
+        wanted = np.unique(rng.integers(1, px.size, 5)) if px.size > 1 else np.empty(0, int)
+        out = np.empty(wanted.size)
+        state = S._azimuth_loop(px, py, *state, wanted, out)
+        assert np.array_equal(out, whole[front + wanted]), (seed, start)
+        assert state[0] == math.atan2(y[stop - 1], x[stop - 1])
+        assert state[0] + state[1] == whole[stop - 1]
+        start = rows[-1] + 1
 
 
 def test_norm_drift_is_numpys():

@@ -110,7 +110,11 @@ def gravity_torque(mgl: float) -> TorqueTerm:
 def _state_loop(t, constants, m, m1, means, roots, c, q_out, w_out, err_out):
     """:meth:`HeavyTop.state` at each time of ``t`` (from the solution's constants), in one
     pass: orientations, body rates and rounding-error bounds into the three arrays.
-    Returns whether every value is finite."""
+    Returns whether every value is finite.
+
+    The elliptic functions it calls are compiled into it, and numba keys its cached
+    machine code on this file alone: a change to :mod:`~ga_rotors.reference.elliptic`
+    reaches this loop once this file changes too (or the cache is cleared)."""
     (rate, r0, k, n_p, n1_p, complete_p, n_m, n1_m, complete_m, p0_p, scale_p, p0_m, scale_m,
      om1, op1, psi0, phi0, w3, a, half_bma, half_bpa, udot_scale, phase_gain,
      sin_min) = constants  # fmt: skip

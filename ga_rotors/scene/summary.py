@@ -298,41 +298,45 @@ def _largest_norm_drift(a):
 
 
 @jit
-def _unwrap_loop(raw, prev_raw, carried, out):
-    """:func:`_unwrap`'s corrections, row by row: numpy's unwrap (np.mod as numpy
-    computes it: fmod, then the divisor's sign) and one running sum."""
+def _unwrap_step(raw, prev_raw, total):
+    """numpy's unwrap of the step from ``prev_raw`` to ``raw`` (np.mod as numpy computes
+    it: fmod, then the divisor's sign), its correction added to the running ``total``."""
     two_pi = 2.0 * math.pi
-    total = carried
-    for n in range(raw.shape[0]):
-        dd = raw[n] - prev_raw
-        prev_raw = raw[n]
-        mod = np.fmod(dd + math.pi, two_pi)
-        if mod != 0.0:
-            if mod < 0.0:
-                mod += two_pi
-        else:
-            mod = 0.0
-        ddmod = mod - math.pi
-        if ddmod == -math.pi and dd > 0.0:
-            ddmod = math.pi
-        total += (ddmod - dd) if not abs(dd) < math.pi else 0.0
-        out[n] = raw[n] + total
-    return total
+    dd = raw - prev_raw
+    mod = np.fmod(dd + math.pi, two_pi)
+    if mod != 0.0:
+        if mod < 0.0:
+            mod += two_pi
+    else:
+        mod = 0.0
+    ddmod = mod - math.pi
+    if ddmod == -math.pi and dd > 0.0:
+        ddmod = math.pi
+    return total + ((ddmod - dd) if not abs(dd) < math.pi else 0.0)
 
 
-def _unwrap(raw: np.ndarray, before) -> tuple[np.ndarray, tuple[float, float]]:
-    """Unwrapped angles ``raw`` continuing from ``before`` = (last raw, its correction).
+@jit
+def _azimuth_loop(x, y, prev_raw, total, wanted, out):
+    """The azimuth atan2(y, x) of rows 1…, unwrapped as numpy's unwrap does it (its
+    corrections in one running sum from ``total``; row 0's raw azimuth is ``prev_raw``),
+    at the rows ``wanted`` (increasing, each ≥ 1) into ``out``; returns (the last row's
+    raw azimuth, the running sum).
 
-    The standard unwrap (jumps beyond π corrected by whole turns), its corrections summed
-    in one running sum carried from piece to piece, so the pieces of a run unwrap to the
-    same numbers as the run whole.
+    Two rows on the same side of the x axis (y of one sign bit) have their azimuths both
+    in [0, π] or both in [−π, −0]: the step between them is at most π and its correction
+    exactly 0 (at π too: numpy's mod maps it back to π). So only a step across the axis
+    needs its two arctangents, and only the rows read need theirs.
     """
-    prev_raw, carried = before if before is not None else (raw[0], 0.0)
-    out = np.empty(raw.shape[0])
-    total = _unwrap_loop(
-        np.ascontiguousarray(raw, dtype=float), float(prev_raw), float(carried), out
-    )
-    return out, (float(raw[-1]), float(total))
+    k = 0
+    for n in range(1, x.shape[0]):
+        if np.signbit(y[n]) != np.signbit(y[n - 1]):
+            raw = math.atan2(y[n], x[n])
+            total = _unwrap_step(raw, math.atan2(y[n - 1], x[n - 1]), total)
+        if k < wanted.shape[0] and wanted[k] == n:
+            out[k] = math.atan2(y[n], x[n]) + total
+            k += 1
+    last = x.shape[0] - 1
+    return (math.atan2(y[last], x[last]) if last > 0 else prev_raw), total
 
 
 @jit
@@ -344,21 +348,21 @@ def _axis_readouts_loop(frame, q, w, out, tol):
         u = axis[2]
         out[0, n] = u
         out[1, n] = ws[0] * axis[1] - ws[1] * axis[0]  # (ω_s × axis)_z
-        out[2, n] = math.atan2(axis[1], axis[0])
+        out[2, n], out[3, n] = axis[0], axis[1]
         # ψ is the azimuth of the axis; with ω_s = ψ̇ ẑ + θ̇ n̂ + φ̇ e₃ (ZYZ),
         # ψ̇ = (ω_s·ẑ − cos θ ω_s·e₃) / sin²θ exactly, so ψ too is Hermite-interpolated.
         along = ws[0] * axis[0] + ws[1] * axis[1] + ws[2] * axis[2]
-        out[3, n] = (ws[2] - u * along) / (1.0 - u * u)
+        out[4, n] = (ws[2] - u * along) / (1.0 - u * u)
 
 
 def _axis_readouts(frame, q, w):
     """The heavy top's symmetry axis in the frame ``frame`` ⊗ q (gravity along −z) for unit
     orientations ``q`` (n, 4) and body rates ``w`` (n, 3): cos θ, its exact rate
-    (ω_s × axis)_z, the axis's azimuth atan2(y, x) and ψ̇, each (n,)."""
-    out = np.empty((4, q.shape[0]))
+    (ω_s × axis)_z, the axis's x and y (its azimuth is atan2(y, x)) and ψ̇, each (n,)."""
+    out = np.empty((5, q.shape[0]))
     q, w = (np.ascontiguousarray(a, dtype=np.float64) for a in (q, w))
     _axis_readouts_loop(np.asarray(frame, dtype=np.float64), q, w, out, UNIT_TOLERANCE)
-    return out[0], out[1], out[2], out[3]
+    return out[0], out[1], out[2], out[3], out[4]
 
 
 class RunSummary:
@@ -494,20 +498,34 @@ class RunSummary:
 
     def _heavy_top(self, exact, t, w, q) -> None:
         # the model's space frame (gravity along −z): cos θ, its exact rate, the axis's
-        # azimuth and ψ̇, in one compiled pass
-        u, du, raw, dpsi = _axis_readouts(exact.frame, q, w)
+        # azimuth (as x, y) and ψ̇, in one compiled pass
+        u, du, x, y, dpsi = _axis_readouts(exact.frame, q, w)
         when, value, is_max = extrema(t, u, du)
         for key, found in (("when", when), ("value", value), ("is_max", is_max)):
             self.found[key].append(found)
-        if self.psi is None:
-            psi, self.psi = _unwrap(raw, None)
-        else:  # the sample in front was unwrapped with the previous piece: raw + correction
-            front = self.psi[0] + self.psi[1]
-            psi, self.psi = _unwrap(raw[1:], self.psi)
-            psi = np.concatenate([[front], psi])
         peaks = when[~is_max]
-        if peaks.size:
-            at = hermite_at(t, psi, dpsi, peaks[[0, -1]])
+        self._psi_at_peaks(t, x, y, dpsi, peaks[[0, -1]] if peaks.size else peaks)
+
+    def _psi_at_peaks(self, t, x, y, dpsi, ends) -> None:
+        """ψ, unwrapped along the run, Hermite-interpolated at the times ``ends`` (this
+        piece's first and last peak of θ, or none): it is read at the two samples around
+        each only. Row 0 is the run's first sample (its raw azimuth, nothing carried) or
+        the previous piece's last (raw azimuth + the correction carried)."""
+        if self.psi is None:
+            self.psi = (math.atan2(y[0], x[0]), 0.0)
+        rows = np.clip(np.searchsorted(t, ends) - 1, 0, t.size - 2)
+        around = np.unique(np.concatenate([rows, rows + 1]))
+        later = around > 0
+        psi = np.full(around.size, self.psi[0] + self.psi[1])  # row 0's, where it is read
+        found = np.empty(int(later.sum()))
+        self.psi = _azimuth_loop(x, y, *self.psi, around[later], found)
+        psi[later] = found
+        if ends.size:
+            at = [
+                hermite_at(t[[i, i + 1]], psi[np.searchsorted(around, [i, i + 1])],
+                           dpsi[[i, i + 1]], [end])[0]
+                for i, end in zip(rows, ends, strict=True)
+            ]  # fmt: skip
             first = self.peak_psi[0] if self.peak_psi else float(at[0])
             self.peak_psi = [first, float(at[-1])]
 
