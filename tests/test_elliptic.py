@@ -182,9 +182,33 @@ def test_carlson_rj_series_coefficients_from_the_integrand():
             assert float(solved[ci]) == expected[m], (m, solved[ci])
 
 
-def test_carlson_rj_pair_is_each_single_bit_for_bit():
-    rng = np.random.default_rng(5)
-    args = list(_rj_arguments(rng, 200))
-    for (x, y, z, p), (_, _, _, other) in zip(args, args[::-1], strict=True):
-        pair = elliptic.carlson_rj_pair(x, y, z, p, other)
-        assert pair == (elliptic.carlson_rj(x, y, z, p), elliptic.carlson_rj(x, y, z, other))
+@pytest.mark.parametrize("rows", [0, 1, 63, 64, 65, 200])
+def test_carlson_rj_pairs_are_each_single_bit_for_bit(rows):
+    # in lockstep blocks of 64 rows (a short last one): each row's two R_J as alone
+    rng = np.random.default_rng(rows)
+    x, y, z, p = np.array(list(_rj_arguments(rng, rows))).reshape(rows, 4).T.copy()
+    other = p[::-1].copy()
+    out1, out2 = np.full(rows, np.nan), np.full(rows, np.nan)
+    elliptic.carlson_rj_pairs(x, y, z, p, other, out1, out2)
+    for i in range(rows):
+        assert out1[i] == elliptic.carlson_rj(x[i], y[i], z[i], p[i]), i
+        assert out2[i] == elliptic.carlson_rj(x[i], y[i], z[i], other[i]), i
+
+
+def test_pi_pairs_are_each_pi_reduced_bit_for_bit():
+    rng = np.random.default_rng(8)
+    m1 = 10.0 ** rng.uniform(-15.0, 0.0)
+    g = elliptic.GaussTransform(1.0 - m1, m1)
+    u = rng.uniform(-30.0, 30.0, 300)
+    u[:3] = [0.0, g.k, -2.0 * g.k]  # sn = 0, cn = 0, a whole period
+    j, r = (np.array(v) for v in zip(*(elliptic.reduce_argument(x, g.k) for x in u), strict=True))
+    s, c, d = (np.array(v) for v in zip(
+        *(elliptic.sncndn_reduced(x, *g.args) for x in r), strict=True))  # fmt: skip
+    n_a, n_b = 1.0 - 1e-9, -30.0  # one of each sign
+    pi_a, pi_b = np.empty(u.size), np.empty(u.size)
+    args_a = (n_a, 1e-9, g.complete_pi(n_a, 1e-9))
+    args_b = (n_b, 1.0 - n_b, g.complete_pi(n_b, 1.0 - n_b))
+    elliptic.pi_pairs(r, j, s, c, d, *args_a, *args_b, pi_a, pi_b)
+    for i in range(u.size):
+        assert pi_a[i] == elliptic.pi_reduced(r[i], j[i], s[i], c[i], d[i], *args_a), i
+        assert pi_b[i] == elliptic.pi_reduced(r[i], j[i], s[i], c[i], d[i], *args_b), i

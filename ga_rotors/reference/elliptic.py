@@ -27,8 +27,8 @@ loop over and which a reference's own compiled pass calls directly
 implementation of each. R_J is Carlson's duplication algorithm, compiled here rather than
 scipy's ``elliprj`` (a ufunc, called per array), its series taken to the 7th degree so
 that it stops a duplication step earlier: at most 3.1 ulps against mpmath where the
-references call it, scipy's 4.2, and :func:`carlson_rj_pair` serves the heavy top's two
-characteristics at the same (x, y, z) with one duplication.
+references call it, scipy's 4.2, and :func:`carlson_rj_pairs` serves the heavy top's two
+characteristics at the same (x, y, z) with one duplication, many arguments in lockstep.
 """
 
 from __future__ import annotations
@@ -163,11 +163,17 @@ _C34, _C25, _C223 = -9.0 / 68.0, -9.0 / 68.0, 45.0 / 272.0
 
 
 @jit
+def _rc_series(e):
+    """R_C(1, 1 + e) by its series, truncated after e⁵ (the next term is below ε for
+    |e| < 1e-3)."""
+    return 1.0 + e * (-1.0 / 3.0 + e * (0.2 + e * (-1.0 / 7.0 + e * (1.0 / 9.0 - e * _11))))
+
+
+@jit
 def _rc_one(e):
-    """R_C(1, 1 + e) for e > −1: atan(√e)/√e, atanh(√−e)/√−e, or their series near 0
-    (truncated after e⁵: the next term is below ε for |e| < 1e-3)."""
+    """R_C(1, 1 + e) for e > −1: atan(√e)/√e, atanh(√−e)/√−e, or their series near 0."""
     if abs(e) < 1e-3:
-        return 1.0 + e * (-1.0 / 3.0 + e * (0.2 + e * (-1.0 / 7.0 + e * (1.0 / 9.0 - e * _11))))
+        return _rc_series(e)
     if e > 0.0:
         root = math.sqrt(e)
         return math.atan(root) / root
@@ -185,17 +191,33 @@ def _rj_start(x, y, z, p):
 
 
 @jit
-def _rj_step(state, sx, sy, sz, lam):
-    """One duplication step of :func:`_rj_start`'s state, given √x, √y, √z and λ of this
-    step (shared by every p at the same x, y, z); a finished state is returned as it is."""
-    p, a, f, g, total, going, a0, delta, q = state
-    if not going:
-        return state
+def _rj_term(state, sx, sy, sz):
+    """(1/d, e) of a duplication step of :func:`_rj_start`'s state: its R_C term is
+    R_C(1, 1 + e)/d, given √x, √y, √z of this step."""
+    p, _, _, g, _, _, _, delta, _ = state
     sp = math.sqrt(p)
     inverse = 1.0 / ((sp + sx) * (sp + sy) * (sp + sz))  # 1/d: one division, not two
-    total += f * _rc_one(g * delta * inverse * inverse) * inverse
+    return inverse, g * delta * inverse * inverse
+
+
+@jit
+def _rj_advance(state, rc, inverse, lam):
+    """The state after a duplication step whose R_C(1, 1 + e) is ``rc`` (:func:`_rj_term`)
+    and whose λ is ``lam``."""
+    p, a, f, g, total, _, a0, delta, q = state
+    total += f * rc * inverse
     a, f = 0.25 * (a + lam), 0.25 * f
     return (0.25 * (p + lam), a, f, g / 64.0, total, f * q >= abs(a), a0, delta, q)
+
+
+@jit
+def _rj_step(state, sx, sy, sz, lam):
+    """One duplication step of :func:`_rj_start`'s state, given √x, √y, √z and λ of this
+    step; a finished state is returned as it is."""
+    if not state[5]:
+        return state
+    inverse, e = _rj_term(state, sx, sy, sz)
+    return _rj_advance(state, _rc_one(e), inverse, lam)
 
 
 @jit
@@ -224,19 +246,118 @@ def _rj_finish(state, x, y, z):
     return f * series * inverse + 6.0 * total
 
 
+#: Rows of :func:`carlson_rj_pairs` taken in lockstep: the duplication of a block runs as
+#: many steps as its slowest row (the others' states held), in loops a compiler turns
+#: into vector instructions. The block's rows are fixed offsets in one scratch array, so
+#: no runtime check of overlapping arrays stops it.
+_LANES = 64
+# the scratch array's rows: the arguments, the shared duplication's, then for each p its
+# state (:func:`_rj_start`'s nine values, ``going`` as 1.0 or 0.0) and its result
+_X, _Y, _Z, _U, _V, _W, _SU, _SV, _SW, _LAM, _E, _INV, _RC = range(13)
+_STATE = (13, 23)
+_ROWS = 33
+
+
 @jit
-def carlson_rj_pair(x, y, z, p1, p2):
-    """Carlson's R_J(x, y, z, p₁) and R_J(x, y, z, p₂) (x, y, z ≥ 0, at most one zero;
-    p₁, p₂ > 0) by one duplication of x, y, z: each result is what :func:`carlson_rj`
-    gives for its p alone (each p stops at its own step)."""
-    s1, s2 = _rj_start(x, y, z, p1), _rj_start(x, y, z, p2)
-    u, v, w = x, y, z
-    while s1[5] or s2[5]:
-        su, sv, sw = math.sqrt(u), math.sqrt(v), math.sqrt(w)
-        lam = su * sv + su * sw + sv * sw
-        s1, s2 = _rj_step(s1, su, sv, sw, lam), _rj_step(s2, su, sv, sw, lam)
-        u, v, w = 0.25 * (u + lam), 0.25 * (v + lam), 0.25 * (w + lam)
-    return _rj_finish(s1, x, y, z), _rj_finish(s2, x, y, z)
+def _lane_state(w, o, i):
+    """Lane i's state (:func:`_rj_start`'s tuple) from the rows at ``o``."""
+    return (w[o * _LANES + i], w[(o + 1) * _LANES + i], w[(o + 2) * _LANES + i],
+            w[(o + 3) * _LANES + i], w[(o + 4) * _LANES + i], w[(o + 5) * _LANES + i] != 0.0,
+            w[(o + 6) * _LANES + i], w[(o + 7) * _LANES + i], w[(o + 8) * _LANES + i])  # fmt: skip
+
+
+@jit
+def _put_lane_state(w, o, i, state):
+    p, a, f, g, total, going, a0, delta, q = state
+    w[o * _LANES + i], w[(o + 1) * _LANES + i], w[(o + 2) * _LANES + i] = p, a, f
+    w[(o + 3) * _LANES + i], w[(o + 4) * _LANES + i] = g, total
+    w[(o + 5) * _LANES + i] = 1.0 if going else 0.0
+    w[(o + 6) * _LANES + i], w[(o + 7) * _LANES + i], w[(o + 8) * _LANES + i] = a0, delta, q
+
+
+@jit
+def _lanes_start(w, k):
+    """:func:`_rj_start` of every lane, for p number ``k`` (its state's rows hold p)."""
+    o = _STATE[k]
+    for i in range(_LANES):
+        state = _rj_start(w[_X * _LANES + i], w[_Y * _LANES + i], w[_Z * _LANES + i],
+                          w[o * _LANES + i])  # fmt: skip
+        _put_lane_state(w, o, i, state)
+
+
+@jit
+def _lanes_roots(w):
+    """√x, √y, √z and λ of this step, every lane."""
+    for i in range(_LANES):
+        su = math.sqrt(w[_U * _LANES + i])
+        sv = math.sqrt(w[_V * _LANES + i])
+        sw = math.sqrt(w[_W * _LANES + i])
+        w[_SU * _LANES + i], w[_SV * _LANES + i], w[_SW * _LANES + i] = su, sv, sw
+        w[_LAM * _LANES + i] = su * sv + su * sw + sv * sw
+
+
+@jit
+def _lanes_step(w, k):
+    """:func:`_rj_step` of every lane for p number ``k`` (a finished lane's state kept):
+    the R_C series for every lane, the few beyond it one by one; returns how many lanes
+    go on."""
+    o = _STATE[k]
+    for i in range(_LANES):
+        inverse, e = _rj_term(_lane_state(w, o, i), w[_SU * _LANES + i], w[_SV * _LANES + i],
+                              w[_SW * _LANES + i])  # fmt: skip
+        w[_INV * _LANES + i], w[_E * _LANES + i] = inverse, e
+        w[_RC * _LANES + i] = _rc_series(e)
+    for i in range(_LANES):
+        if w[(o + 5) * _LANES + i] != 0.0 and not abs(w[_E * _LANES + i]) < 1e-3:
+            w[_RC * _LANES + i] = _rc_one(w[_E * _LANES + i])
+    going = 0.0
+    for i in range(_LANES):
+        state = _lane_state(w, o, i)
+        after = _rj_advance(state, w[_RC * _LANES + i], w[_INV * _LANES + i],
+                            w[_LAM * _LANES + i])  # fmt: skip
+        _put_lane_state(w, o, i, after if state[5] else state)
+        going += 1.0 if state[5] and after[5] else 0.0
+    return going
+
+
+@jit
+def _lanes_advance(w):
+    for i in range(_LANES):
+        lam = w[_LAM * _LANES + i]
+        w[_U * _LANES + i] = 0.25 * (w[_U * _LANES + i] + lam)
+        w[_V * _LANES + i] = 0.25 * (w[_V * _LANES + i] + lam)
+        w[_W * _LANES + i] = 0.25 * (w[_W * _LANES + i] + lam)
+
+
+@jit
+def carlson_rj_pairs(x, y, z, p1, p2, out1, out2):
+    """Carlson's R_J(x, y, z, p₁) and R_J(x, y, z, p₂) of every row of the 1-d arrays
+    (x, y, z ≥ 0, at most one zero; p₁, p₂ > 0) into ``out1``, ``out2``: each what
+    :func:`carlson_rj` gives for its arguments alone, bit for bit, with one duplication
+    of x, y, z for both p. :data:`_LANES` rows go in lockstep: each p of each row stops
+    at its own step, but a block runs the steps of its slowest, so that its loops over
+    the rows vectorise."""
+    w = np.zeros(_ROWS * _LANES)
+    n = x.shape[0]
+    for start in range(0, n, _LANES):
+        rows = min(_LANES, n - start)
+        for i in range(_LANES):  # a short last block repeats its first row
+            r = start + i if i < rows else start
+            w[_X * _LANES + i], w[_U * _LANES + i] = x[r], x[r]
+            w[_Y * _LANES + i], w[_V * _LANES + i] = y[r], y[r]
+            w[_Z * _LANES + i], w[_W * _LANES + i] = z[r], z[r]
+            w[_STATE[0] * _LANES + i], w[_STATE[1] * _LANES + i] = p1[r], p2[r]
+        _lanes_start(w, 0)
+        _lanes_start(w, 1)
+        going = 1.0
+        while going > 0.0:
+            _lanes_roots(w)
+            going = _lanes_step(w, 0) + _lanes_step(w, 1)
+            _lanes_advance(w)
+        for k, out in ((0, out1), (1, out2)):
+            for i in range(rows):
+                state = _lane_state(w, _STATE[k], i)
+                out[start + i] = _rj_finish(state, x[start + i], y[start + i], z[start + i])
 
 
 @jit
@@ -269,16 +390,31 @@ def pi_reduced(r, j, s, c, d, n, n1, complete):
 
 
 @jit
-def pi_reduced_pair(r, j, s, c, d, n_a, n1_a, complete_a, n_b, n1_b, complete_b):
-    """:func:`pi_reduced` for two characteristics at the same argument, with one
-    duplication of R_J's shared arguments (:func:`carlson_rj_pair`)."""
-    p_a, factor_a = _pi_terms(r, j, s, c, n_a, n1_a)
-    p_b, factor_b = _pi_terms(r, j, s, c, n_b, n1_b)
-    rj_a, rj_b = carlson_rj_pair(c * c, d * d, 1.0, p_a, p_b)
-    part_a, part_b = r + factor_a * rj_a, r + factor_b * rj_b
-    if j == 0.0:
-        return part_a, part_b
-    return 2.0 * j * complete_a + part_a, 2.0 * j * complete_b + part_b
+def pi_pairs(r, j, s, c, d, n_a, n1_a, complete_a, n_b, n1_b, complete_b, out_a, out_b):
+    """:func:`pi_reduced` of every row (1-d arrays r, j, sn, cn, dn of r) for two
+    characteristics at once, bit for bit, with one duplication of R_J's shared arguments
+    (:func:`carlson_rj_pairs`)."""
+    rows = r.shape[0]
+    x, y, z, p_a, p_b = (
+        np.empty(rows),
+        np.empty(rows),
+        np.ones(rows),
+        np.empty(rows),
+        np.empty(rows),
+    )
+    f_a, f_b, rj_a, rj_b = np.empty(rows), np.empty(rows), np.empty(rows), np.empty(rows)
+    for i in range(rows):
+        x[i], y[i] = c[i] * c[i], d[i] * d[i]
+        p_a[i], f_a[i] = _pi_terms(r[i], j[i], s[i], c[i], n_a, n1_a)
+        p_b[i], f_b[i] = _pi_terms(r[i], j[i], s[i], c[i], n_b, n1_b)
+    carlson_rj_pairs(x, y, z, p_a, p_b, rj_a, rj_b)
+    for i in range(rows):
+        part_a, part_b = r[i] + f_a[i] * rj_a[i], r[i] + f_b[i] * rj_b[i]
+        if j[i] == 0.0:
+            out_a[i], out_b[i] = part_a, part_b
+        else:
+            out_a[i] = 2.0 * j[i] * complete_a + part_a
+            out_b[i] = 2.0 * j[i] * complete_b + part_b
 
 
 @jit

@@ -106,77 +106,102 @@ def gravity_torque(mgl: float) -> TorqueTerm:
     return TorqueTerm(vertical_gravity, weight_and_lever, name="gravity", depends_on_omega=False)
 
 
+#: Times :func:`_state_loop` takes through each of its passes at once (its scratch
+#: arrays: 7 x 32 KiB).
+_CHUNK = 4096
+
+
 @jit
 def _state_loop(t, constants, m, m1, means, roots, c, q_out, w_out, err_out):
-    """:meth:`HeavyTop.state` at each time of ``t`` (from the solution's constants), in one
-    pass: orientations, body rates and rounding-error bounds into the three arrays.
-    Returns whether every value is finite.
+    """:meth:`HeavyTop.state` at each time of ``t`` (from the solution's constants):
+    orientations, body rates and rounding-error bounds into the three arrays. Returns
+    whether every value is finite.
+
+    :data:`_CHUNK` times at a time: their arguments reduced with sn, cn, dn, then both
+    Π-integrals of all of them (:func:`~ga_rotors.reference.elliptic.pi_pairs`, whose
+    R_J runs many arguments in lockstep), then each state (:func:`_state_row`).
 
     The elliptic functions it calls are compiled into it, and numba keys its cached
     machine code on this file alone: a change to :mod:`~ga_rotors.reference.elliptic`
     reaches this loop once this file changes too (or the cache is cleared)."""
-    (rate, r0, k, n_p, n1_p, complete_p, n_m, n1_m, complete_m, p0_p, scale_p, p0_m, scale_m,
-     om1, op1, psi0, phi0, w3, a, half_bma, half_bpa, udot_scale, phase_gain,
-     sin_min) = constants  # fmt: skip
+    rate, r0, k, n_p, n1_p, complete_p, n_m, n1_m, complete_m = constants[:9]
+    bad = 0.0
+    size = min(t.shape[0], _CHUNK)
+    js, rs, sns, cns, dns = (np.empty(size), np.empty(size), np.empty(size), np.empty(size),
+                             np.empty(size))  # fmt: skip
+    pluses, minuses = np.empty(size), np.empty(size)
+    for start in range(0, t.shape[0], _CHUNK):
+        rows = min(_CHUNK, t.shape[0] - start)
+        for i in range(rows):  # reduced once for sn, Π₊, Π₋
+            js[i], rs[i] = elliptic.reduce_argument(rate * t[start + i] + r0, k)
+            sns[i], cns[i], dns[i] = elliptic.sncndn_reduced(rs[i], m, m1, means, roots, c)
+        elliptic.pi_pairs(rs[:rows], js[:rows], sns[:rows], cns[:rows], dns[:rows], n_p,
+                          n1_p, complete_p, n_m, n1_m, complete_m, pluses[:rows],
+                          minuses[:rows])  # fmt: skip
+        for i in range(rows):
+            bad += _state_row(t[start + i], js[i], rs[i], sns[i], cns[i], dns[i], pluses[i],
+                              minuses[i], constants, q_out[start + i], w_out[start + i],
+                              err_out, start + i)  # fmt: skip
+    return bad == 0.0
+
+
+@jit
+def _state_row(ti, j, r, s, cr, d, pi_plus, pi_minus, constants, q_row, w_row, err_out, i):
+    """One sample of :func:`_state_loop` from its reduced argument, sn, cn, dn and both
+    Π: its orientation, body rate and bound into ``q_row``, ``w_row`` and ``err_out[i]``;
+    returns 0.0, or nan when a value is not finite."""
+    (rate, r0, _, n_p, n1_p, _, n_m, _, _, p0_p, scale_p, p0_m, scale_m, om1, op1, psi0, phi0,
+     w3, a, half_bma, half_bpa, udot_scale, phase_gain, sin_min) = constants  # fmt: skip
     # divisions by constants as products by their reciprocals (a rounding more each, far
     # inside the bound's 16 ulps; a division costs several products)
     per_scale_p, per_scale_m = 1.0 / scale_p, 1.0 / scale_m
     gain, unit = phase_gain / rate, 16.0 * _EPS / sin_min
-    bad = 0.0
-    for i in range(t.shape[0]):
-        ti = t[i]
-        phase = rate * ti + r0
-        j, r = elliptic.reduce_argument(phase, k)  # reduced once for sn, Π₊, Π₋
-        s, cr, d = elliptic.sncndn_reduced(r, m, m1, means, roots, c)
-        pi_plus, pi_minus = elliptic.pi_reduced_pair(
-            r, j, s, cr, d, n_p, n1_p, complete_p, n_m, n1_m, complete_m
-        )
-        sign = elliptic.half_period_sign(j)
-        sn, cn, dn = sign * s, sign * cr, d
-        one_minus = om1 * (n1_p + n_p * cn * cn)
-        one_plus = op1 * (1.0 - n_m * sn * sn)
-        p_plus = (pi_plus - p0_p) * per_scale_p
-        p_minus = (pi_minus - p0_m) * per_scale_m
-        psi = psi0 + half_bma * p_plus + half_bpa * p_minus
-        phi = phi0 + (w3 - a) * ti - half_bma * p_plus + half_bpa * p_minus
-        # q = q_z(ψ) ⊗ q_y(θ) ⊗ q_z(φ) = (c cos Σ, −s sin Δ, s cos Δ, c sin Σ) with
-        # Σ, Δ = (ψ ± φ)/2 and c, s = cos(θ/2), sin(θ/2) = √(1 + u), √(1 − u) over their
-        # norm (θ = 2 atan2(√(1 − u), √(1 + u)), read without the arctangent)
-        root_minus, root_plus = math.sqrt(one_minus), math.sqrt(one_plus)
-        norm = math.sqrt(one_minus + one_plus)
-        half_sin, half_cos = root_minus * (1.0 / norm), root_plus * (1.0 / norm)
-        half_sum, half_diff = 0.5 * (psi + phi), 0.5 * (psi - phi)
-        cs, ss, cd, sd = (
-            math.cos(half_sum),
-            math.sin(half_sum),
-            math.cos(half_diff),
-            math.sin(half_diff),
-        )
-        q = (half_cos * cs, -half_sin * sd, half_sin * cd, half_cos * ss)
-        # Body rates from the angles' rates (z–y′–z″): ω = (−ψ̇ sθ cφ + θ̇ sφ, ψ̇ sθ sφ + θ̇ cφ, ω₃).
-        sin_t = root_minus * root_plus
-        psidot = half_bma / one_minus + half_bpa / one_plus
-        # θ̇ = −u̇ / sin θ, u̇ = 2 (u₂ − u₁) λ sn cn dn
-        thetadot = -(udot_scale * sn * cn * dn) / sin_t
-        cphi, sphi = cs * cd + ss * sd, ss * cd - cs * sd  # φ = Σ − Δ
-        w = (-psidot * sin_t * cphi + thetadot * sphi, psidot * sin_t * sphi + thetadot * cphi, w3)
-        # A few ulps of the phase r (|r| + |r₀| + 1) move ψ and φ at most by the largest of
-        # their rates over λ: ½|b − a|/(1 − u) peaks at u₂ (1 − u₂, not 1 − u₁: they differ
-        # most next to the separatrix), ½|b + a|/(1 + u) at u₁; the Π-integrals carry a
-        # few ulps of |Π(n₊; r)| ≤ |r|/(1 − n₊) = |r| (1 − u₁)/(1 − u₂), the same term
-        # (``phase_gain``). Measured errors against a 34-54-digit oracle are 22-290x below
-        # this bound, next to the separatrix (1 − m down to 1e-14) as far from it
-        # (tests/test_reference_heavy.py).
-        err = unit * (
-            1.0 + (abs(phase) + abs(r0) + 1.0) * gain + abs(psi) + abs(phi) + abs(w3 - a) * abs(ti)
-        )
-        for n in range(4):
-            q_out[i, n] = q[n]
-        for n in range(3):
-            w_out[i, n] = w[n]
-        err_out[i] = err
-        bad += (q[0] + q[1] + q[2] + q[3] + w[0] + w[1]) * 0.0
-    return bad == 0.0
+    phase = rate * ti + r0
+    sign = elliptic.half_period_sign(j)
+    sn, cn, dn = sign * s, sign * cr, d
+    one_minus = om1 * (n1_p + n_p * cn * cn)
+    one_plus = op1 * (1.0 - n_m * sn * sn)
+    p_plus = (pi_plus - p0_p) * per_scale_p
+    p_minus = (pi_minus - p0_m) * per_scale_m
+    psi = psi0 + half_bma * p_plus + half_bpa * p_minus
+    phi = phi0 + (w3 - a) * ti - half_bma * p_plus + half_bpa * p_minus
+    # q = q_z(ψ) ⊗ q_y(θ) ⊗ q_z(φ) = (c cos Σ, −s sin Δ, s cos Δ, c sin Σ) with
+    # Σ, Δ = (ψ ± φ)/2 and c, s = cos(θ/2), sin(θ/2) = √(1 + u), √(1 − u) over their
+    # norm (θ = 2 atan2(√(1 − u), √(1 + u)), read without the arctangent)
+    root_minus, root_plus = math.sqrt(one_minus), math.sqrt(one_plus)
+    norm = math.sqrt(one_minus + one_plus)
+    half_sin, half_cos = root_minus * (1.0 / norm), root_plus * (1.0 / norm)
+    half_sum, half_diff = 0.5 * (psi + phi), 0.5 * (psi - phi)
+    cs, ss, cd, sd = (
+        math.cos(half_sum),
+        math.sin(half_sum),
+        math.cos(half_diff),
+        math.sin(half_diff),
+    )
+    q = (half_cos * cs, -half_sin * sd, half_sin * cd, half_cos * ss)
+    # Body rates from the angles' rates (z–y′–z″): ω = (−ψ̇ sθ cφ + θ̇ sφ, ψ̇ sθ sφ + θ̇ cφ, ω₃).
+    sin_t = root_minus * root_plus
+    psidot = half_bma / one_minus + half_bpa / one_plus
+    # θ̇ = −u̇ / sin θ, u̇ = 2 (u₂ − u₁) λ sn cn dn
+    thetadot = -(udot_scale * sn * cn * dn) / sin_t
+    cphi, sphi = cs * cd + ss * sd, ss * cd - cs * sd  # φ = Σ − Δ
+    w = (-psidot * sin_t * cphi + thetadot * sphi, psidot * sin_t * sphi + thetadot * cphi, w3)
+    # A few ulps of the phase r (|r| + |r₀| + 1) move ψ and φ at most by the largest of
+    # their rates over λ: ½|b − a|/(1 − u) peaks at u₂ (1 − u₂, not 1 − u₁: they differ
+    # most next to the separatrix), ½|b + a|/(1 + u) at u₁; the Π-integrals carry a
+    # few ulps of |Π(n₊; r)| ≤ |r|/(1 − n₊) = |r| (1 − u₁)/(1 − u₂), the same term
+    # (``phase_gain``). Measured errors against a 34-54-digit oracle are 22-290x below
+    # this bound, next to the separatrix (1 − m down to 1e-14) as far from it
+    # (tests/test_reference_heavy.py).
+    err = unit * (
+        1.0 + (abs(phase) + abs(r0) + 1.0) * gain + abs(psi) + abs(phi) + abs(w3 - a) * abs(ti)
+    )
+    for n in range(4):
+        q_row[n] = q[n]
+    for n in range(3):
+        w_row[n] = w[n]
+    err_out[i] = err
+    return (q[0] + q[1] + q[2] + q[3] + w[0] + w[1]) * 0.0
 
 
 @dataclass(frozen=True)
