@@ -182,6 +182,19 @@ def test_carlson_rj_series_coefficients_from_the_integrand():
             assert float(solved[ci]) == expected[m], (m, solved[ci])
 
 
+@pytest.mark.parametrize("m1", [0.9, 1e-3, 1e-9, 1e-15, 1e-150])
+def test_sncndn_many_is_each_sncndn_reduced_bit_for_bit(m1):
+    # many arguments in lockstep (blocks of 64, a short last one), each as alone: next to
+    # 0 (below 1e-100, where sn = r), at 0 and ±0, at ±K
+    g = elliptic.GaussTransform(1.0 - m1, m1)
+    r = np.random.default_rng(3).uniform(-g.k, g.k, 200)
+    r[:8] = [0.0, -0.0, 1e-101, -1e-120, 1e-99, g.k, -g.k, 5e-167]
+    sn, cn, dn = np.empty(r.size), np.empty(r.size), np.empty(r.size)
+    elliptic.sncndn_many(r, *g.args, sn, cn, dn)
+    for i, x in enumerate(r):
+        assert (sn[i], cn[i], dn[i]) == elliptic.sncndn_reduced(x, *g.args), i
+
+
 @pytest.mark.parametrize("rows", [0, 1, 63, 64, 65, 200])
 def test_carlson_rj_pairs_are_each_single_bit_for_bit(rows):
     # in lockstep blocks of 64 rows (a short last one): each row's two R_J as alone

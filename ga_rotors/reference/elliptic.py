@@ -8,7 +8,7 @@ function here takes both m and m₁, each computed by the caller without cancell
 uses m₁ wherever 1 − m would appear.
 
 * :func:`jacobi` — sn, cn, dn by the descending Gauss transformation on m₁, argument
-  reduced modulo 2K.
+  reduced modulo 2K (:func:`sncndn_many`: many arguments in lockstep).
 * :func:`incomplete_first` — F(φ | m) via Carlson's R_F, for any real φ.
 * :func:`jacobi_argument` — the inverse of :func:`jacobi`: u ∈ [−2K, 2K] from (sn u, cn u),
   without passing through the amplitude φ (well conditioned next to u = ±K, where
@@ -130,6 +130,51 @@ def sncndn_reduced(r, m, m1, means, roots, c):
     return sn, cn, math.sqrt(m1 + m * cn * cn)
 
 
+#: Arguments taken in lockstep by :func:`sncndn_many` and :func:`carlson_rj_pairs`: their
+#: loops over a block's arguments run at fixed offsets of one scratch array, so that no
+#: runtime check of overlapping arrays keeps the compiler from vector instructions; the
+#: R_J duplication of a block runs as many steps as its slowest argument (the others'
+#: states held).
+_LANES = 64
+
+
+@jit
+def sncndn_many(r, m, m1, means, roots, c, sn_out, cn_out, dn_out):
+    """:func:`sncndn_reduced` of every r (a 1-d array) into the three arrays, bit for bit,
+    :data:`_LANES` at a time: the sine and cosine one by one, the Gauss transformation's
+    recurrence a level at a time for all of them (loops that vectorise), the choice among
+    its cases (r next to 0, sin(rc) = 0) last."""
+    w = np.zeros(5 * _LANES)  # rows: cn/sn ratio, cc, d, sin(rc), cos(rc)
+    n = r.shape[0]
+    for start in range(0, n, _LANES):
+        rows = min(_LANES, n - start)
+        for i in range(_LANES):  # a short last block repeats its first row
+            x = r[start + i if i < rows else start] * c
+            w[3 * _LANES + i], w[4 * _LANES + i] = math.sin(x), math.cos(x)
+        for i in range(_LANES):
+            ratio = w[4 * _LANES + i] / w[3 * _LANES + i]
+            w[i], w[_LANES + i], w[2 * _LANES + i] = ratio, c * ratio, 1.0
+        for level in range(means.shape[0] - 1, -1, -1):
+            b, e = means[level], roots[level]
+            for i in range(_LANES):
+                ratio = w[i] * w[_LANES + i]
+                cc = w[_LANES + i] * w[2 * _LANES + i]
+                w[2 * _LANES + i] = (e + ratio) / (b + ratio)
+                w[_LANES + i] = cc
+                w[i] = cc / b
+        for i in range(rows):
+            sn, cn = w[3 * _LANES + i], w[4 * _LANES + i]
+            if abs(r[start + i]) < _SMALL_ARGUMENT:
+                sn, cn = r[start + i], 1.0
+            elif sn != 0.0:
+                cc = w[_LANES + i]
+                s_abs = 1.0 / math.sqrt(cc * cc + 1.0)
+                sn = s_abs if sn >= 0.0 else -s_abs
+                cn = cc * sn
+            sn_out[start + i], cn_out[start + i] = sn, cn
+            dn_out[start + i] = math.sqrt(m1 + m * cn * cn)
+
+
 @jit
 def reduce_argument(u, k):
     """u = 2jK + r with r ∈ [−K, K]: (j, r) for one argument (j a whole float)."""
@@ -246,11 +291,6 @@ def _rj_finish(state, x, y, z):
     return f * series * inverse + 6.0 * total
 
 
-#: Rows of :func:`carlson_rj_pairs` taken in lockstep: the duplication of a block runs as
-#: many steps as its slowest row (the others' states held), in loops a compiler turns
-#: into vector instructions. The block's rows are fixed offsets in one scratch array, so
-#: no runtime check of overlapping arrays stops it.
-_LANES = 64
 # the scratch array's rows: the arguments, the shared duplication's, then for each p its
 # state (:func:`_rj_start`'s nine values, ``going`` as 1.0 or 0.0) and its result
 _X, _Y, _Z, _U, _V, _W, _SU, _SV, _SW, _LAM, _E, _INV, _RC = range(13)
@@ -420,9 +460,8 @@ def pi_pairs(r, j, s, c, d, n_a, n1_a, complete_a, n_b, n1_b, complete_b, out_a,
 @jit
 def _reduced_loop(u, k, m, m1, means, roots, c, j_out, r_out, sn_out, cn_out, dn_out):
     for i in range(u.shape[0]):
-        j, r = reduce_argument(u[i], k)
-        j_out[i], r_out[i] = j, r
-        sn_out[i], cn_out[i], dn_out[i] = sncndn_reduced(r, m, m1, means, roots, c)
+        j_out[i], r_out[i] = reduce_argument(u[i], k)
+    sncndn_many(r_out, m, m1, means, roots, c, sn_out, cn_out, dn_out)
 
 
 @jit

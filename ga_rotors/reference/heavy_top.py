@@ -117,9 +117,10 @@ def _state_loop(t, constants, m, m1, means, roots, c, q_out, w_out, err_out):
     orientations, body rates and rounding-error bounds into the three arrays. Returns
     whether every value is finite.
 
-    :data:`_CHUNK` times at a time: their arguments reduced with sn, cn, dn, then both
-    Π-integrals of all of them (:func:`~ga_rotors.reference.elliptic.pi_pairs`, whose
-    R_J runs many arguments in lockstep), then each state (:func:`_state_row`).
+    :data:`_CHUNK` times at a time: their arguments reduced, their sn, cn, dn
+    (:func:`~ga_rotors.reference.elliptic.sncndn_many`) and both Π-integrals
+    (:func:`~ga_rotors.reference.elliptic.pi_pairs`), each many arguments in lockstep,
+    then each state (:func:`_state_row`).
 
     The elliptic functions it calls are compiled into it, and numba keys its cached
     machine code on this file alone: a change to :mod:`~ga_rotors.reference.elliptic`
@@ -134,7 +135,8 @@ def _state_loop(t, constants, m, m1, means, roots, c, q_out, w_out, err_out):
         rows = min(_CHUNK, t.shape[0] - start)
         for i in range(rows):  # reduced once for sn, Π₊, Π₋
             js[i], rs[i] = elliptic.reduce_argument(rate * t[start + i] + r0, k)
-            sns[i], cns[i], dns[i] = elliptic.sncndn_reduced(rs[i], m, m1, means, roots, c)
+        elliptic.sncndn_many(rs[:rows], m, m1, means, roots, c, sns[:rows], cns[:rows],
+                             dns[:rows])  # fmt: skip
         elliptic.pi_pairs(rs[:rows], js[:rows], sns[:rows], cns[:rows], dns[:rows], n_p,
                           n1_p, complete_p, n_m, n1_m, complete_m, pluses[:rows],
                           minuses[:rows])  # fmt: skip
