@@ -276,3 +276,25 @@ def test_a_bad_value_is_named_as_the_per_sample_path_names_it(tmp_path, monkeypa
             run_sweep(text, tmp_path / f"{off}.zarr", client="sync")
         errors.append(str(raised.value))
     assert errors[0] == errors[1] and "sample 7" in errors[0]
+
+
+def test_a_threaded_sweep_of_the_compiled_pass_interrupted_resumes_to_the_whole(tmp_path, used):
+    # Ctrl-C reaches the thread waiting on Dask: the chunks running finish and flag
+    # themselves (the last ones written by their own threads), the rest are not started
+    text = FAST.replace("samples = 7", "samples = 20").replace("chunk = 5", "chunk = 2")
+    whole = _files(run_sweep(text, tmp_path / "whole.zarr", workers=2))
+    out = tmp_path / "s.zarr"
+
+    def interrupt(done, total):
+        if done == 1:
+            raise KeyboardInterrupt
+
+    with pytest.raises(KeyboardInterrupt):
+        run_sweep(text, out, workers=2, progress=interrupt)
+    flags = xr.open_zarr(out)["chunk_done"].values == 1
+    assert 1 <= flags.sum() < 20
+    calls = []
+    run_sweep(text, out, workers=2, progress=lambda d, n: calls.append(d))
+    assert calls[0] == flags.sum() and calls[-1] == 20
+    assert used and all(used)
+    assert _files(out) == whole
