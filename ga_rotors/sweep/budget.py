@@ -56,16 +56,18 @@ def estimate(sweep, threads: int | None = None) -> Estimate:
     ... ''')
     >>> e = estimate(s, threads=2)
     >>> print(e)
-    3e+10 steps, 1e+06 samples: about 63.5 MiB of memory, 72.1 MiB of files
+    3e+10 steps, 1e+06 samples: about 68 MiB of memory, 72.1 MiB of files
     """
     threads = threads or os.cpu_count() or 1
     values, k = _stored_values(sweep)
     chunk = min(sweep.chunk, sweep.size)
     files = sum(max(8 * v * chunk, BLOCK_BYTES) for v in values) + BLOCK_BYTES  # + its flag
     per_sample = 8 * (_INPUT_VALUES + 2 * 8 * k + sum(values))
-    # and while they integrate, the writer thread holds the chunk before theirs (its
-    # outputs) and a copy of its largest file (the page-aligned buffer of direct writes)
-    writing = 8 * chunk * (sum(values) + max(values)) if sweep.chunks > 1 else 0
+    # and while they integrate, the writer thread holds the chunks before theirs (one a
+    # thread, their outputs) and a copy of its largest file (the page-aligned buffer of
+    # direct writes)
+    held = min(threads, sweep.chunks - 1)
+    writing = 8 * chunk * (held * sum(values) + max(values)) if held else 0
     return Estimate(
         steps=sweep.size * sweep.scene.steps,
         samples=sweep.size,

@@ -35,6 +35,7 @@ Where the tasks run:
 
 from __future__ import annotations
 
+import collections
 import functools
 import os
 import shutil
@@ -201,27 +202,40 @@ def _angles(q, nominal, out):
             out[i, j] = K.angle_any_norm((q[j, i, 0], q[j, i, 1], q[j, i, 2], q[j, i, 3]), b)
 
 
-#: This process's writer thread and the write it has pending (at most one).
-_WRITER: dict = {"executor": None, "pending": None}
+#: This process's writer thread and the writes it has pending, oldest first.
+_WRITER: dict = {"executor": None, "pending": collections.deque()}
 _WRITER_LOCK = threading.Lock()
 
 
-def _write_behind(job) -> None:
+def _write_behind(job, depth: int = 1) -> None:
+    """Hand ``job`` to the writer thread, once fewer than ``depth`` writes are pending.
+
+    A threaded run's threads finish their chunks at about the same time (equal chunks,
+    started together): with room for one chunk each, neither waits for the other's write.
+    """
     with _WRITER_LOCK:
-        _wait_pending()
+        pending = _WRITER["pending"]
+        while len(pending) >= depth:
+            pending.popleft().result()  # a failed write raises here, in the task that waits
         if _WRITER["executor"] is None:
             _WRITER["executor"] = ThreadPoolExecutor(1, thread_name_prefix="ga_rotors-writer")
-        _WRITER["pending"] = _WRITER["executor"].submit(job)
+        pending.append(_WRITER["executor"].submit(job))
 
 
 def _wait_pending() -> None:
-    pending, _WRITER["pending"] = _WRITER["pending"], None
-    if pending is not None:
-        pending.result()  # a failed write raises here, in the task or flush that waits
+    """Wait for every pending write; raise the first one's error, if any."""
+    pending, error = _WRITER["pending"], None
+    while pending:
+        try:
+            pending.popleft().result()
+        except BaseException as exc:  # raised below, once all are done
+            error = error or exc
+    if error is not None:
+        raise error
 
 
 def flush_writes() -> None:
-    """Wait until the chunk this process is writing in the background is written.
+    """Wait until the chunks this process is writing in the background are written.
 
     Raises what the write raised. :func:`run_sweep` calls it here and on every Dask
     worker before it returns.
@@ -400,7 +414,14 @@ class _Started:
 
 
 def _run_part(
-    task: _Task, c: int, first: int, end: int, pieces: _Pieces | None, ready, started=None
+    task: _Task,
+    c: int,
+    first: int,
+    end: int,
+    pieces: _Pieces | None,
+    ready,
+    started=None,
+    depth: int = 1,
 ) -> bool:
     """Integrate samples ``first`` to ``end - 1`` of chunk ``c``; True if it wrote the chunk.
 
@@ -408,8 +429,9 @@ def _run_part(
     states; the last piece of its chunk to finish puts them together and writes the
     chunk, so the store is written whole chunks at a time whatever the split. A sample's
     numbers depend on its index only (its draws, its own integration): a chunk made of
-    pieces is the chunk made at once, bit for bit. ``ready()`` returns once the store
-    exists (it is made while the first chunks integrate) and raises what making it raised.
+    pieces is the chunk made at once, bit for bit. ``ready()``, called before a chunk's
+    write, makes the store if it is not made yet (once: see :class:`_Once`) and raises
+    what making it raised. ``depth``: writes pending at most (see :func:`_write_behind`).
     Once every task has started (``started``, a :class:`_Started`), a chunk is written in
     this thread, which has nothing left to integrate, beside the writer thread's pending
     write rather than after it: the end of the sweep waits for both.
@@ -430,12 +452,35 @@ def _run_part(
         parts = [pieces.done[k] for k in sorted(pieces.done)]
         values = {key: np.concatenate([p[0][key] for p in parts]) for key in parts[0][0]}
         done = (values, *(np.concatenate([p[k] for p in parts]) for k in (1, 2, 3)))
-    ready()
     if started is not None and started.all():
+        ready()
         _finish(task, c, *done)
     else:  # written on this process's writer thread while this one integrates on
-        _write_behind(functools.partial(_finish, task, c, *done))
+        _write_behind(functools.partial(_ready_then_finish, ready, task, c, *done), depth)
     return True
+
+
+def _ready_then_finish(ready, task: _Task, c: int, *done) -> None:
+    ready()
+    _finish(task, c, *done)
+
+
+class _Once:
+    """``f()`` run by the first call, under a lock; every call raises what it raised."""
+
+    def __init__(self, f):
+        self.f, self.lock, self.done, self.error = f, threading.Lock(), False, None
+
+    def __call__(self) -> None:
+        with self.lock:
+            if not self.done:
+                try:
+                    self.f()
+                except BaseException as exc:  # raised to every caller
+                    self.error = exc
+                self.done = True
+        if self.error is not None:
+            raise self.error
 
 
 def _run_threads(task: _Task, sweep: Sweep, todo: list[int], threads: int, done, ready) -> None:
@@ -464,7 +509,7 @@ def _run_threads(task: _Task, sweep: Sweep, todo: list[int], threads: int, done,
     keys = [f"ga_rotors-chunk-{len(parts) - 1 - i:0{width}d}" for i in range(len(parts))]
     started = _Started(len(parts))
     graph = {
-        key: (_run_part, task, c, first, end, shared.get(c), ready, started)
+        key: (_run_part, task, c, first, end, shared.get(c), ready, started, threads)
         for key, (c, first, end, _) in zip(keys, parts, strict=True)
     }
 
@@ -671,27 +716,22 @@ def run_sweep(
             progress(finished, total)
         return store
     if client is None and not scheduler:
-        # The store is made on a thread of its own while the first chunks integrate
-        # (about 4 ms of files: 1 % of a 10⁶-sample sweep at 100 steps on two cores);
-        # a chunk waits for it before writing.
-        making = ThreadPoolExecutor(1, thread_name_prefix="ga_rotors-create")
-        try:
-            made = making.submit(_create, sweep, store, nominal) if not created else None
+        # The store is made by the first chunk's write, on the writer thread, once the
+        # threads integrate (about 4 ms of Python and files: made on a thread of its own
+        # from the start, it held the GIL while the threads drew their first chunks, and
+        # they began integrating 5-10 ms later).
+        made = _Once(functools.partial(_create, sweep, store, nominal)) if not created else None
+        if progress is not None:
+            progress(finished, total)
+
+        def flagged():
+            nonlocal finished
+            finished += 1
             if progress is not None:
                 progress(finished, total)
 
-            def flagged():
-                nonlocal finished
-                finished += 1
-                if progress is not None:
-                    progress(finished, total)
-
-            threads = workers or os.cpu_count() or 1
-            _run_threads(task, sweep, todo, threads, flagged, made.result if made else None)
-            if made is not None:
-                made.result()  # raised by the first chunk to write, if it failed
-        finally:
-            making.shutdown(wait=True)
+        threads = workers or os.cpu_count() or 1
+        _run_threads(task, sweep, todo, threads, flagged, made)
         return store
     distributed = require("distributed", "dask")
     # connected before anything is written: an unreachable scheduler leaves no store
