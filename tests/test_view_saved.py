@@ -126,3 +126,11 @@ def test_an_object_array_is_refused_without_unpickling(tmp_path):
     np.savez(tmp_path / "r.npz", **arrays, extra=np.array([{"a": 1}], dtype=object))
     with pytest.raises(InputError, match=r"r\.npz: extra: expected finite numbers"):
         saved.load_result(tmp_path)
+
+
+def test_an_empty_t_beside_long_arrays_is_one_line(tmp_path, small_limits):
+    arrays = _result(tmp_path)
+    np.savez(tmp_path / "r.npz", **(arrays | {"t": np.zeros(0)}))
+    with pytest.raises(InputError, match=r"r\.npz: t: expected at least one sample") as caught:
+        saved.load_result(tmp_path)
+    assert "\n" not in str(caught.value)

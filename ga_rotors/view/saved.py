@@ -127,6 +127,8 @@ def _check_shapes(members: dict[str, _Member], where: Path) -> None:
         ):
             shape = "(n,)" if name == "t" else f"(n, {dim})"
             raise InputError(f"{where}: {name}: expected shape {shape}, got {m.shape}")
+    if members["t"].rows == 0:  # (and no row index below 0 to keep)
+        raise InputError(f"{where}: t: expected at least one sample, got none")
 
 
 def _largest_rows(w: _Member, moments) -> list[int]:
