@@ -134,3 +134,11 @@ def test_an_empty_t_beside_long_arrays_is_one_line(tmp_path, small_limits):
     with pytest.raises(InputError, match=r"r\.npz: t: expected at least one sample") as caught:
         saved.load_result(tmp_path)
     assert "\n" not in str(caught.value)
+
+
+def test_a_header_claiming_countless_empty_rows_is_not_read_row_by_row(tmp_path, small_limits):
+    # 10¹⁵ rows of nothing: a loop over its blocks would run for minutes.
+    arrays = _result(tmp_path)
+    np.savez(tmp_path / "r.npz", **arrays, extra=np.empty((10**15, 0)))
+    with pytest.raises(InputError, match=r"^extra: expected at most \d+ rows \(len\(t\)\)"):
+        saved.load_result(tmp_path)  # at once: longer than t

@@ -76,6 +76,9 @@ class _Member:
             if not self.shape:
                 yield 0, np.frombuffer(self._read(fh, self.dtype.itemsize), self.dtype)[0]
                 return
+            if row_bytes == 0:  # rows of nothing, however many the header claims: no reads
+                yield 0, np.empty(self.shape, self.dtype)
+                return
             if trailing and self.fortran:
                 if row_bytes * self.rows > WHOLE_BYTES:
                     raise InputError(
