@@ -213,6 +213,23 @@ def _aligned_buffer(size: int) -> memoryview:
     return memoryview(mmap.mmap(-1, size))
 
 
+def _pages(size: int) -> int:
+    """``size`` bytes rounded up to whole pages (:data:`DIRECT_ALIGN`), at least one."""
+    return max(DIRECT_ALIGN, -(-int(size) // DIRECT_ALIGN) * DIRECT_ALIGN)
+
+
+def _open(path, flags: int, direct: bool) -> tuple[int, bool]:
+    """(fd, whether it is direct): ``path`` opened with ``O_DIRECT`` if ``direct`` and the
+    system and file system allow it, else without, silently."""
+    if direct and _O_DIRECT:
+        try:
+            return os.open(path, flags | _O_DIRECT, 0o666), True
+        except OSError as exc:
+            if exc.errno not in _NO_DIRECT:
+                raise
+    return os.open(path, flags, 0o666), False
+
+
 def staging(size: int):
     """A page-aligned writable buffer of ``size`` bytes (a numpy ``uint8`` array), for
     :func:`write_direct`: the calling thread's own, kept for its next call, unless it is
@@ -226,12 +243,12 @@ def staging(size: int):
     """
     import numpy as np
 
-    pages = -(-size // DIRECT_ALIGN) * DIRECT_ALIGN
+    pages = _pages(size)
     if pages > KEPT_STAGING:
         return np.frombuffer(_aligned_buffer(pages), np.uint8)[:size]
     buf = getattr(_STAGING, "buffer", None)
     if buf is None or buf.size < size:
-        buf = np.frombuffer(_aligned_buffer(max(pages, DIRECT_ALIGN)), np.uint8)
+        buf = np.frombuffer(_aligned_buffer(pages), np.uint8)
         _STAGING.buffer = buf
     return buf[:size]
 
@@ -311,23 +328,13 @@ class DirectWriter:
 
     def __init__(self, path, buffer_size: int = DIRECT_BUFFER, *, direct: bool = True, buffer=None):
         self.path = Path(path)
-        if buffer is None:
-            size = max(DIRECT_ALIGN, -(-int(buffer_size) // DIRECT_ALIGN) * DIRECT_ALIGN)
-        flags = os.O_WRONLY | os.O_CREAT | os.O_TRUNC
-        self.direct = bool(direct and _O_DIRECT)
-        self._fd = -1
-        if self.direct:
-            try:
-                self._fd = os.open(self.path, flags | _O_DIRECT, 0o666)
-            except OSError as exc:
-                if exc.errno not in _NO_DIRECT:
-                    raise
-                self.direct = False
-        if self._fd < 0:
-            self._fd = os.open(self.path, flags, 0o666)
+        self._fd, self.direct = _open(self.path, os.O_WRONLY | os.O_CREAT | os.O_TRUNC, direct)
         # the caller's buffer (write_direct's, kept by its thread) is not released here
         self._own = buffer is None
-        self._buffer = _aligned_buffer(size) if self._own else memoryview(buffer).cast("B")
+        if self._own:
+            self._buffer = _aligned_buffer(_pages(buffer_size))
+        else:
+            self._buffer = memoryview(buffer).cast("B")
         self._used = 0
 
     def write(self, data) -> int:
@@ -372,12 +379,8 @@ class DirectWriter:
         size_all = len(self._buffer)
         if size > size_all - DIRECT_ALIGN:
             return None
-        used = self._used
-        if size_all - used < size:  # out with what can go (whole pages if direct)
-            head = used - used % DIRECT_ALIGN if self.direct else used
-            self._flush(head)
-            self._buffer[: used - head] = self._buffer[head:used]  # under a page: to the front
-            self._used = used - head
+        if size_all - self._used < size:  # out with what can go (whole pages if direct)
+            self._flush_head(self._used if not self.direct else None)
         return np.frombuffer(self._buffer, np.uint8)[self._used : self._used + size]
 
     def commit(self, n: int) -> None:
@@ -385,6 +388,17 @@ class DirectWriter:
         self._used += n
         if self._used == len(self._buffer):
             self._flush(self._used)
+
+    def _flush_head(self, head: int | None = None) -> None:
+        """Write the buffer's first ``head`` bytes (None: its whole pages) and move the rest,
+        under a page, to its front."""
+        used = self._used
+        if head is None:
+            head = used - used % DIRECT_ALIGN
+        if head:
+            self._flush(head)
+            self._buffer[: used - head] = self._buffer[head:used]
+            self._used = used - head
 
     def _flush(self, length: int) -> None:
         """Write the buffer's first ``length`` bytes (whole pages while direct)."""
@@ -412,12 +426,8 @@ class DirectWriter:
         if self._fd < 0:
             return
         try:
-            used = self._used
-            head = used - used % DIRECT_ALIGN if self.direct else 0
-            if head:
-                self._flush(head)
-                self._buffer[: used - head] = self._buffer[head:used]
-                self._used = used - head
+            if self.direct:
+                self._flush_head()
             if self._used:
                 if self.direct:
                     _clear_direct(self._fd)
@@ -464,19 +474,8 @@ def read_direct(path, buffer_size: int = DIRECT_BUFFER) -> Iterator[memoryview]:
     >>> b"".join(read_direct(path)) == path.read_bytes()
     True
     """
-    size = max(DIRECT_ALIGN, -(-int(buffer_size) // DIRECT_ALIGN) * DIRECT_ALIGN)
-    direct = bool(_O_DIRECT)
-    fd = -1
-    if direct:
-        try:
-            fd = os.open(path, os.O_RDONLY | _O_DIRECT)
-        except OSError as exc:
-            if exc.errno not in _NO_DIRECT:
-                raise
-            direct = False
-    if fd < 0:
-        fd = os.open(path, os.O_RDONLY)
-    buffer = _aligned_buffer(size)
+    fd, direct = _open(path, os.O_RDONLY, True)
+    buffer = _aligned_buffer(_pages(buffer_size))
     try:
         while True:
             try:
