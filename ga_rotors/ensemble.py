@@ -807,11 +807,8 @@ def run_samples(
     >>> run.q.shape, run.t.tolist(), bool(np.array_equal(run.q[:, 0], run.q[:, 1]))
     ((2, 2, 4), [0.5, 1.0], True)
     """
-    from .integrators import base
-
     scene = samples.scene
     method, path, module = _method_and_path(scene)
-    spec_method = scene.data["integrator"]
     t0, h, nsteps = scene.data["time"]["start"], scene.step, scene.steps
     marks = _marks(times, t0, h, nsteps, scene.file)
     n = len(samples)
@@ -821,9 +818,8 @@ def run_samples(
     inertia = np.ascontiguousarray(samples.inertia.T)
     params = np.ascontiguousarray(samples.params.T)
     out_x, out_w = np.empty((marks.size, 4, n)), np.empty((marks.size, 3, n))
-    lower = spec_method.get("accept_lower_order", False)
     for k, terms in enumerate(samples.terms):  # one batch per set of kernels (usually one)
-        problem = base.Problem(scene.body.moments, terms, accept_lower_order=lower)
+        problem = _problem(scene, terms)
         mine = None if len(samples.terms) == 1 else np.flatnonzero(samples.kernels == k)
         ins = (x, w, inertia, params)
         outs = (out_x, out_w)
@@ -864,6 +860,14 @@ def _method_and_path(scene):
     return method, path, pspec.load()
 
 
+def _problem(scene, terms):
+    """The integrator's problem for a batch of the scene's samples with these torques."""
+    from .integrators import base
+
+    lower = scene.data["integrator"].get("accept_lower_order", False)
+    return base.Problem(scene.body.moments, terms, accept_lower_order=lower)
+
+
 @dataclass
 class _SweepPlan:
     """What :func:`run_columns` hands :func:`_sweep_soa` for one scene and varied keys."""
@@ -888,8 +892,6 @@ MAX_PLANS = 16
 
 
 def _sweep_plan(scene, layout: tuple, times, cols) -> _SweepPlan | None:
-    from .integrators import base
-
     targets = _fast_targets(scene, [key for key, _ in layout])
     if targets is None or scene.paths[0] != "quaternion":
         return None  # record_store takes the state for the quaternion it is
@@ -906,9 +908,7 @@ def _sweep_plan(scene, layout: tuple, times, cols) -> _SweepPlan | None:
             src[3 * which + k], scale[3 * which + k] = row + (k if index is None else 0), factor
         row += width
     start = np.array([*scene.body.moments, *scene.angular_velocity, *scene.orientation])
-    terms = tuple(scene.torques())
-    lower = scene.data["integrator"].get("accept_lower_order", False)
-    problem = base.Problem(scene.body.moments, terms, accept_lower_order=lower)
+    problem = _problem(scene, tuple(scene.torques()))
 
     def compile(stored: bool):
         return _compiled_scene_loop(method, problem, path, False, stored, sweep=True)
