@@ -34,6 +34,7 @@ from ._jit import jit
 from ._kernels import angle_any_norm, euler_coefficients, free_euler_rates
 from .body import MIN_MOMENT_RATIO
 from .errors import InputError
+from .files import aligned_empty
 from .integrators._arith import axpy3, axpy4, rk4_sum3, rk4_sum4
 from .paths.quaternion import rate
 
@@ -985,7 +986,8 @@ def run_columns(scene, layout, cols, times, nominal):
     if plan is None:
         return None
     n, k = cols.shape[1], plan.marks.size
-    q, w, angle = np.empty((n, k, 4)), np.empty((n, k, 3)), np.empty((n, k))
+    # page-aligned: a sweep's writer sends them to the disk without copying them first
+    q, w, angle = aligned_empty((n, k, 4)), aligned_empty((n, k, 3)), aligned_empty((n, k))
     out = (q, w, angle, np.ascontiguousarray(nominal, dtype=np.float64))
     call = (cols, plan.src, plan.scale, plan.base, plan.params, plan.t0, plan.h, plan.marks)
     try:

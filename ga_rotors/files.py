@@ -57,6 +57,7 @@ __all__ = [
     "KEPT_STAGING",
     "LOCK_TIMEOUT",
     "DirectWriter",
+    "aligned_empty",
     "atomic_write",
     "output_set",
     "read_direct",
@@ -253,6 +254,41 @@ def staging(size: int):
     return buf[:size]
 
 
+def aligned_empty(shape, dtype=float):
+    """An uninitialised C-ordered numpy array whose data starts on a page boundary
+    (:data:`DIRECT_ALIGN`): :func:`write_direct` and :meth:`DirectWriter.write` send its
+    whole pages to the disk as they are, without copying them into an aligned buffer first
+    (a sweep's chunk is 9 MB at 100 steps per sample: the copy was 1 ms of CPU a chunk).
+
+    Taken from the ordinary heap (a few bytes more than asked, the start moved to the page
+    boundary), not from fresh pages: memory a process frees and asks for again is reused
+    without the kernel clearing it anew.
+
+    Examples
+    --------
+    >>> a = aligned_empty((3, 1000))
+    >>> a.shape, a.dtype, a.ctypes.data % DIRECT_ALIGN, a.flags.c_contiguous
+    ((3, 1000), dtype('float64'), 0, True)
+    """
+    import numpy as np
+
+    dtype = np.dtype(dtype)
+    shape = tuple(int(n) for n in np.atleast_1d(shape)) if np.ndim(shape) else (int(shape),)
+    nbytes = dtype.itemsize
+    for n in shape:
+        nbytes *= n
+    raw = np.empty(nbytes + DIRECT_ALIGN, np.uint8)
+    start = -raw.ctypes.data % DIRECT_ALIGN
+    return raw[start : start + nbytes].view(dtype).reshape(shape)
+
+
+def _page_aligned(view: memoryview) -> bool:
+    """Whether the bytes of ``view`` start on a page boundary."""
+    import numpy as np
+
+    return np.frombuffer(view, np.uint8).__array_interface__["data"][0] % DIRECT_ALIGN == 0
+
+
 def _bytes(data) -> memoryview:
     """The bytes of a C-contiguous buffer, as a flat memoryview."""
     view = memoryview(data)
@@ -287,7 +323,9 @@ class DirectWriter:
     :meth:`write` copies the bytes it is given into a page-aligned buffer of
     ``buffer_size`` bytes (one per file, reused, freed at :meth:`close`); each time the
     buffer is full it is written whole, from an offset that is a multiple of
-    :data:`DIRECT_ALIGN`. :meth:`close` writes what is left: its whole pages direct, the
+    :data:`DIRECT_ALIGN`. Bytes that are page-aligned in memory already
+    (:func:`aligned_empty`), given while the buffer is empty, have their whole pages
+    written from where they are. :meth:`close` writes what is left: its whole pages direct, the
     last bytes short of a page through the page cache. Through the page cache a write
     costs the kernel's copy and, the dearest part, allocating the cache's pages when they
     have not been used in a while: 1.5 s of CPU for 600 MB on this machine the first time,
@@ -304,7 +342,7 @@ class DirectWriter:
     Parameters
     ----------
     path : str or path
-        Created, or truncated if it exists.
+        Created, or truncated if it exists (unless ``at`` is given).
     buffer_size : int
         Bytes collected before each write (rounded up to a multiple of
         :data:`DIRECT_ALIGN`).
@@ -313,6 +351,12 @@ class DirectWriter:
     buffer : writable buffer, optional
         Page-aligned memory to collect in instead of a buffer of its own (its length a
         multiple of :data:`DIRECT_ALIGN`; not freed at :meth:`close`).
+    at : int, optional
+        Write from this byte offset of the file (created if absent) and leave the rest of
+        it as it is, instead of replacing it: several writers fill one file, each its own
+        range (ranges must not overlap). Direct only from an offset that is a multiple of
+        :data:`DIRECT_ALIGN`, and then only the range's whole pages: a page that two
+        ranges share always goes through the page cache.
 
     Examples
     --------
@@ -326,9 +370,16 @@ class DirectWriter:
     (True, 10427)
     """
 
-    def __init__(self, path, buffer_size: int = DIRECT_BUFFER, *, direct: bool = True, buffer=None):
+    def __init__(
+        self, path, buffer_size: int = DIRECT_BUFFER, *, direct: bool = True, buffer=None, at=None
+    ):
         self.path = Path(path)
-        self._fd, self.direct = _open(self.path, os.O_WRONLY | os.O_CREAT | os.O_TRUNC, direct)
+        if at is None:
+            self._fd, self.direct = _open(self.path, os.O_WRONLY | os.O_CREAT | os.O_TRUNC, direct)
+        else:
+            direct = direct and at % DIRECT_ALIGN == 0
+            self._fd, self.direct = _open(self.path, os.O_WRONLY | os.O_CREAT, direct)
+            os.lseek(self._fd, at, os.SEEK_SET)
         # the caller's buffer (write_direct's, kept by its thread) is not released here
         self._own = buffer is None
         if self._own:
@@ -341,6 +392,12 @@ class DirectWriter:
         """Append the bytes of ``data`` (any buffer); return their number."""
         view = _bytes(data)
         n = len(view)
+        if self.direct and not self._used and n >= DIRECT_ALIGN and _page_aligned(view):
+            # page-aligned memory (aligned_empty's) at a page-aligned offset of the file:
+            # its whole pages go out from where they are, no copy into the buffer
+            whole = n - n % DIRECT_ALIGN
+            self._send(view[:whole])
+            view = view[whole:]
         buffer, size = self._buffer, len(self._buffer)
         while view:
             if not self.direct and not self._used and len(view) >= size:
@@ -402,12 +459,15 @@ class DirectWriter:
 
     def _flush(self, length: int) -> None:
         """Write the buffer's first ``length`` bytes (whole pages while direct)."""
-        data = self._buffer[:length]
+        self._send(self._buffer[:length])
+        self._used = 0
+
+    def _send(self, data) -> None:
+        """Append ``data`` to the file (page-aligned memory, whole pages, while direct)."""
         if self.direct:
             start = os.lseek(self._fd, 0, os.SEEK_CUR)
             try:
                 _write_all(self._fd, data)
-                self._used = 0
                 return
             except OSError as exc:
                 if exc.errno not in _NO_DIRECT:
@@ -418,7 +478,6 @@ class DirectWriter:
                 _clear_direct(self._fd)
                 data = data[os.lseek(self._fd, 0, os.SEEK_CUR) - start :]
         _write_all(self._fd, data)
-        self._used = 0
 
     def close(self) -> None:
         """Write what is left and close the file (its last bytes short of a page through
@@ -498,16 +557,20 @@ def _read_into(fd: int, buffer) -> int:
     return os.readv(fd, [buffer])
 
 
-def write_direct(path, data) -> None:
+def write_direct(path, data, at: int | None = None) -> None:
     """Write the bytes of ``data`` (a C-contiguous array or any buffer) as the file
-    ``path``, replacing it, straight to the disk where the system allows it.
+    ``path``, replacing it, straight to the disk where the system allows it; or, given
+    ``at``, into the file from that byte offset on, the rest of it left as it is (see
+    :class:`DirectWriter`).
 
-    A page-aligned copy of the file's whole pages is written with ``O_DIRECT`` (from this
-    thread's :func:`staging` buffer), the end past the last whole page through the page
-    cache; a file shorter than a page, a system without ``O_DIRECT`` or a file system
-    that refuses it gets the plain write (see :class:`DirectWriter`, which this is). A
-    sweep's chunk through the page cache cost 1-5 ms of CPU a megabyte on this machine,
-    against about 0.1 ms direct.
+    The file's whole pages are written with ``O_DIRECT``, from a page-aligned copy (this
+    thread's :func:`staging` buffer) unless ``data`` is page-aligned already
+    (:func:`aligned_empty`: 0.12 ms of CPU for 4 MB on this machine, against 0.55 ms
+    with the copy), the end past the last whole page through the page cache; a file
+    shorter than a page, a system without ``O_DIRECT`` or a file system that refuses it
+    gets the plain write (see :class:`DirectWriter`, which this is). A sweep's chunk
+    through the page cache cost 1-5 ms of CPU a megabyte on this machine, against about
+    0.1 ms direct.
 
     Examples
     --------
@@ -517,11 +580,17 @@ def write_direct(path, data) -> None:
     >>> write_direct(path, np.arange(1000.0))
     >>> np.fromfile(path).sum(), path.stat().st_size
     (np.float64(499500.0), 8000)
+    >>> write_direct(path, np.zeros(10), at=8)  # doubles 1 to 10
+    >>> np.fromfile(path).sum(), path.stat().st_size
+    (np.float64(499445.0), 8000)
     """
     raw = _bytes(data)
     head = len(raw) - len(raw) % DIRECT_ALIGN if _O_DIRECT else 0
-    buffer = staging(head or DIRECT_ALIGN)  # exactly the whole pages: one direct write
-    with DirectWriter(path, direct=head > 0, buffer=buffer) as out:
+    # exactly the whole pages: one direct write; none for page-aligned memory
+    # (aligned_empty's), whose whole pages are written from where they are
+    copied = head if head and not _page_aligned(raw) else 0
+    buffer = staging(copied or DIRECT_ALIGN)
+    with DirectWriter(path, direct=head > 0, buffer=buffer, at=at) as out:
         out.write(raw)
 
 

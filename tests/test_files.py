@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import itertools
+
 import pytest
 from _direct_io import PATHS
 
@@ -399,3 +401,67 @@ def test_the_buffer_of_direct_writes_is_page_aligned_and_kept_only_when_small(mo
     assert np.shares_memory(small, again)  # kept and reused
     assert not np.shares_memory(large, files.staging(ALIGN))  # not kept
     assert files._STAGING.buffer.size < 9 * ALIGN
+
+
+@pytest.mark.parametrize("how_written", PATHS, indirect=True)
+@pytest.mark.parametrize("size", [ALIGN, 3 * ALIGN, 5 * ALIGN + 17])
+def test_page_aligned_memory_goes_out_from_where_it_is_however_it_went(
+    tmp_path, how_written, size, monkeypatch
+):
+    # aligned_empty's memory: its whole pages are handed to the system as they are (no
+    # copy into the buffer) where the file is direct; the file is its bytes every way,
+    # alone (write_direct) or after and before other bytes (DirectWriter).
+    import numpy as np
+
+    how, _ = how_written
+    data = files.aligned_empty(size, np.uint8)
+    data[:] = np.frombuffer(_data(size), np.uint8)
+    assert data.ctypes.data % ALIGN == 0
+    sent = []
+    real = files._write_all
+
+    def spy(fd, chunk):
+        sent.append(np.shares_memory(np.frombuffer(chunk, np.uint8), data))
+        real(fd, chunk)
+
+    monkeypatch.setattr(files, "_write_all", spy)
+    files.write_direct(tmp_path / "one", data)
+    assert (tmp_path / "one").read_bytes() == data.tobytes()
+    if how == "direct":
+        assert sent[0]  # its whole pages from the array itself, not from a copy
+    with files.DirectWriter(tmp_path / "two", buffer_size=2 * ALIGN) as out:
+        out.write(b"head")  # the buffer is not empty: copied after it
+        out.write(data)
+        out.close()
+    assert (tmp_path / "two").read_bytes() == b"head" + data.tobytes()
+
+
+@pytest.mark.parametrize("how_written", PATHS, indirect=True)
+def test_writers_at_offsets_fill_one_file_however_it_went(tmp_path, how_written):
+    # Ranges of one file written by several writers (write_direct's at=), in any order,
+    # at page boundaries and between them: the file is every range, the bytes no range
+    # covers are left as they were.
+    import numpy as np
+
+    path = tmp_path / "chunk"
+    old = _data(9 * ALIGN + 100)
+    path.write_bytes(old)
+    new = _data(8 * ALIGN + 50)
+    cuts = [0, 2 * ALIGN, 2 * ALIGN + 7, 5 * ALIGN, 8 * ALIGN + 50]
+    ranges = list(itertools.pairwise(cuts))
+    for a, b in reversed(ranges):
+        piece = files.aligned_empty(b - a, np.uint8)  # aligned memory, aligned or not in the file
+        piece[:] = np.frombuffer(new[a:b], np.uint8)
+        files.write_direct(path, piece, at=a)
+    assert path.read_bytes() == new + old[len(new) :]
+
+
+def test_aligned_empty_is_page_aligned_whatever_the_shape_and_type():
+    import numpy as np
+
+    for shape, dtype in [((0,), float), (5, np.int8), ((3, 1000), float), ((7, 2, 4), ">f8")]:
+        a = files.aligned_empty(shape, dtype)
+        assert a.flags.c_contiguous and a.flags.writeable
+        assert a.ctypes.data % ALIGN == 0 or a.size == 0  # an empty array has no bytes
+        assert a.shape == (shape if isinstance(shape, tuple) else (shape,))
+        assert a.dtype == np.dtype(dtype)

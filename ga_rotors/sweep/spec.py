@@ -41,6 +41,7 @@ import numpy as np
 
 from .._jit import jit
 from ..errors import InputError, SceneError
+from ..files import aligned_empty
 from ..scene.reader import Reader, join
 
 __all__ = ["BLOCK", "DISTRIBUTIONS", "Sweep", "load_sweep"]
@@ -156,7 +157,7 @@ class Sweep:
         """
         n = hi - lo
         widths = [width for _, width in self.rows]
-        cols = np.empty((sum(widths), n))
+        cols = aligned_empty((sum(widths), n))  # its rows are written to the store as they are
         out: dict[str, np.ndarray] = {}
         row = 0
         if self.grid:
