@@ -210,16 +210,17 @@ def test_the_command_runs_on_dask_threads_by_default(tmp_path, reference, monkey
     assert len(kept_memory) == 2  # each command keeps its freed memory for the next chunk
 
 
-@pytest.mark.parametrize(("threads", "pieces"), [(2, [1, 2, 2]), (3, [3, 3, 2])])
+@pytest.mark.parametrize(("threads", "pieces"), [(2, [1, 4, 2]), (3, [4, 4, 2])])
 def test_chunks_cut_into_pieces_between_threads_are_the_chunks_made_at_once(
     tmp_path, reference, monkeypatch, threads, pieces
 ):
     """The last chunks of a threaded run (as many as threads) are integrated in pieces by
-    several threads and written by the last piece to finish: the store is the one a plain
-    run writes."""
+    several threads, each writing its own rows, the last written flagging the chunk: the
+    store is the one a plain run writes."""
     import ga_rotors.sweep.run as sweep_run
 
     monkeypatch.setattr(sweep_run, "MIN_PIECE", 1)
+    monkeypatch.setattr(sweep_run, "PIECE_ALIGN", 1)
     parts = sweep_run._parts(load_sweep(SWEEP), [0, 1, 2], threads)
     assert [len([p for p in parts if p[0] == c]) for c in range(3)] == pieces
     for c in range(3):  # the pieces of each chunk cover it once, in order
@@ -323,13 +324,83 @@ def test_the_command_names_the_extra_when_dask_is_missing(tmp_path, monkeypatch)
         run_sweep(SWEEP, tmp_path / "d.zarr")
 
 
-def test_chunks_go_through_zarr_when_a_store_is_not_laid_out_raw(tmp_path, reference, monkeypatch):
+@pytest.mark.parametrize("threads", [None, 2], ids=["here", "threads, in pieces"])
+def test_chunks_go_through_zarr_when_a_store_is_not_laid_out_raw(
+    tmp_path, reference, monkeypatch, threads
+):
     # Chunks are written as raw bytes into the store's files (the layout the sweep creates:
-    # uncompressed, unfiltered, C order); any other layout is left to zarr's own writes.
+    # uncompressed, unfiltered, C order); any other layout is left to zarr's own writes,
+    # which rewrite a whole chunk for a piece of it: pieces of one chunk written by
+    # several threads still make the whole chunk.
+    import ga_rotors.sweep.run as sweep_run
     from ga_rotors.sweep import store
 
     monkeypatch.setattr(store, "_layout", lambda store, name: None)
-    out = run_sweep(SWEEP, tmp_path / "s.zarr", client="sync")
+    monkeypatch.setattr(sweep_run, "MIN_PIECE", 1)
+    monkeypatch.setattr(sweep_run, "PIECE_ALIGN", 1)
+    client = "sync" if threads is None else None
+    out = run_sweep(SWEEP, tmp_path / "s.zarr", client=client, workers=threads)
+    xr.testing.assert_identical(open_sweep(out).load(), reference)
+
+
+@pytest.mark.parametrize("samples", [1, 4095, 4096, 8192 + 7, 65536, 100_000, 1_000_000])
+@pytest.mark.parametrize("threads", [1, 2, 3, 8])
+def test_the_last_chunks_are_cut_into_aligned_pieces_that_shrink_towards_the_end(samples, threads):
+    # Each chunk covered once, in order; a piece starts on a whole number of pages of its
+    # chunk file (PIECE_ALIGN rows of float64) and holds MIN_PIECE samples or more, unless
+    # its chunk is shorter; the run ends on a short piece, so that threads run out of
+    # work together.
+    import ga_rotors.sweep.run as sweep_run
+
+    text = f'[sweep]\nscene = "heavy_top"\nsamples = {samples}\nchunk = 65536\nseed = 1\n'
+    sweep = load_sweep(text + '[[draw]]\nkey = "body.mass"\nnormal = [1.0, 0.1]\n')
+    todo = list(range(sweep.chunks))
+    parts = sweep_run._parts(sweep, todo, threads)
+    assert [c for c, *_ in parts] == sorted(c for c, *_ in parts)
+    for c in todo:
+        cuts = [(a, b, n) for k, a, b, n in parts if k == c]
+        n = min(65536, samples - 65536 * c)
+        assert cuts[0][0] == 0 and cuts[-1][1] == n and all(len(cuts) == x[2] for x in cuts)
+        assert all(x[1] == y[0] for x, y in itertools.pairwise(cuts))
+        assert all(a % sweep_run.PIECE_ALIGN == 0 for a, _, _ in cuts)
+        assert all(b - a >= min(n, sweep_run.MIN_PIECE) for a, b, _ in cuts)
+        if len(cuts) > 1:
+            assert c >= len(todo) - threads  # only the run's last chunks
+    tail = sum(min(65536, samples - 65536 * c) for c in todo[-threads:])
+    if threads > 1 and tail >= 4 * sweep_run.MIN_PIECE:
+        last = parts[-1][2] - parts[-1][1]
+        assert last <= 2 * sweep_run.MIN_PIECE + sweep_run.PIECE_ALIGN
+        assert len(parts) > len(todo)
+
+
+def test_a_chunk_whose_piece_failed_to_write_is_not_flagged_and_is_done_again(
+    tmp_path, reference, monkeypatch
+):
+    # The pieces of a chunk write their own rows; the flag follows the last piece
+    # written. A piece's failed write leaves its chunk unflagged (whatever the other
+    # pieces wrote), and the next run does that chunk again, whole.
+    import ga_rotors.sweep.run as sweep_run
+    from ga_rotors.sweep import store
+
+    monkeypatch.setattr(sweep_run, "MIN_PIECE", 1)
+    monkeypatch.setattr(sweep_run, "PIECE_ALIGN", 1)
+    real = store.write_chunk
+    failed = []
+
+    def disk_full(path, variable, block, c, layouts=None, first=None):
+        if variable == "w" and c == 2 and first == 1 and not failed:
+            failed.append(first)
+            raise OSError(28, "No space left on device")
+        return real(path, variable, block, c, layouts, first)
+
+    monkeypatch.setattr(store, "write_chunk", disk_full)
+    out = tmp_path / "s.zarr"
+    with pytest.raises(InputError, match=r"\(chunk 2 of w\): No space"):
+        run_sweep(SWEEP, out, workers=2)
+    assert failed == [1]
+    flags = xr.open_zarr(out)["chunk_done"].values
+    assert flags[2] != 1  # its other piece was written, the chunk is not done
+    run_sweep(SWEEP, out, workers=2)
     xr.testing.assert_identical(open_sweep(out).load(), reference)
 
 

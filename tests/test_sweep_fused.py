@@ -136,6 +136,7 @@ def test_a_sample_of_the_compiled_pass_is_its_own_single_ensemble_run():
 
 def test_threads_and_pieces_write_what_one_thread_writes(tmp_path, used, monkeypatch):
     monkeypatch.setattr(sweep_run, "MIN_PIECE", 1)  # the last chunks cut between threads
+    monkeypatch.setattr(sweep_run, "PIECE_ALIGN", 1)
     text = FAST.replace("samples = 7", "samples = 20")
     threads = run_sweep(text, tmp_path / "threads.zarr", workers=2)
     one = run_sweep(text, tmp_path / "one.zarr", client="sync")

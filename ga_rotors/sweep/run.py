@@ -37,6 +37,7 @@ from __future__ import annotations
 
 import collections
 import functools
+import itertools
 import os
 import shutil
 import tempfile
@@ -161,11 +162,13 @@ def _angle(task: _Task, run) -> np.ndarray:
     return angle
 
 
-def _finish(task: _Task, c: int, values: dict, q, w, angle) -> None:
+def _finish(task: _Task, c: int, values: dict, q, w, angle, first=None, pieces=None) -> None:
     """Write chunk ``c``'s blocks (each with the sample first), then its flag.
 
-    Each block covers one whole chunk of its variable, so tasks never share a chunk; the
-    flag goes last: the chunk counts as done only once all of it is written.
+    Each block covers one whole chunk of its variable, or with ``first`` (a piece of the
+    chunk, ``pieces`` its :class:`_Pieces`) the piece's own rows of it, so writes never
+    share rows; the flag goes last, written after the chunk's last piece: the chunk
+    counts as done only once all of it is written.
     """
     blocks = {
         "q": q,  # (sample, time, 4)
@@ -173,12 +176,17 @@ def _finish(task: _Task, c: int, values: dict, q, w, angle) -> None:
         "angle_from_nominal": angle,
         **{f"value_{j}": v for j, v in enumerate(values.values())},
     }
-    blocks["chunk_done"] = np.ones(1, dtype=np.int8)
     for name, block in blocks.items():
-        try:
-            zstore.write_chunk(task.store, name, block, c, task.layouts)
-        except OSError as exc:  # a full disk, a store removed under the sweep...
-            raise _write_error(task.store, exc, f"chunk {c} of {name}") from None
+        _write_block(task, name, block, c, first)
+    if pieces is None or pieces.written():
+        _write_block(task, "chunk_done", np.ones(1, dtype=np.int8), c, None)
+
+
+def _write_block(task: _Task, name: str, block, c: int, first) -> None:
+    try:
+        zstore.write_chunk(task.store, name, block, c, task.layouts, first)
+    except OSError as exc:  # a full disk, a store removed under the sweep...
+        raise _write_error(task.store, exc, f"chunk {c} of {name}") from None
 
 
 def _write_error(store, exc: OSError, what: str) -> InputError:
@@ -364,37 +372,67 @@ def _client(client, scheduler: str | None):
 
 
 #: Fewest samples in a piece of a chunk split between threads (see :func:`_parts`): a
-#: task's fixed cost (Dask's, the inputs', the loop's call) is about 0.3 ms, against
-#: 0.6 µs a sample for the loop at 100 steps.
+#: task's fixed cost (Dask's, the inputs', the loop's call, its writes) is about 0.5 ms,
+#: against 0.6 µs a sample for the loop at 100 steps.
 MIN_PIECE = 4096
+
+#: Pieces start at a multiple of this many samples where they can: 512 rows of float64
+#: are a whole number of pages, so each piece's part of a chunk file goes straight to the
+#: disk from its own first row (:func:`ga_rotors.files.write_direct`).
+PIECE_ALIGN = 512
 
 
 def _parts(sweep: Sweep, todo: list[int], threads: int) -> list[tuple[int, int, int, int]]:
     """The tasks of a run on ``threads`` threads: (chunk, first, end, pieces) each.
 
-    One task per chunk, except the last ``threads`` chunks, each cut into up to
-    ``threads`` pieces of samples ``first`` to ``end - 1`` of the chunk (at least
-    :data:`MIN_PIECE` each): whole chunks alone would leave threads idle at the end (16
-    chunks of a 10⁶-sample sweep, the last a quarter full, on two threads: one thread
-    integrates 8 chunks while the other does 7¼, 5 % longer than an even split).
+    One task per chunk, except the last ``threads`` chunks, cut into pieces of samples
+    ``first`` to ``end - 1`` of the chunk that get smaller towards the end (each a
+    ``2·threads``-th of the samples left, at least :data:`MIN_PIECE`, starting at a
+    multiple of :data:`PIECE_ALIGN`): whole chunks alone leave threads idle at the end
+    (16 chunks of a 10⁶-sample sweep, the last a quarter full, on two threads: one
+    thread integrates 8 chunks while the other does 7¼, 5 % longer than an even split),
+    and so do equal pieces when a thread has lost time to the writer: the last pieces
+    are short, so the threads run out of work within a few milliseconds of each other.
     """
     out = []
-    for i, c in enumerate(todo):
+    tail = todo[len(todo) - threads :] if threads > 1 else []
+    left = sum(hi - lo for lo, hi in map(functools.partial(_bounds, sweep), tail))
+    for c in todo[: len(todo) - len(tail)]:
         lo, hi = _bounds(sweep, c)
-        n = hi - lo
-        pieces = 1 if i < len(todo) - threads else max(1, min(threads, n // MIN_PIECE))
-        cuts = [n * k // pieces for k in range(pieces + 1)]
-        out += [(c, cuts[k], cuts[k + 1], pieces) for k in range(pieces)]
+        out.append((c, 0, hi - lo, 1))
+    for c in tail:
+        lo, hi = _bounds(sweep, c)
+        n, cuts = hi - lo, [0]
+        while cuts[-1] < n:
+            size = max(MIN_PIECE, left // (2 * threads))
+            end = -(-(cuts[-1] + size) // PIECE_ALIGN) * PIECE_ALIGN
+            if n - end < MIN_PIECE:  # no piece shorter than MIN_PIECE at the chunk's end
+                end = n
+            left -= end - cuts[-1]
+            cuts.append(end)
+        out += [(c, a, b, len(cuts) - 1) for a, b in itertools.pairwise(cuts)]
     return out
 
 
 class _Pieces:
-    """The pieces of one chunk, integrated by several threads: the last one writes it."""
+    """The pieces of one chunk, integrated and written by several threads: the last to be
+    integrated counts the chunk as handed over, the last to be written flags it."""
 
     def __init__(self, count: int):
-        self.left = count
-        self.done: dict[int, tuple] = {}  # first sample -> (values, q, w, angle)
+        self.integrating = self.writing = count
         self.lock = threading.Lock()
+
+    def integrated(self) -> bool:
+        """One piece integrated: True if it was the last."""
+        with self.lock:
+            self.integrating -= 1
+            return not self.integrating
+
+    def written(self) -> bool:
+        """One piece written: True if it was the last."""
+        with self.lock:
+            self.writing -= 1
+            return not self.writing
 
 
 class _Started:
@@ -423,18 +461,19 @@ def _run_part(
     started=None,
     depth: int = 1,
 ) -> bool:
-    """Integrate samples ``first`` to ``end - 1`` of chunk ``c``; True if it wrote the chunk.
+    """Integrate samples ``first`` to ``end - 1`` of chunk ``c``; True if that handed over
+    the whole chunk (its last piece).
 
-    A whole chunk (``pieces`` None) is written by its task. A piece keeps its values and
-    states; the last piece of its chunk to finish puts them together and writes the
-    chunk, so the store is written whole chunks at a time whatever the split. A sample's
+    A whole chunk (``pieces`` None) is written by its task, then flagged. A piece writes
+    its own rows of the chunk's files; the last piece written flags the chunk, so a chunk
+    counts as done only once all of it is written, whatever the split. A sample's
     numbers depend on its index only (its draws, its own integration): a chunk made of
-    pieces is the chunk made at once, bit for bit. ``ready()``, called before a chunk's
-    write, makes the store if it is not made yet (once: see :class:`_Once`) and raises
-    what making it raised. ``depth``: writes pending at most (see :func:`_write_behind`).
-    Once every task has started (``started``, a :class:`_Started`), a chunk is written in
-    this thread, which has nothing left to integrate, beside the writer thread's pending
-    write rather than after it: the end of the sweep waits for both.
+    pieces is the chunk made at once, bit for bit. ``ready()``, called before a write,
+    makes the store if it is not made yet (once: see :class:`_Once`) and raises what
+    making it raised. ``depth``: writes pending at most (see :func:`_write_behind`).
+    Once every task has started (``started``, a :class:`_Started`), a task writes in this
+    thread, which has nothing left to integrate, beside the writer thread's pending write
+    rather than after it: the end of the sweep waits for both.
     """
     if started is not None:
         started.one()
@@ -443,26 +482,19 @@ def _run_part(
     # reduced here, so that the pieces of the last chunks reduce side by side and the
     # writer thread, which the end of the sweep waits for, only writes
     done = _integrate(task, sweep, start + first, start + end)
+    write = functools.partial(_ready_then_finish, ready, task, c, *done)
     if pieces is not None:
-        with pieces.lock:
-            pieces.done[first] = done
-            pieces.left -= 1
-            if pieces.left:
-                return False
-        parts = [pieces.done[k] for k in sorted(pieces.done)]
-        values = {key: np.concatenate([p[0][key] for p in parts]) for key in parts[0][0]}
-        done = (values, *(np.concatenate([p[k] for p in parts]) for k in (1, 2, 3)))
+        write = functools.partial(write, first=first, pieces=pieces)
     if started is not None and started.all():
-        ready()
-        _finish(task, c, *done)
+        write()
     else:  # written on this process's writer thread while this one integrates on
-        _write_behind(functools.partial(_ready_then_finish, ready, task, c, *done), depth)
-    return True
+        _write_behind(write, depth)
+    return pieces is None or pieces.integrated()
 
 
-def _ready_then_finish(ready, task: _Task, c: int, *done) -> None:
+def _ready_then_finish(ready, task: _Task, c: int, *done, first=None, pieces=None) -> None:
     ready()
-    _finish(task, c, *done)
+    _finish(task, c, *done, first=first, pieces=pieces)
 
 
 class _Once:
