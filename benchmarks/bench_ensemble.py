@@ -4,7 +4,7 @@ Usage (from the repository root)::
 
     python benchmarks/bench_ensemble.py [--bodies 100000] [--steps 200] [--repeats 5]
         [--sweep-samples 1000000] [--sweep-steps 100 1000] [--sweep-repeats 3]
-        [--kernels-only] [--local-cluster]
+        [--kernels-only] [--local-cluster] [--dir DIR]
 
 1. Kernel throughput in million body-steps per second, RK4, rows interleaved in each
    repeat (median, min–max): ``rk4_free`` (torque-free, one inertia shared by every body:
@@ -33,13 +33,20 @@ Usage (from the repository root)::
    every row has the same allocator. ``--local-cluster`` adds a row on a local
    ``distributed`` cluster of one worker process per core (``local_cluster``, started
    once here and reported apart with the imports on its workers), the previous default,
-   against the same kernel run.
+   against the same kernel run. Every repeat's store is kept until the end of the
+   benchmark, in a temporary directory (``--dir``: another one), and then deleted: on
+   ext4, a new file skips every inode freed in the last 5-35 seconds (the kernel's
+   ``recently_deleted`` check), so deleting each 130-file store right after its repeat
+   made the next repeat's file creations slow down from about 5 µs to 50-200 µs each on
+   this machine (found with ``perf``), a cost no sweep meets unless it follows such a
+   deletion.
 """
 
 from __future__ import annotations
 
 import argparse
 import os
+import shutil
 import statistics
 import sys
 import tempfile
@@ -174,7 +181,7 @@ def _timed(f, client=None) -> tuple[float, float]:
     return wall, cpu + workers() - w0
 
 
-def sweep_overhead(samples: int, steps: int, repeats: int, client=None) -> None:
+def sweep_overhead(samples: int, steps: int, repeats: int, client=None, where=None) -> None:
     from ga_rotors.sweep import load_sweep, run_sweep
 
     text = _sweep_text(samples, steps)
@@ -186,9 +193,13 @@ def sweep_overhead(samples: int, steps: int, repeats: int, client=None) -> None:
     with tempfile.TemporaryDirectory() as tmp:  # the serial loop, the angle pass
         run_sweep(_sweep_text(8, steps), Path(tmp) / "s.zarr", client="sync")
 
-    def swept(where=None, dask=None):
-        with tempfile.TemporaryDirectory() as tmp:
-            return _timed(lambda: run_sweep(text, Path(tmp) / "s.zarr", client=where), dask)
+    stores = Path(tempfile.mkdtemp(prefix="bench-sweeps-", dir=where))
+    made = iter(range(1_000_000))
+
+    def swept(on=None, dask=None):
+        # each repeat's store kept until the end (see the module's docstring)
+        out = stores / f"s{next(made)}.zarr"
+        return _timed(lambda: run_sweep(text, out, client=on), dask)
 
     kernel = "raw kernel, every core (run_samples)"
     rows = {
@@ -211,9 +222,12 @@ def sweep_overhead(samples: int, steps: int, repeats: int, client=None) -> None:
         rows[cluster_row] = lambda: swept(client, client)
         pairs["local cluster"] = (cluster_row, kernel)
     times: dict[str, list[tuple[float, float]]] = {k: [] for k in rows}
-    for _ in range(repeats):
-        for name, f in rows.items():
-            times[name].append(f())
+    try:
+        for _ in range(repeats):
+            for name, f in rows.items():
+                times[name].append(f())
+    finally:
+        shutil.rmtree(stores)
     print(
         f"sweep: {samples} samples x {steps} RK4 steps, chunks of 65536, "
         f"{os.cpu_count()} threads, {repeats} interleaved repeats "
@@ -246,6 +260,7 @@ def main() -> None:
     p.add_argument("--sweep-steps", type=int, nargs="+", default=[100, 1000])
     p.add_argument("--sweep-repeats", type=int, default=3)
     p.add_argument("--kernels-only", action="store_true", help="stop after the kernels")
+    p.add_argument("--dir", help="where the sweeps' stores go (default: a temporary directory)")
     p.add_argument(
         "--local-cluster", action="store_true",
         help="add a row on a local distributed cluster of one worker process per core",
@@ -277,7 +292,7 @@ def main() -> None:
         )
     try:
         for steps in a.sweep_steps:
-            sweep_overhead(a.sweep_samples, steps, a.sweep_repeats, client)
+            sweep_overhead(a.sweep_samples, steps, a.sweep_repeats, client, a.dir)
     finally:
         if client is not None:
             client.close()
