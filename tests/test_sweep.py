@@ -12,6 +12,7 @@ import warnings
 import numpy as np
 import pytest
 from _direct_io import PATHS
+from _sweeps import run_until_interrupted
 
 from ga_rotors import optional
 from ga_rotors.errors import InputError, SceneError
@@ -128,13 +129,7 @@ def test_the_histogram_counts_every_sample_at_every_time(reference):
 
 def test_an_interrupted_sweep_resumes_from_its_finished_chunks(tmp_path, reference):
     out = tmp_path / "s.zarr"
-
-    def interrupt(done, total):
-        if done == 2:
-            raise KeyboardInterrupt
-
-    with pytest.raises(KeyboardInterrupt):
-        run_sweep(SWEEP, out, client="sync", progress=interrupt)
+    run_until_interrupted(SWEEP, out, after=2, client="sync")
     with pytest.raises(InputError, match="1 of 3 chunks are not written yet"):
         open_sweep(out)
     calls = []
@@ -242,13 +237,7 @@ def test_a_threaded_sweep_interrupted_leaves_whole_flagged_chunks_and_resumes(tm
     text = SWEEP.replace("chunk = 4", "chunk = 1")  # ten chunks, two threads
     full = open_sweep(run_sweep(text, tmp_path / "whole.zarr", workers=2)).load()
     out = tmp_path / "s.zarr"
-
-    def interrupt(done, total):
-        if done == 1:
-            raise KeyboardInterrupt
-
-    with pytest.raises(KeyboardInterrupt):
-        run_sweep(text, out, workers=2, progress=interrupt)
+    run_until_interrupted(text, out, workers=2)
     first = xr.open_zarr(out).load()
     flags = first["chunk_done"].values == 1  # unwritten flags read as NaN here
     assert 1 <= flags.sum() < 10  # the running chunks finished, the others never started

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from _sweeps import run_until_interrupted
 
 xr = pytest.importorskip("xarray")
 pytest.importorskip("zarr")
@@ -149,15 +150,9 @@ def test_a_store_begun_by_the_per_sample_path_is_finished_by_the_compiled_pass(t
     # either path writes whole
     whole = _files(run_sweep(FAST, tmp_path / "whole.zarr", client="sync"))
     out = tmp_path / "s.zarr"
-
-    def interrupt(done, total):
-        if done == 1:
-            raise KeyboardInterrupt
-
     with pytest.MonkeyPatch.context() as m:
         m.setattr(ensemble, "run_columns", lambda *args: None)
-        with pytest.raises(KeyboardInterrupt):
-            run_sweep(FAST, out, client="sync", progress=interrupt)
+        run_until_interrupted(FAST, out, client="sync")
     assert 0 < len(_files(out)) < len(whole)
     used.clear()
     run_sweep(FAST, out, client="sync")
@@ -285,13 +280,7 @@ def test_a_threaded_sweep_of_the_compiled_pass_interrupted_resumes_to_the_whole(
     text = FAST.replace("samples = 7", "samples = 20").replace("chunk = 5", "chunk = 2")
     whole = _files(run_sweep(text, tmp_path / "whole.zarr", workers=2))
     out = tmp_path / "s.zarr"
-
-    def interrupt(done, total):
-        if done == 1:
-            raise KeyboardInterrupt
-
-    with pytest.raises(KeyboardInterrupt):
-        run_sweep(text, out, workers=2, progress=interrupt)
+    run_until_interrupted(text, out, workers=2)
     flags = xr.open_zarr(out)["chunk_done"].values == 1
     assert 1 <= flags.sum() < 20
     calls = []
