@@ -39,6 +39,7 @@ import contextlib
 import errno
 import functools
 import hashlib
+import math
 import mmap
 import os
 import shutil
@@ -273,10 +274,8 @@ def aligned_empty(shape, dtype=float):
     import numpy as np
 
     dtype = np.dtype(dtype)
-    shape = tuple(int(n) for n in np.atleast_1d(shape)) if np.ndim(shape) else (int(shape),)
-    nbytes = dtype.itemsize
-    for n in shape:
-        nbytes *= n
+    shape = tuple(int(n) for n in np.atleast_1d(shape))
+    nbytes = dtype.itemsize * math.prod(shape)
     raw = np.empty(nbytes + DIRECT_ALIGN, np.uint8)
     start = -raw.ctypes.data % DIRECT_ALIGN
     return raw[start : start + nbytes].view(dtype).reshape(shape)
