@@ -56,6 +56,17 @@ def hypot3(x, y, z):
 
 
 @jit
+def norm2(x, y):
+    """|(x, y)| as :func:`qnorm` takes a norm: the plain square root of the sum of squares
+    whenever that sum is a normal number, ``hypot`` only where it under- or overflows
+    (within an ulp of ``hypot``, which costs about 12 ns a call here against 2)."""
+    s = x * x + y * y
+    if 1e-290 < s < 1e290:
+        return sqrt(s)
+    return hypot(x, y)
+
+
+@jit
 def qnorm(a):
     """|a|, exact for components from 1e-300 to 1e300.
 
@@ -457,7 +468,7 @@ def euler_from_quat(q, i, j, k, zero_first, tol):
     eps = 1.0 if (j - i) % 3 == 1 else -1.0
     if i == k:
         qm = eps * q[4 - i - j]  # index 1 + m with m = 3 - i - j
-        b = 2.0 * atan2(hypot(qj, qm), hypot(w, qi))
+        b = 2.0 * atan2(norm2(qj, qm), norm2(w, qi))
         plus = atan2(qi, w)
         minus = atan2(qm, qj)
         sc = 1.0
@@ -465,8 +476,8 @@ def euler_from_quat(q, i, j, k, zero_first, tol):
         plus_free = b >= pi - tol
     else:
         qk = eps * q[1 + k]
-        p = hypot(w + qj, qi + qk)
-        mm = hypot(w - qj, qi - qk)
+        p = norm2(w + qj, qi + qk)
+        mm = norm2(w - qj, qi - qk)
         b = atan2(2.0 * (w * qj + qi * qk), p * mm)
         plus = atan2(qi + qk, w + qj)
         minus = atan2(qi - qk, w - qj)

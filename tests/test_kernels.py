@@ -85,6 +85,19 @@ def test_norm_has_no_overflow_or_underflow(scale):
     q = (3 * scale, 4 * scale, 12 * scale, 84 * scale)
     assert math.isclose(K.qnorm(q), 85 * scale, rel_tol=1e-15)
     assert math.isclose(K.hypot3(3 * scale, 4 * scale, 12 * scale), 13 * scale, rel_tol=1e-15)
+    assert math.isclose(K.norm2(3 * scale, 4 * scale), 5 * scale, rel_tol=1e-15)
+
+
+@given(st.floats(allow_nan=False, allow_infinity=False), st.floats(allow_nan=False,
+       allow_infinity=False))  # fmt: skip
+def test_norm2_is_hypot_within_an_ulp(x, y):
+    # every magnitude, subnormals and the largest floats included: the sum of squares
+    # where it is normal, hypot where it is not
+    exact = math.hypot(x, y)
+    if math.isinf(exact):  # beyond the largest float: both overflow
+        assert K.norm2(x, y) == exact
+    else:
+        assert abs(K.norm2(x, y) - exact) <= math.ulp(exact)
 
 
 @given(quat)
