@@ -169,6 +169,39 @@ def test_a_streamed_npz_holds_the_arrays_however_it_was_written(tmp_path, monkey
     assert [p.name for p in tmp_path.iterdir()] == ["run.npz"]  # the rows files are gone
 
 
+@pytest.mark.parametrize("chunk_rows, write_chunks", [(4, 1), (16, 2), (64, 8)])
+def test_a_streamed_zarr_store_holds_the_rows_however_the_pieces_fall(
+    tmp_path, monkeypatch, chunk_rows, write_chunks
+):
+    """Pieces shorter than a chunk, across chunks, empty, many chunks long: the store
+    (written whole chunks at a time after the first piece, into arrays grown by doubling
+    and cut back at the end) reads back as the rows given, chunked as declared."""
+    import json
+
+    from ga_rotors.results import read, streams
+    from ga_rotors.trajectory import Trajectory
+
+    monkeypatch.setattr(streams, "CHUNK_ROWS", chunk_rows)
+    monkeypatch.setattr(streams, "ZARR_WRITE_CHUNKS", write_chunks)
+    rng = np.random.default_rng(11)
+    sizes = (3, 1, 50, 0, 7, 130, 2, 64)
+    starts = np.cumsum((0, *sizes))
+    pieces = [
+        Trajectory({"t": np.arange(lo, lo + n, dtype=float), "w": rng.random((n, 3))},
+                   {"w": ("1", "2", "3")})
+        for lo, n in zip(starts, sizes, strict=False)
+    ]  # fmt: skip
+    out = streams.ZarrStream(tmp_path / "run.zarr")
+    for piece in pieces:
+        out.append(piece)
+    out.close({})
+    ds = read(tmp_path / "run.zarr")
+    assert ds["t"].values.tolist() == list(range(sum(sizes)))
+    assert np.array_equal(ds["w"].values, np.concatenate([p.w for p in pieces]))
+    meta = json.loads((tmp_path / "run.zarr" / "w" / ".zarray").read_text())
+    assert meta["shape"] == [sum(sizes), 3] and meta["chunks"] == [chunk_rows, 3]
+
+
 @pytest.mark.parametrize("name", sorted(bundled()))
 def test_streamed_run_writes_the_files_and_summary_of_the_whole_run(name, tmp_path):
     """Every bundled scene in full, streamed in about seven pieces: the same data files
