@@ -1,6 +1,7 @@
 """Streamed runs: a run in pieces equals the one-shot run bit for bit (every integrator,
 every path, free, torqued by a torque of time, kinematic, stopped paths)."""
 
+import os
 import warnings
 
 import numpy as np
@@ -200,6 +201,34 @@ def test_a_streamed_zarr_store_holds_the_rows_however_the_pieces_fall(
     assert np.array_equal(ds["w"].values, np.concatenate([p.w for p in pieces]))
     meta = json.loads((tmp_path / "run.zarr" / "w" / ".zarray").read_text())
     assert meta["shape"] == [sum(sizes), 3] and meta["chunks"] == [chunk_rows, 3]
+
+
+@pytest.mark.skipif(not os.path.isdir("/proc/self/fd"), reason="needs /proc/self/fd (Linux)")
+@pytest.mark.parametrize("finish", ["close", "abort"])
+def test_a_netcdf_stream_holds_its_file_open_between_pieces_and_lets_it_go(tmp_path, finish):
+    """Opened once for the pieces after the first (not once per piece), closed by
+    ``close`` (the rows and the attributes read back) and by ``abort`` (a failed run)."""
+    from ga_rotors.results import read, streams
+    from ga_rotors.trajectory import Trajectory
+
+    path = tmp_path / "run.nc"
+
+    def handles():
+        fds = os.listdir("/proc/self/fd")
+        return sum(os.path.realpath(f"/proc/self/fd/{fd}") == str(path) for fd in fds)
+
+    out = streams.NetcdfStream(path)
+    for lo in (0, 2, 4, 6):
+        out.append(Trajectory({"t": np.arange(lo, lo + 2.0), "energy": np.ones(2)}))
+        assert handles() == (lo > 0)
+    if finish == "close":
+        out.close({"integrator": "rk4"})
+    else:
+        out.abort()
+    assert handles() == 0
+    if finish == "close":
+        ds = read(path)
+        assert ds["t"].values.tolist() == list(range(8)) and ds.attrs["integrator"] == "rk4"
 
 
 @pytest.mark.parametrize("name", sorted(bundled()))

@@ -355,6 +355,13 @@ class NetcdfStream(_DatasetStream):
 
     _chunk_key = "chunksizes"
 
+    def __init__(self, path, scene=None):
+        super().__init__(path, scene)
+        # open from the second piece to the end (reopening it for each piece cost 0.2 s
+        # of CPU over the 77 pieces of a 10⁷-step heavy top), and its time variables
+        self._file = None
+        self._variables: dict = {}
+
     def append(self, piece) -> None:
         """Extend every ``time`` variable by the piece's rows."""
         ds = self._dataset(piece)
@@ -364,13 +371,18 @@ class NetcdfStream(_DatasetStream):
             ds.to_netcdf(self.path, engine=_netcdf_engine(), unlimited_dims=["time"],
                          encoding=self._encoding(ds))  # fmt: skip
             return
-        h5netcdf = require("h5netcdf", "results")
-        with h5netcdf.File(self.path, "a") as f:
-            old = self.rows - len(piece)
-            f.resize_dimension("time", self.rows)
-            for name, var in ds.variables.items():
-                if var.dims[:1] == ("time",):
-                    f.variables[name][old : self.rows, ...] = var.values
+        if self._file is None:
+            h5netcdf = require("h5netcdf", "results")
+            self._file = h5netcdf.File(self.path, "a")
+            self._variables = {
+                name: self._file.variables[name]
+                for name, var in ds.variables.items()
+                if var.dims[:1] == ("time",)
+            }
+        old = self.rows - len(piece)
+        self._file.resize_dimension("time", self.rows)
+        for name, variable in self._variables.items():
+            variable[old : self.rows, ...] = ds[name].values
 
     def close(self, meta: dict) -> None:
         """Write the run's attributes (the final ``meta``) and the short paths' counts."""
@@ -378,7 +390,10 @@ class NetcdfStream(_DatasetStream):
             return
         h5netcdf = require("h5netcdf", "results")
         attrs, valid = self._attrs(meta)
-        with h5netcdf.File(self.path, "a") as f:
+        f, self._file = self._file, None
+        if f is None:  # a run of one piece
+            f = h5netcdf.File(self.path, "a")
+        with f:
             for key in list(f.attrs):
                 if key not in attrs:
                     del f.attrs[key]
@@ -386,6 +401,12 @@ class NetcdfStream(_DatasetStream):
                 f.attrs[key] = value
             for name, rows in valid.items():
                 _set_valid(f.variables[name].attrs, rows)
+
+    def abort(self) -> None:
+        """Close the file (the staging folder goes away with it)."""
+        f, self._file = self._file, None
+        if f is not None:
+            f.close()
 
 
 class ZarrStream(_DatasetStream):
