@@ -185,7 +185,7 @@ def test_a_streamed_zarr_store_holds_the_rows_however_the_pieces_fall(
     monkeypatch.setattr(streams, "CHUNK_ROWS", chunk_rows)
     monkeypatch.setattr(streams, "ZARR_WRITE_CHUNKS", write_chunks)
     rng = np.random.default_rng(11)
-    sizes = (3, 1, 50, 0, 7, 130, 2, 64)
+    sizes = (0, 3, 1, 50, 0, 7, 130, 2, 64)
     starts = np.cumsum((0, *sizes))
     pieces = [
         Trajectory({"t": np.arange(lo, lo + n, dtype=float), "w": rng.random((n, 3))},

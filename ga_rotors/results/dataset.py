@@ -22,7 +22,7 @@ import numpy as np
 from ..optional import require
 from .variables import COMPONENT_DIMS, describe
 
-__all__ = ["EXACT_BOUND_TIMES", "exact_bound_at", "provenance", "to_dataset"]
+__all__ = ["EXACT_BOUND_TIMES", "exact_bound_at", "provenance", "time_rows", "to_dataset"]
 
 #: At most this many sample times (evenly spread, the last included) are evaluated to find
 #: the exact reference's largest error bound; the bounds grow smoothly with time.
@@ -105,6 +105,32 @@ def exact_bound_at(scene, times: np.ndarray) -> float | None:
     return None if exact is None else exact.bound(times)
 
 
+def time_rows(trajectory) -> dict[str, np.ndarray]:
+    """Each array of ``trajectory`` as :func:`to_dataset` holds it along ``time`` (``t``
+    included): a path that stopped early padded with NaN to the trajectory's length.
+
+    What a stream appends for each piece after the first (the variables, units and
+    attributes are the first piece's Dataset's).
+
+    Examples
+    --------
+    >>> from ga_rotors.trajectory import Trajectory
+    >>> tr = Trajectory({"t": np.arange(3.0), "euler": np.ones((2, 3))})
+    >>> {name: a.shape for name, a in time_rows(tr).items()}
+    {'t': (3,), 'euler': (3, 3)}
+    """
+    n = trajectory.t.shape[0]
+    out = {}
+    for name in trajectory.names:
+        a = trajectory[name]
+        if a.shape[0] < n:
+            pad = np.full((n, *a.shape[1:]), np.nan)
+            pad[: a.shape[0]] = a
+            a = pad
+        out[name] = a
+    return out
+
+
 def to_dataset(trajectory, scene=None):
     """The trajectory as an :class:`xarray.Dataset` with units and provenance.
 
@@ -126,20 +152,15 @@ def to_dataset(trajectory, scene=None):
     """
     xr = require("xarray", "results")
     t = trajectory.t
-    n = t.shape[0]
     coords = {"t": ("time", t, dict(zip(("units", "description"), describe("t"), strict=True)))}
     variables = {}
-    for name in trajectory.names:
+    for name, a in time_rows(trajectory).items():
         if name == "t":
             continue
-        a = trajectory[name]
         unit, description = describe(name)
         attrs = {"units": unit, "description": description}
-        if a.shape[0] < n:
-            attrs["valid_samples"] = int(a.shape[0])
-            pad = np.full((n, *a.shape[1:]), np.nan)
-            pad[: a.shape[0]] = a
-            a = pad
+        if trajectory[name].shape[0] < t.shape[0]:
+            attrs["valid_samples"] = int(trajectory[name].shape[0])
         dims: tuple[str, ...] = ("time",)
         if a.ndim == 2:
             labels = trajectory.components.get(name) or tuple(str(i) for i in range(a.shape[1]))
