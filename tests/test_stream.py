@@ -212,10 +212,11 @@ def test_a_netcdf_stream_holds_its_file_open_between_pieces_and_lets_it_go(tmp_p
     from ga_rotors.trajectory import Trajectory
 
     path = tmp_path / "run.nc"
+    real = os.path.realpath(path)  # what /proc/self/fd shows (tmp_path may hold a link)
 
     def handles():
         fds = os.listdir("/proc/self/fd")
-        return sum(os.path.realpath(f"/proc/self/fd/{fd}") == str(path) for fd in fds)
+        return sum(os.path.realpath(f"/proc/self/fd/{fd}") == real for fd in fds)
 
     out = streams.NetcdfStream(path)
     for lo in (0, 2, 4, 6):
