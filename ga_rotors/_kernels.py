@@ -618,3 +618,34 @@ def euler_rates(inertia, w, tau):
     g = free_euler_rates(inertia, w)
     c = euler_coefficients(inertia)
     return (g[0] + tau[0] * c[3], g[1] + tau[1] * c[4], g[2] + tau[2] * c[5])
+
+
+# ------------------------------------------------------------ energy under gravity
+
+
+@jit
+def kinetic_energy(w, moments):
+    """½ Σ Iₖ ωₖ² in the principal frame, summed as ``RigidBody.energy``'s einsum sums it
+    (the run's energy columns and the summary's drift are the same numbers).
+
+    Examples
+    --------
+    >>> kinetic_energy((1.0, 0.0, 2.0), (2.0, 1.0, 3.0))     # ½ (2·1² + 3·2²)
+    7.0
+    """
+    return 0.5 * ((w[0] * moments[0] * w[0] + w[1] * moments[1] * w[1]) + w[2] * moments[2] * w[2])
+
+
+@jit
+def gravity_potential(q, r, weight):
+    """−(q r q*)·(m g) for unit q: the lever r from the pivot to the centre of mass (body)
+    turned into space, against the weight m g; summed as numpy's matrix-vector product
+    sums it.
+
+    Examples
+    --------
+    >>> gravity_potential((1.0, 0.0, 0.0, 0.0), (0.0, 0.0, 0.5), (0.0, 0.0, -9.81))  # m g l
+    4.905
+    """
+    lever = qrotate(q, r)
+    return -((lever[0] * weight[0] + lever[1] * weight[1]) + lever[2] * weight[2])

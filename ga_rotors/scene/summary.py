@@ -29,7 +29,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from .._jit import jit
-from .._kernels import qmul, qrotate, qunit
+from .._kernels import gravity_potential, kinetic_energy, qmul, qrotate, qunit
 from .._validate import UNIT_TOLERANCE
 from ..trajectory import Trajectory
 from .model import Scene
@@ -236,10 +236,11 @@ def invariant_series(scene: Scene, tr: Trajectory, q: np.ndarray, start=None) ->
 
 @jit
 def _gravity_loop(q, w, moments, r, weight, up, first, scale, l0, tol, out):
-    """Per row: the total energy ½ Σ Iₖ ωₖ² − (q r q*)·(m g), the vertical Lₛ·up and the
-    body L₃, as |value − first| over its scale (``first`` None: the values themselves)
-    — the operations of body.energy, body.momentum, quaternion.rotate and the dot
-    products, in their order. Returns whether every row is finite."""
+    """Per row: the total energy ½ Σ Iₖ ωₖ² − (q r q*)·(m g) (the kernels of the run's
+    energy columns), the vertical Lₛ·up and the body L₃, as |value − first| over its
+    scale (``first`` None: the values themselves) — the operations of body.energy,
+    body.momentum, quaternion.rotate and the dot products, in their order. Returns
+    whether every row is finite."""
     bad = 0.0
     i0, i1, i2 = moments
     for n in range(out.shape[1]):
@@ -247,9 +248,7 @@ def _gravity_loop(q, w, moments, r, weight, up, first, scale, l0, tol, out):
         w0, w1, w2 = w[n, 0], w[n, 1], w[n, 2]
         body_l = (w0 * i0, w1 * i1, w2 * i2)
         space_l = qrotate(unit, body_l)
-        lever = qrotate(unit, r)
-        kinetic = 0.5 * ((w0 * i0 * w0 + w1 * i1 * w1) + w2 * i2 * w2)
-        total = kinetic - ((lever[0] * weight[0] + lever[1] * weight[1]) + lever[2] * weight[2])
+        total = kinetic_energy((w0, w1, w2), (i0, i1, i2)) + gravity_potential(unit, r, weight)
         vertical = (space_l[0] * up[0] + space_l[1] * up[1]) + space_l[2] * up[2]
         values = (total, vertical, body_l[2])
         for k in range(3):
