@@ -517,9 +517,7 @@ def test_csv_values_are_printfs_17g_and_read_back(values):
     assert np.array_equal(back, np.array(values), equal_nan=True)
 
 
-def test_csv_values_at_the_hard_places():
-    """Powers of ten and their neighbours (where log10 is one off), the range's ends,
-    subnormals, the %g switch points, and a million values of every magnitude."""
+def _hard_values():
     rng = np.random.default_rng(13)
     p = np.concatenate([10.0 ** np.arange(-307, 309), [float(f"1e{k}") for k in range(-308, 309)]])
     values = np.concatenate([
@@ -528,8 +526,51 @@ def test_csv_values_at_the_hard_places():
          1e-4, 9.9999999999999995e-05, 1e17, 99999999999999999.0, 0.0, -0.0],
         np.frombuffer(rng.bytes(8 * 500_000), dtype=np.float64),
         rng.standard_normal(500_000) * 10.0 ** rng.integers(-300, 300, 500_000),
+        [np.nan, np.inf, -np.inf, -5e-324],
     ])  # fmt: skip
-    assert format_rows(values[:, None]) == _printf(values.tolist())
+    return values
+
+
+@pytest.mark.parametrize("columns", [1, 8, 11, 16])
+def test_csv_values_at_the_hard_places(columns):
+    """Powers of ten and their neighbours (where log10 is one off), the range's ends,
+    subnormals, the %g switch points, and a million values of every magnitude; in one
+    column (each value on its own) and in rows of 8, 11 and 16 (eight values of a row
+    at once in vector registers, the rest one by one)."""
+    values = _hard_values()
+    values = values[: values.size - values.size % columns]
+    expected = "".join(
+        ",".join(f"{v:.17g}" for v in row) + "\n" for row in values.reshape(-1, columns).tolist()
+    ).encode()
+    assert format_rows(values.reshape(-1, columns)) == expected
+
+
+def test_eight_values_at_once_are_one_at_a_times():
+    """Every lane of the vector pass (_decimal8) gives what the one-value pass gives: the
+    same digits and exponent, and the same verdict on whether the value needs the slow
+    path (zeros, subnormals, inf, nan, the ends of the range, next to powers of ten)."""
+    from numba import njit
+
+    from ga_rotors.results import decimal as D
+
+    @njit
+    def both(values, bits, out_n, out_k, out_ok, one_n, one_k, one_ok):
+        for i in range(0, values.shape[0], D.LANES):
+            D._decimal8(values, i, D._POW10_HI, D._POW10_LO, D._ROUNDED10, out_n, out_k,
+                        out_ok, i)  # fmt: skip
+        for i in range(values.shape[0]):
+            biased = np.int64((bits[i] >> np.uint64(52)) & np.uint64(0x7FF))
+            one_n[i], one_k[i], one_ok[i] = D._decimal_fast(values[i], biased, D._POW10,
+                                                            D._ROUNDED10)  # fmt: skip
+
+    values = _hard_values()
+    values = np.concatenate([values, -values])
+    values = values[: values.size - values.size % D.LANES]
+    arrays = [np.empty(values.size, dtype=t) for t in (np.int64, np.int64, np.bool_) * 2]
+    both(values, values.view(np.uint64), *arrays)
+    n, k, ok, one_n, one_k, one_ok = arrays
+    assert np.array_equal(ok, one_ok) and 0.2 < ok.mean() < 1.0
+    assert np.array_equal(n[ok], one_n[ok]) and np.array_equal(k[ok], one_k[ok])
 
 
 def test_the_stream_benchmark_runs_in_its_quick_mode(tmp_path):
