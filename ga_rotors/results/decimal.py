@@ -269,8 +269,9 @@ class _Vectors:
                      align=1)  # fmt: skip
 
     def table(self, base, index):
-        """table[index] lane by lane: scalar loads (LLVM prefers them to a gather on the
-        processors whose gathers the Downfall microcode slowed)."""
+        """table[index] lane by lane, as scalar loads: llvmlite's IR builder has no vector
+        address (a gather's operand), and numba's own vectorizer left every loop with
+        such a look-up scalar."""
         out = ir.Constant(self.f64, ir.Undefined)
         for lane in range(LANES):
             at = self.b.extract_element(index, ir.Constant(ir.IntType(32), lane))
