@@ -3,9 +3,12 @@ against the per-sample path it replaces where it applies: the same numbers, bit 
 
 from __future__ import annotations
 
+import numba
 import numpy as np
 import pytest
 from _sweeps import run_until_interrupted
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 xr = pytest.importorskip("xarray")
 pytest.importorskip("zarr")
@@ -187,6 +190,14 @@ def test_a_value_the_body_refuses_is_named_by_the_per_sample_path(tmp_path, used
     assert used and not used[0]
 
 
+@numba.njit
+def _values_of(raw, normal, a, b, out):
+    # the draws' own function of one output, over outputs given here rather than streamed
+    for i in range(raw.size):
+        j = i % out.shape[0]
+        out[j, i // out.shape[0]] = spec._value(raw[i], normal[j], a[j], b[j])
+
+
 def test_the_draws_call_scipys_own_ndtri_bit_for_bit():
     from scipy.special import ndtri
 
@@ -203,12 +214,38 @@ def test_the_draws_call_scipys_own_ndtri_bit_for_bit():
     out = np.empty((2, raw.size // 2))
     spec._bind_ndtri()
     normal = np.array([True, True])
-    spec._draw(raw, normal, np.array([0.0, -3.0]), np.array([1.0, 2.5]), out)
+    _values_of(raw, normal, np.array([0.0, -3.0]), np.array([1.0, 2.5]), out)
     u = ((raw >> np.uint64(11)).astype(np.float64) + 0.5) * 2.0**-53
     u = np.minimum(u, np.nextafter(1.0, 0.0)).reshape(-1, 2)
     expected = np.stack([ndtri(u[:, 0]) * 1.0 + 0.0, ndtri(u[:, 1]) * 2.5 + -3.0])
     assert np.all(np.isfinite(out))
     assert np.array_equal(out.view(np.uint64), expected.view(np.uint64))
+
+
+@settings(max_examples=40, deadline=None)
+@given(
+    seed=st.integers(0, 2**64 - 1),
+    lo=st.integers(0, 3 * spec.BLOCK),
+    n=st.integers(1, 2 * spec.BLOCK + 3),
+    nvars=st.integers(1, 3),
+)
+def test_the_compiled_streams_are_numpys_pcg64_outputs(seed, lo, n, nvars):
+    # Each block's stream run on in compiled code (from numpy's seeded and advanced
+    # PCG64) against numpy's random_raw of the whole block, sliced: the uniform draw
+    # u = (k + 1/2)·2^-53 of every output, from any first sample, across block ends.
+    hi = lo + n
+    out = np.empty((nvars, n))
+    kinds, zeros, ones = np.zeros(nvars, dtype=bool), np.zeros(nvars), np.ones(nvars)
+    spec._bind_ndtri()  # before _draw is compiled: it calls scipy's ndtri by that name
+    spec._draw(spec._streams(seed, lo, hi, nvars), lo, kinds, zeros, ones, out)
+    raw = []
+    for block in range(lo // spec.BLOCK, -(-hi // spec.BLOCK)):
+        bits = np.random.PCG64(np.random.SeedSequence(seed, spawn_key=(block,)))
+        raw.append(bits.random_raw(spec.BLOCK * nvars))
+    first = lo - lo // spec.BLOCK * spec.BLOCK
+    raw = np.concatenate(raw)[first * nvars : (first + n) * nvars]
+    expected = ((raw >> np.uint64(11)).astype(np.float64) + 0.5) * 2.0**-53
+    assert np.array_equal(out, expected.reshape(n, nvars).T)
 
 
 def test_the_edge_chunk_file_is_extended_to_the_full_chunk_not_padded(tmp_path):

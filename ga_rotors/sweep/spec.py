@@ -38,6 +38,8 @@ from pathlib import Path
 
 import numba
 import numpy as np
+from llvmlite import ir
+from numba.extending import intrinsic
 
 from .._jit import jit
 from ..errors import InputError, SceneError
@@ -176,25 +178,76 @@ class Sweep:
             b = np.array([p[1] - p[0] if d == "uniform" else p[1] for _, d, p in self.draws])
             draws = cols[row:]
             _bind_ndtri()
-            _draw(_raw(self.seed, lo, hi, len(self.draws)), kinds, a, b, draws)
+            _draw(_streams(self.seed, lo, hi, len(self.draws)), lo, kinds, a, b, draws)
             for j, (key, _, _) in enumerate(self.draws):
                 out[key] = draws[j]
         return cols, out
 
 
-def _raw(seed: int, lo: int, hi: int, nvars: int) -> np.ndarray:
-    """The 64-bit outputs of samples lo..hi-1, ``nvars`` per sample, from their blocks' streams.
+def _streams(seed: int, lo: int, hi: int, nvars: int) -> np.ndarray:
+    """Where the draws of samples lo..hi-1 start in their blocks' streams: one row per
+    block, its PCG64 state and increment as (high, low) 64-bit words, advanced to the
+    output of sample max(lo, block start), variable 0.
 
     Sample s, variable j takes the (s mod BLOCK)·nvars + j-th 64-bit output of its
-    block's PCG64 stream, seeded by ``SeedSequence(seed, spawn_key=(block,))``.
+    block's PCG64 stream, seeded by ``SeedSequence(seed, spawn_key=(block,))``. Each row
+    is numpy's own generator, seeded and advanced (:meth:`numpy.random.PCG64.advance`);
+    :func:`_draw` then runs the streams on in compiled code.
     """
-    parts = []
+    rows = []
     for block in range(lo // BLOCK, -(-hi // BLOCK)):
-        start = block * BLOCK
-        a, b = max(lo, start), min(hi, start + BLOCK)
         bits = np.random.PCG64(np.random.SeedSequence(seed, spawn_key=(block,)))
-        parts.append(bits.random_raw((b - start) * nvars)[(a - start) * nvars :])
-    return parts[0] if len(parts) == 1 else np.concatenate(parts)
+        bits.advance((max(lo, block * BLOCK) - block * BLOCK) * nvars)
+        state = bits.state["state"]
+        rows.append([w for v in (state["state"], state["inc"]) for w in divmod(v, 2**64)])
+    return np.array(rows, dtype=np.uint64)
+
+
+#: numpy's PCG64: the 128-bit linear congruential generator's multiplier (its output is
+#: XSL-RR: the high word XOR the low one, rotated right by the top 6 bits).
+_PCG_MULTIPLIER = 0x2360ED051FC65DA44385DF649FCCF645
+
+
+def _plain_pcg_step(hi, lo, inc_hi, inc_lo):
+    """The compiled step in Python integers, for the draws run uncompiled."""
+    state = ((int(hi) << 64 | int(lo)) * _PCG_MULTIPLIER + (int(inc_hi) << 64 | int(inc_lo))) % (
+        1 << 128
+    )
+    return np.uint64(state >> 64), np.uint64(state & (2**64 - 1))
+
+
+@intrinsic
+def _compiled_pcg_step(typingctx, hi, lo, inc_hi, inc_lo):
+    """PCG64's state (hi, lo) after one step, state·multiplier + increment mod 2¹²⁸, in
+    LLVM's 128-bit integers (numba has none; LLVM makes it three 64-bit products)."""
+    words = numba.types.UniTuple(numba.types.uint64, 2)
+    signature = words(numba.types.uint64, numba.types.uint64, numba.types.uint64,
+                      numba.types.uint64)  # fmt: skip
+
+    def codegen(context, builder, sig, args):
+        wide, word = ir.IntType(128), ir.IntType(64)
+
+        def join(high, low):
+            high = builder.shl(builder.zext(high, wide), ir.Constant(wide, 64))
+            return builder.or_(high, builder.zext(low, wide))
+
+        state = builder.mul(join(args[0], args[1]), ir.Constant(wide, _PCG_MULTIPLIER))
+        state = builder.add(state, join(args[2], args[3]))
+        high = builder.trunc(builder.lshr(state, ir.Constant(wide, 64)), word)
+        return context.make_tuple(builder, sig.return_type, (high, builder.trunc(state, word)))
+
+    return signature, codegen
+
+
+_pcg_step = _plain_pcg_step if numba.config.DISABLE_JIT else _compiled_pcg_step
+
+
+@jit(inline="always")
+def _pcg_output(hi, lo):
+    """PCG64's 64-bit output of the state (hi, lo) it has just stepped to."""
+    x = hi ^ lo
+    turn = hi >> np.uint64(58)
+    return (x >> turn) | (x << ((np.uint64(64) - turn) & np.uint64(63)))
 
 
 #: The symbol of scipy's ``ndtri`` (the C function behind ``scipy.special.ndtri``) for the
@@ -229,28 +282,43 @@ def _bind_ndtri() -> None:
         _BOUND.append(True)
 
 
-@jit
-def _draw(raw, normal, a, b, out):
-    """out[j, i]: draw j of sample i from its 64-bit output raw[i·nvars + j].
-
-    k = x >> 11 (what ``Generator.integers(0, 2**53)`` gives: Lemire's method never
-    rejects for a range of 2⁵³), u = (k + ½)·2⁻⁵³ in float64: in (0, 1], since
-    k = 2⁵³ − 1 rounds to 1 (k + ½ rounds to even above 2⁵²), which a normal draw takes
-    as :data:`_BELOW_ONE` so that its inverse CDF stays finite. Then a normal draw is
-    ndtri(u)·std + mean (scipy's own C function, so the numbers are ``scipy.special.ndtri``'s
-    bit for bit), a uniform one u·(high − low) + low (``b`` holds the width). The
-    operations and their order are those of the numpy expressions this replaces, one
-    rounding each: the numbers of every store written stay the same.
+@jit(inline="always")
+def _value(x, normal, a, b):
+    """A draw from the 64-bit output x: k = x >> 11 (what ``Generator.integers(0, 2**53)``
+    gives: Lemire's method never rejects for a range of 2⁵³), u = (k + ½)·2⁻⁵³ in float64:
+    in (0, 1], since k = 2⁵³ − 1 rounds to 1 (k + ½ rounds to even above 2⁵²), which a
+    normal draw takes as :data:`_BELOW_ONE` so that its inverse CDF stays finite. Then a
+    normal draw is ndtri(u)·std + mean (scipy's own C function, so the numbers are
+    ``scipy.special.ndtri``'s bit for bit), a uniform one u·(high − low) + low (``b``
+    holds the width). The operations and their order are those of the numpy expressions
+    this replaces, one rounding each: the numbers of every store written stay the same.
     """
+    u = (float(x >> np.uint64(11)) + 0.5) * 2.0**-53
+    if normal:
+        v = _ndtri(min(u, _BELOW_ONE), 0) * b
+    else:
+        v = u * b
+    return v + a
+
+
+@jit
+def _draw(streams, lo, normal, a, b, out):
+    """out[j, i]: draw j of sample lo + i (:func:`_value`), from its block's stream
+    (``streams``, :func:`_streams`), the samples of a block in order, their variables in
+    order: the stream's outputs as they come, with no array of them (measured, 983,040
+    samples of two normal draws: 30 ms of CPU, against 41 ms with numpy's ``random_raw``
+    filling an array for the loop to read)."""
     nvars = out.shape[0]
-    for j in range(nvars):
-        for i in range(out.shape[1]):
-            u = (float(raw[i * nvars + j] >> np.uint64(11)) + 0.5) * 2.0**-53
-            if normal[j]:
-                x = _ndtri(min(u, _BELOW_ONE), 0) * b[j]
-            else:
-                x = u * b[j]
-            out[j, i] = x + a[j]
+    block = -1
+    hi = low = inc_hi = inc_lo = np.uint64(0)
+    for i in range(out.shape[1]):
+        if i == 0 or (lo + i) % BLOCK == 0:
+            block += 1
+            hi, low = streams[block, 0], streams[block, 1]
+            inc_hi, inc_lo = streams[block, 2], streams[block, 3]
+        for j in range(nvars):
+            hi, low = _pcg_step(hi, low, inc_hi, inc_lo)
+            out[j, i] = _value(_pcg_output(hi, low), normal[j], a[j], b[j])
 
 
 def load_sweep(source) -> Sweep:
