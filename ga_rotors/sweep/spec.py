@@ -200,7 +200,7 @@ def _streams(seed: int, lo: int, hi: int, nvars: int) -> np.ndarray:
         bits.advance((max(lo, block * BLOCK) - block * BLOCK) * nvars)
         state = bits.state["state"]
         rows.append([w for v in (state["state"], state["inc"]) for w in divmod(v, 2**64)])
-    return np.array(rows, dtype=np.uint64)
+    return np.array(rows, dtype=np.uint64).reshape(-1, 4)  # (0, 4) for no samples
 
 
 #: numpy's PCG64: the 128-bit linear congruential generator's multiplier (its output is
