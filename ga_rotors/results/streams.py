@@ -443,7 +443,8 @@ class ZarrStream(_DatasetStream):
 
     def __init__(self, path, scene=None):
         super().__init__(path, scene)
-        self._arrays: dict | None = None  # name -> zarr array, once the store exists
+        self._group = None  # the store's group, once it exists
+        self._arrays: dict | None = None  # name -> zarr array of the group
         self._held: dict[str, list] = {}  # name -> rows not yet written
         self._written = 0  # rows in the store
 
@@ -457,9 +458,9 @@ class ZarrStream(_DatasetStream):
         if self._arrays is None:
             data.to_zarr(self.path, mode="w", zarr_format=ZARR_FORMAT, consolidated=False,
                          encoding=self._encoding(data))  # fmt: skip
-            group = zarr.open_group(str(self.path), mode="r+", zarr_format=ZARR_FORMAT)
+            self._group = zarr.open_group(str(self.path), mode="r+", zarr_format=ZARR_FORMAT)
             self._arrays = {
-                name: group[name]
+                name: self._group[name]
                 for name, var in data.variables.items()
                 if var.dims[:1] == ("time",)
             }
@@ -496,7 +497,7 @@ class ZarrStream(_DatasetStream):
             if a.shape[0] != self.rows:  # grown past the run's rows: cut back
                 a.resize((self.rows, *a.shape[1:]))
         attrs, valid = self._attrs(meta)
-        group = zarr.open_group(str(self.path), mode="r+", zarr_format=ZARR_FORMAT)
+        group = self._group  # opened by the first piece: not opened again
         group.attrs.clear()
         group.attrs.update(attrs)
         for name, rows in valid.items():
