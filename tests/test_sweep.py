@@ -144,6 +144,37 @@ def test_a_store_of_another_sweep_is_refused(tmp_path):
         run_sweep(SWEEP.replace("seed = 42", "seed = 1"), out, client="sync")
 
 
+def _as_draws_version_1(store):
+    # what a store begun before the draws' version was recorded holds: no attribute
+    import json
+
+    for name in (".zattrs", ".zmetadata"):
+        meta = json.loads((store / name).read_text())
+        read = (lambda m: m) if name == ".zattrs" else (lambda m: m["metadata"][".zattrs"])
+        assert read(meta).pop("draws_version") == 2
+        (store / name).write_text(json.dumps(meta))
+
+
+def test_a_store_begun_with_other_normal_draws_is_not_resumed(tmp_path, reference):
+    out = tmp_path / "s.zarr"
+    run_until_interrupted(SWEEP, out, after=2, client="sync")
+    _as_draws_version_1(out)
+    refused = r"normal draws \(version 1\) differ .* its 1 unwritten chunks"
+    with pytest.raises(InputError, match=refused):
+        run_sweep(SWEEP, out, client="sync")
+    # uniform draws only: the same numbers in both versions, so it resumes
+    uniform = SWEEP.replace("normal = [0.0, 0.1]", "uniform = [0.0, 0.1]")
+    out = tmp_path / "u.zarr"
+    run_until_interrupted(uniform, out, after=2, client="sync")
+    _as_draws_version_1(out)
+    assert open_sweep(run_sweep(uniform, out, client="sync")).sizes["sample"] == 10
+    # a finished store of either version opens, and has nothing left to draw
+    done = run_sweep(SWEEP, tmp_path / "d.zarr", client="sync")
+    _as_draws_version_1(done)
+    assert run_sweep(SWEEP, done, client="sync") == done
+    xr.testing.assert_identical(open_sweep(done).load().drop_attrs(), reference.drop_attrs())
+
+
 @pytest.mark.parametrize(
     ("change", "message"),
     [
@@ -635,13 +666,16 @@ def test_the_draws_are_the_documented_function_of_the_seed_and_the_sample():
     # What fixes the numbers of every store written: sample s, draw j is the
     # ((s mod BLOCK)·draws + j)-th of its block's Generator.integers(0, 2**53) (the oracle:
     # numpy's own Generator on SeedSequence(seed, spawn_key=(block,))), as u = (k + ½)·2⁻⁵³,
-    # then the normal's inverse CDF (scipy's ndtri) or the uniform's affine map.
+    # then the normal's quantile (ga_rotors' own, draws version 2: within a few units in
+    # the last place of scipy's ndtri) or the uniform's affine map.
     from scipy.special import ndtri
+
+    from ga_rotors.sweep import _normal
 
     sweep = load_sweep(SWEEP.replace("samples = 5", f"samples = {BLOCK + 300}"))
     lo, hi = BLOCK - 200, BLOCK + 500  # across a block's end
     got = sweep.values(lo, hi)
-    expected = {key: np.empty(hi - lo) for key in ("normal", "uniform")}
+    expected = {key: np.empty(hi - lo) for key in ("normal", "uniform", "scipy")}
     for s in range(lo, hi):
         block, at = divmod(s, BLOCK)
         if s == lo or at == 0:
@@ -650,7 +684,10 @@ def test_the_draws_are_the_documented_function_of_the_seed_and_the_sample():
             )
             k = gen.integers(0, 2**53, size=2 * BLOCK, dtype=np.uint64)
         u = (k[2 * at : 2 * at + 2].astype(np.float64) + 0.5) * 2.0**-53
-        expected["normal"][s - lo] = ndtri(u[0]) * 0.1 + 0.0
+        expected["normal"][s - lo] = _normal.inverse_normal(u[0]) * 0.1 + 0.0
+        expected["scipy"][s - lo] = ndtri(u[0]) * 0.1
         expected["uniform"][s - lo] = u[1] * (0.35 - 0.25) + 0.25
-    assert np.array_equal(got["initial.angular_velocity.body[0]"], expected["normal"])
+    normal = got["initial.angular_velocity.body[0]"]
+    assert np.array_equal(normal, expected["normal"])
+    np.testing.assert_allclose(normal, expected["scipy"], rtol=2e-15, atol=1e-17)
     assert np.array_equal(got["body.mass"], expected["uniform"])

@@ -17,6 +17,7 @@ pytest.importorskip("distributed")
 from ga_rotors import ensemble  # noqa: E402
 from ga_rotors.errors import SceneError  # noqa: E402
 from ga_rotors.sweep import (  # noqa: E402
+    _normal,
     load_sweep,
     open_sweep,
     run_sweep,
@@ -198,28 +199,29 @@ def _values_of(raw, normal, a, b, out):
         out[j, i // out.shape[0]] = spec._value(raw[i], normal[j], a[j], b[j])
 
 
-def test_the_draws_call_scipys_own_ndtri_bit_for_bit():
-    from scipy.special import ndtri
-
+def test_the_rows_of_draws_are_the_draws_one_by_one_bit_for_bit():
+    # _from_uniform (vectorised central piece, listed tails, then the scaling) against
+    # _value on each output alone, on 10^6 outputs and the hard cases: k = 0 (the
+    # smallest u), 2^53 - 1 (u rounds to 1), the centre, and the seams of the quantile's
+    # pieces (u = 0.075 and 0.925) and their neighbours
     rng = np.random.default_rng(7)
     raw = rng.integers(0, 2**64, size=10**6, dtype=np.uint64, endpoint=False)
-    # hard cases: k = 0 (the smallest u), 2^53 - 1 (u rounds to 1), the centre, and the
-    # ends of ndtri's central branch (exp(-2) and 1 - exp(-2)) and their neighbours
-    edges = [np.exp(-2), 1 - np.exp(-2), 0.5]
-    ks = [0, 1, 2**53 - 1, 2**53 - 2, 2**52]
-    for e in edges:
-        k = int(e * 2**53)
-        ks += [k - 1, k, k + 1]
+    ks = [0, 1, 2**53 - 1, 2**53 - 2, 2**52, 2**52 - 1]
+    for seam in (0.5 - _normal.CENTRAL, 0.5 + _normal.CENTRAL):
+        k = int(seam * 2**53)
+        ks += [k - 2, k - 1, k, k + 1, k + 2]
     raw[: len(ks)] = np.array(ks, dtype=np.uint64) << np.uint64(11)
-    out = np.empty((2, raw.size // 2))
-    spec._bind_ndtri()
-    normal = np.array([True, True])
-    _values_of(raw, normal, np.array([0.0, -3.0]), np.array([1.0, 2.5]), out)
-    u = ((raw >> np.uint64(11)).astype(np.float64) + 0.5) * 2.0**-53
-    u = np.minimum(u, np.nextafter(1.0, 0.0)).reshape(-1, 2)
-    expected = np.stack([ndtri(u[:, 0]) * 1.0 + 0.0, ndtri(u[:, 1]) * 2.5 + -3.0])
-    assert np.all(np.isfinite(out))
-    assert np.array_equal(out.view(np.uint64), expected.view(np.uint64))
+    normal = np.array([True, False, True])
+    a, b = np.array([0.0, 1.0, -3.0]), np.array([1.0, 2.0, 2.5])
+    raw = raw[: raw.size // 3 * 3]
+    one_by_one = np.empty((3, raw.size // 3))
+    _values_of(raw, normal, a, b, one_by_one)
+    rows = (((raw >> np.uint64(11)).astype(np.float64) + 0.5) * 2.0**-53).reshape(-1, 3).T.copy()
+    spec._from_uniform(normal, a, b, rows)
+    assert np.all(np.isfinite(rows))
+    assert np.array_equal(rows.view(np.uint64), one_by_one.view(np.uint64))
+    tails = np.abs(rows[0] - 0.0) > 1.4395  # the central piece ends at x = 1.43953...
+    assert 0.13 < tails.mean() < 0.17  # both pieces taken, about as often as they should
 
 
 @settings(max_examples=40, deadline=None)
@@ -236,7 +238,6 @@ def test_the_compiled_streams_are_numpys_pcg64_outputs(seed, lo, n, nvars):
     hi = lo + n
     out = np.empty((nvars, n))
     kinds, zeros, ones = np.zeros(nvars, dtype=bool), np.zeros(nvars), np.ones(nvars)
-    spec._bind_ndtri()  # before _draw is compiled: it calls scipy's ndtri by that name
     spec._draw(spec._streams(seed, lo, hi, nvars), lo, kinds, zeros, ones, out)
     raw = []
     for block in range(lo // spec.BLOCK, -(-hi // spec.BLOCK)):

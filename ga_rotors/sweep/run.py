@@ -55,7 +55,7 @@ from ..optional import require
 from . import budget as sweep_budget
 from . import store as zstore
 from .percentiles import percentiles
-from .spec import Sweep, load_sweep
+from .spec import DRAWS_VERSION, Sweep, load_sweep
 
 __all__ = [
     "LOCAL_CLUSTER_CONFIG",
@@ -313,6 +313,7 @@ def _template(sweep: Sweep, nominal: np.ndarray, t: np.ndarray):
         sweep_toml=sweep.text,
         sweep_digest=sweep.digest,
         seed=-1 if sweep.seed is None else sweep.seed,
+        draws_version=DRAWS_VERSION,
         samples_per_grid_point=sweep.samples,
         varied_keys=", ".join(sweep.keys),
     )
@@ -708,6 +709,7 @@ def run_sweep(
                 f"this one {sweep.digest}); choose another store or delete it"
             )
         done = ds["chunk_done"].values == 1  # unwritten flags read as the fill value
+        _same_draws(store, ds, sweep, done)
         nominal = ds["q_nominal"].values
     else:
         nominal = _nominal(sweep)
@@ -786,6 +788,19 @@ def run_sweep(
         if owned:
             dask_client.close()
     return store
+
+
+def _same_draws(store: Path, ds, sweep: Sweep, done) -> None:
+    """Refuse to resume a store whose chunks drew their normal values another way."""
+    version = int(ds.attrs.get("draws_version", 1))  # stores before it was recorded: 1
+    normal = any(dist == "normal" for _, dist, _ in sweep.draws)
+    if normal and version != DRAWS_VERSION and not done.all():
+        raise InputError(
+            f"--out: {store} was begun by an earlier ga_rotors, whose normal draws (version "
+            f"{version}) differ in the last bits from this one's (version {DRAWS_VERSION}): "
+            f"its {int((~done).sum())} unwritten chunks would not match its written ones; "
+            "finish it with that version, or choose another store or delete it"
+        )
 
 
 def _open(store: Path):
