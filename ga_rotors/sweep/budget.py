@@ -26,7 +26,8 @@ DEFAULT = Budget(max_steps=10**12, max_memory_gib=2.0, max_disk_gib=20.0)
 BLOCK_BYTES = 4096
 
 #: Float64 values per sample held for its inputs: orientation, ω, inertia and the effects'
-#: parameters, drawn and then laid out for the loop (generous: an estimate).
+#: parameters, drawn (with two values a sample of the normal draws' scratch) and then laid
+#: out for the loop (generous: an estimate).
 _INPUT_VALUES = 32
 
 
