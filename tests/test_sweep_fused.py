@@ -193,17 +193,19 @@ def test_a_value_the_body_refuses_is_named_by_the_per_sample_path(tmp_path, used
 
 @numba.njit
 def _values_of(raw, normal, a, b, out):
-    # the draws' own function of one output, over outputs given here rather than streamed
+    # each draw alone, as the docs define it, from outputs given here rather than streamed
     for i in range(raw.size):
         j = i % out.shape[0]
-        out[j, i // out.shape[0]] = spec._value(raw[i], normal[j], a[j], b[j])
+        u = spec._uniform(raw[i])
+        v = _normal.inverse_normal(min(u, spec._BELOW_ONE)) * b[j] if normal[j] else u * b[j]
+        out[j, i // out.shape[0]] = v + a[j]
 
 
 def test_the_rows_of_draws_are_the_draws_one_by_one_bit_for_bit():
     # _from_uniform (vectorised central piece, listed tails, then the scaling) against
-    # _value on each output alone, on 10^6 outputs and the hard cases: k = 0 (the
-    # smallest u), 2^53 - 1 (u rounds to 1), the centre, and the seams of the quantile's
-    # pieces (u = 0.075 and 0.925) and their neighbours
+    # each output drawn alone (the quantile's piece chosen per draw), on 10^6 outputs and
+    # the hard cases: k = 0 (the smallest u), 2^53 - 1 (u rounds to 1), the centre, and
+    # the seams of the quantile's pieces (u = 0.075 and 0.925) and their neighbours
     rng = np.random.default_rng(7)
     raw = rng.integers(0, 2**64, size=10**6, dtype=np.uint64, endpoint=False)
     ks = [0, 1, 2**53 - 1, 2**53 - 2, 2**52, 2**52 - 1]

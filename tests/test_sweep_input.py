@@ -216,6 +216,9 @@ def test_the_one_uniform_that_rounds_to_one_gives_a_finite_normal_draw():
     k = np.array([[2.0**53 - 1]])
     assert ((k + 0.5) * 2.0**-53)[0, 0] == 1.0
     top = np.uint64(2**64 - 1)  # the 64-bit output all ones: k = x >> 11 = 2^53 - 1
-    normal = spec._value(top, True, 2.0, 0.02)
+    assert spec._uniform(top) == 1.0
+    rows = np.full((2, 1), spec._uniform(top))  # a normal draw, then a uniform one
+    spec._from_uniform(np.array([True, False]), np.array([2.0, 1.0]), np.array([0.02, 2.0]), rows)
+    normal, uniform = rows[:, 0]
     assert np.isfinite(normal) and normal > 2.0 + 0.02 * 8
-    assert spec._value(top, False, 1.0, 3.0 - 1.0) == 3.0
+    assert uniform == 3.0

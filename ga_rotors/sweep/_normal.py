@@ -117,6 +117,18 @@ def tail(u):
 
 
 @jit(inline="always")
+def in_tail(u):
+    """Whether u lies in a tail, where :func:`inverse_normal` takes :func:`tail`.
+
+    Examples
+    --------
+    >>> in_tail(0.5), in_tail(0.075), in_tail(0.0749)
+    (False, False, True)
+    """
+    return abs(u - 0.5) > CENTRAL
+
+
+@jit(inline="always")
 def inverse_normal(u):
     """x with Φ(x) = u, the standard normal's quantile, for 0 < u < 1.
 
@@ -125,4 +137,4 @@ def inverse_normal(u):
     >>> round(inverse_normal(0.8413447460685429), 12)  # Φ(1)
     1.0
     """
-    return central(u) if abs(u - 0.5) <= CENTRAL else tail(u)
+    return tail(u) if in_tail(u) else central(u)

@@ -267,22 +267,9 @@ def _uniform(x):
     return (float(x >> np.uint64(11)) + 0.5) * 2.0**-53
 
 
-@jit(inline="always")
-def _value(x, normal, a, b):
-    """A draw from the 64-bit output x, with u = :func:`_uniform` (x): a normal draw is
-    inverse_normal(u)·std + mean (:mod:`ga_rotors.sweep._normal`, with u = 1 taken as
-    :data:`_BELOW_ONE` so that the quantile stays finite), a uniform one u·(high − low) +
-    low (``b`` holds the width), one rounding per operation. :func:`_draw` makes the same
-    numbers a row at a time.
-    """
-    u = _uniform(x)
-    v = _normal.inverse_normal(min(u, _BELOW_ONE)) * b if normal else u * b
-    return v + a
-
-
 @jit
 def _draw(streams, lo, normal, a, b, out):
-    """out[j, i]: draw j of sample lo + i (:func:`_value`, bit for bit), from its block's
+    """out[j, i]: draw j of sample lo + i (:func:`_from_uniform`), from its block's
     stream (``streams``, :func:`_streams`), the samples of a block in order, their
     variables in order: the stream's outputs as they come, with no array of them. The
     streams fill ``out`` with the uniform u, which :func:`_from_uniform` then maps."""
@@ -302,7 +289,10 @@ def _draw(streams, lo, normal, a, b, out):
 
 @jit
 def _from_uniform(normal, a, b, out):
-    """Row j of ``out``, uniform u, made draw j in place (:func:`_value`'s numbers).
+    """Row j of ``out``, uniform u (:func:`_uniform`), made draw j in place: a normal draw
+    is inverse_normal(u)·std + mean (:mod:`ga_rotors.sweep._normal`, with u = 1 taken as
+    :data:`_BELOW_ONE` so that the quantile stays finite), a uniform one u·(high − low) +
+    low (``b`` holds the width), one rounding per operation.
 
     A normal row takes the central piece of the quantile for every u at once (a loop
     without a branch, which LLVM vectorises), lists where u lies in a tail (15 % of the
@@ -319,13 +309,14 @@ def _from_uniform(normal, a, b, out):
         row, aj, bj = out[j], a[j], b[j]
         if normal[j]:
             for i in range(n):
-                x[i] = _normal.central(min(row[i], _BELOW_ONE))
+                row[i] = min(row[i], _BELOW_ONE)
+                x[i] = _normal.central(row[i])
             k = 0
             for i in range(n):
                 tails[k] = i
-                k += abs(min(row[i], _BELOW_ONE) - 0.5) > _normal.CENTRAL
+                k += _normal.in_tail(row[i])
             for m in range(k):
-                x[tails[m]] = _normal.tail(min(row[tails[m]], _BELOW_ONE))
+                x[tails[m]] = _normal.tail(row[tails[m]])
             for i in range(n):
                 row[i] = x[i] * bj + aj
         else:
