@@ -2,10 +2,11 @@
 
 SCENE_OR_RESULT is a scene (a .toml file or a bundled scene's name: the scene is run
 first) or a saved result of ga-rotors run (its directory, or its .npz file, next to the
-<name>.scene.toml the run wrote). The page is one self-contained HTML file that works
-offline: the body, the rotor's bivector plane, ω and L, the symmetry axis' trace on the
-unit sphere, a time slider with play/pause, and live rotor, quaternion and Euler-angle
-readouts for every orientation path of the run. Needs: pip install "ga-rotors[view]".
+<name>.scene.toml the run wrote). The page is one light, self-contained HTML file that works
+offline: the body drawn from its geometry with its pivot, its axes, ω and L, the rotor's
+bivector plane, the symmetry axis' trace on the unit sphere, a legend, a time slider with
+play/pause, and live rotor, quaternion and Euler-angle readouts for every orientation path
+of the run.
 """
 
 from __future__ import annotations
@@ -43,10 +44,8 @@ def run(args: argparse.Namespace) -> int:
     from ..errors import InputError, StepLimitWarning
     from ..scene import load_scene
     from ..view import View
-    from ..view.page import require_plotly
     from ..view.saved import load_result
 
-    require_plotly()
     source = Path(args.source)
     if source.suffix == ".npz" or source.is_dir():
         if args.duration is not None:

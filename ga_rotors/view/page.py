@@ -1,11 +1,16 @@
-"""One self-contained HTML page (plotly.js inlined, no network) that plays a run.
+"""One self-contained HTML page that plays a run, drawn by the package's own small script.
 
-The static parts of the figure (unit sphere, the symmetry axis' trace) and the styling of
-every trace are built with plotly's Python API; the page's own script (``viewer.js`` next
-to this module) moves the body, ω, L and the rotor's plane when the time slider moves,
-and writes the readouts. The state shown is readable from the page: ``#readouts``
-carries ``data-index`` and ``data-time``, each path's quaternion cell ``data-q``. A query
-string ``?t=SECONDS`` (or ``?frame=K``) opens the page at that time.
+The page is the run's data (one JSON element), a legend and readouts written here, and
+``viewer.js`` (next to this module), which projects the body, its axes, ω, L, the rotor's
+plane and the symmetry axis' trace onto a 2-D canvas per orientation path, depth-sorted,
+at the slider's time. No library travels with it and nothing is loaded from the network:
+a page is a few hundred kilobytes and opens at once, WebGL or not.
+
+The state shown is readable from the page: ``#readouts`` carries ``data-index`` and
+``data-time``, each path's quaternion cell ``data-q``; each canvas carries ``data-camera``
+(its projection) and ``data-elements`` (where each element was drawn, in CSS pixels), and
+each legend entry ``data-drawn``. A query string ``?t=SECONDS`` (or ``?frame=K``) opens the
+page at that time.
 """
 
 from __future__ import annotations
@@ -17,242 +22,228 @@ from importlib import resources
 import numpy as np
 
 from .. import quaternion as Q
+from ..errors import InputError
 from .data import NEAR_LOCK, ViewData
 
-__all__ = ["INSTALL_HINT", "MAX_FRAMES", "figure", "page_html", "require_plotly"]
+__all__ = ["ELEMENTS", "MAX_FRAMES", "MAX_TRACE", "page_html", "payload"]
 
 #: Most slider positions a page carries (the samples are thinned evenly to this many).
 MAX_FRAMES = 600
 #: Most points of the symmetry axis' trace on the sphere, per path.
 MAX_TRACE = 4000
-INSTALL_HINT = 'the viewer needs plotly: pip install "ga-rotors[view]"'
+#: Farthest point of the body from the point it turns about, in drawing units (the unit
+#: sphere of the trace has radius 1; ω and L reach 1.2 and 1.45).
+BODY_REACH = 0.85
 
-_PATH_COLOURS = {"rotor": "#1f77b4", "quaternion": "#d62728", "euler": "#2ca02c"}
-_AXIS_COLOURS = ("#e41a1c", "#4daf4a", "#377eb8")
+#: What the page draws, in legend order: key -> (legend text, colour). The body axes keep
+#: the usual red, green, blue; ω, L, the rotor's plane and the body are in hues apart from
+#: them (the Okabe–Ito colour-blind-safe set, with black for L).
+ELEMENTS = {
+    "body": ("body", "#a7b0ba"),
+    "pivot": ("pivot: the fixed point, joined to the centre of mass", "#000000"),
+    "e1": ("body axis e1", "#d55e00"),
+    "e2": ("body axis e2", "#009e73"),
+    "e3": ("body axis e3", "#0072b2"),
+    "omega": ("ω, angular velocity, in space", "#c2188c"),
+    "L": ("L = Iω, angular momentum, in space", "#1a1a1a"),
+    "plane": ("the rotor's plane (its bivector) and angle α", "#e6c700"),
+    "trace": ("trace of the symmetry axis on the unit sphere", "#56b4e9"),
+}
 
-
-def require_plotly():
-    """Import plotly, or raise :class:`~ga_rotors.errors.InputError` saying how to install it.
-
-    Examples
-    --------
-    >>> require_plotly().__name__
-    'plotly'
-    """
-    try:
-        import plotly
-    except ImportError:  # pragma: no cover - the [view] extra is installed in CI
-        from ..errors import InputError
-
-        raise InputError(INSTALL_HINT) from None
-    return plotly
+#: Drawn length of each vector at its largest over the run (drawing units).
+_LENGTHS = {"omega": 1.2, "L": 1.45}
 
 
 def _thin(n: int, most: int) -> np.ndarray:
     return np.unique(np.linspace(0, n - 1, min(n, most)).round().astype(np.int64))
 
 
-def _ellipsoid(moments, nu: int = 24, nv: int = 14):
-    """Vertices and triangles of the uniform ellipsoid with these principal moments.
-
-    Semi-axes aₖ² ∝ Iⱼ + Iₗ − Iₖ (a solid ellipsoid's moments), scaled to a largest
-    semi-axis of 1; a flat body (Iₖ = Iⱼ + Iₗ) keeps a visible thickness.
-    """
-    if moments is None:
-        a = np.full(3, 0.6)
-    else:
-        m = np.asarray(moments)
-        a = np.sqrt(np.maximum(m.sum() - 2 * m, 0.0))
-        a = np.maximum(a / a.max(), 0.04)
-    u = np.linspace(0, 2 * np.pi, nu, endpoint=False)
-    v = np.linspace(0, np.pi, nv)
-    uu, vv = np.meshgrid(u, v)
-    pts = np.stack([np.cos(uu) * np.sin(vv), np.sin(uu) * np.sin(vv), np.cos(vv)], -1) * a
-    idx = np.arange(nu * nv).reshape(nv, nu)
-    tri = []
-    for r in range(nv - 1):
-        for c in range(nu):
-            p, q_, s, t = idx[r, c], idx[r, (c + 1) % nu], idx[r + 1, c], idx[r + 1, (c + 1) % nu]
-            tri += [(p, q_, s), (q_, t, s)]
-    return pts.reshape(-1, 3), np.array(tri), a
+def _norms(v: np.ndarray) -> np.ndarray:
+    """Row norms that do not overflow for finite rows (|(1e308, 1e308, 0)| is 1.4e308)."""
+    scale = np.abs(v).max(axis=1)
+    safe = np.where(scale > 0, scale, 1.0)
+    return scale * np.sqrt(((v / safe[:, None]) ** 2).sum(axis=1))
 
 
-def _sphere_wire() -> tuple[list, list, list]:
-    xs, ys, zs = [], [], []
-    s = np.linspace(0, 2 * np.pi, 61)
-    for lat in np.radians([-60, -30, 0, 30, 60]):
-        xs += [*(np.cos(lat) * np.cos(s)), None]
-        ys += [*(np.cos(lat) * np.sin(s)), None]
-        zs += [*np.full(s.shape, np.sin(lat)), None]
-    for lon in np.radians(np.arange(0, 180, 30)):
-        xs += [*(np.cos(lon) * np.sin(s)), None]
-        ys += [*(np.sin(lon) * np.sin(s)), None]
-        zs += [*np.cos(s), None]
-    return xs, ys, zs
+def _vector(key: str, values: np.ndarray, rows: np.ndarray, unit: str) -> dict:
+    norms = _norms(values)
+    largest = float(norms.max())
+    shown = values[rows] / largest if largest > 0 else np.zeros((rows.size, 3))
+    return {"key": key, "values": shown.round(6).tolist(), "max": largest, "unit": unit,
+            "length": _LENGTHS[key]}  # fmt: skip
 
 
-def figure(data: ViewData):
-    """The plotly figure: one 3-D scene per path, dynamic traces empty until the page fills them.
+def _body(data: ViewData, scale: float) -> dict | None:
+    solid = data.solid
+    if solid is None:
+        return None
+    vertices, faces, tones = solid.mesh()
+    centre = np.asarray(solid.centre)
+    reach = np.linalg.norm(vertices - centre, axis=1).max()
+    label = solid.label or f"{solid.kind}"
+    return {
+        "label": label,
+        "vertices": (vertices * scale).round(5).tolist(),
+        "faces": faces,
+        "tones": tones,
+        "centre": (centre * scale).round(6).tolist(),
+        "axisLength": round(float(reach * scale * 1.3), 4),
+        "pivot": None if solid.pivot is None else (np.asarray(solid.pivot) * scale).tolist(),
+    }
+
+
+def _scale(data: ViewData) -> float:
+    """Drawing units per metre: the body (and its path through space) within BODY_REACH."""
+    reach = data.solid.extent() if data.solid is not None else 0.0
+    moved = max((float(_norms(p).max()) for p in data.positions.values()), default=0.0)
+    return BODY_REACH / (reach + moved) if reach + moved > 0 else 1.0
+
+
+def payload(data: ViewData) -> dict:
+    """The page's data: everything ``viewer.js`` draws, thinned to :data:`MAX_FRAMES`.
 
     Examples
     --------
-    >>> d = ViewData(np.array([0.0]), {"rotor": np.array([[1.0, 0, 0, 0]])}, np.zeros((1, 3)),
-    ...              (1.0, 1.0, 2.0))
-    >>> fig = figure(d)
-    >>> len(fig.data), fig.layout.scene.aspectmode
-    (11, 'cube')
+    >>> d = ViewData(np.array([0.0, 1.0]), {"rotor": np.array([[1.0, 0, 0, 0]] * 2)},
+    ...              np.array([[0.0, 0.0, 2.0], [0.0, 1.0, 1.0]]), (1.0, 1.0, 2.0))
+    >>> p = payload(d)
+    >>> p["vectors"][0]["max"], p["vectors"][0]["values"][0], p["vectors"][1]["key"]
+    (2.0, [0.0, 0.0, 1.0], 'L')
     """
-    require_plotly()
-    import plotly.graph_objects as go
-
-    names = list(data.paths)
-    fig = go.Figure()
-    _, tri, _ = _ellipsoid(data.moments)
-    wire = _sphere_wire()
-    k = data.axis
-    width = 1.0 / len(names)
-    layout = {}
-    for i, name in enumerate(names):
-        scene = "scene" if i == 0 else f"scene{i + 1}"
-        colour = _PATH_COLOURS.get(name, "#555")
-        first = i == 0
-        q = data.paths[name]
-        trace = Q.rotate(q[_thin(q.shape[0], MAX_TRACE)], np.eye(3)[k])
-        lines = dict(mode="lines", scene=scene, hoverinfo="skip")
-        fig.add_scatter3d(x=wire[0], y=wire[1], z=wire[2], line=dict(color="#ccc", width=1),
-                          showlegend=False, **lines)  # fmt: skip
-        fig.add_scatter3d(x=trace[:, 0], y=trace[:, 1], z=trace[:, 2],
-                          line=dict(color=colour, width=3), name=f"e{k + 1} trace",
-                          legendgroup="trace", showlegend=first, **lines)  # fmt: skip
-        fig.add_mesh3d(x=[], y=[], z=[], i=tri[:, 0], j=tri[:, 1], k=tri[:, 2], scene=scene,
-                       color=colour, opacity=0.45, flatshading=True, hoverinfo="skip",
-                       name="body", showlegend=False)  # fmt: skip
-        for a in range(3):
-            fig.add_scatter3d(x=[], y=[], z=[], line=dict(color=_AXIS_COLOURS[a], width=6),
-                              name=f"body e{a + 1}", legendgroup=f"e{a + 1}", showlegend=first,
-                              **lines)  # fmt: skip
-        for label, colour_v in (("ω", "#ff7f0e"), ("L", "#9467bd")):
-            fig.add_scatter3d(x=[], y=[], z=[], mode="lines+markers", scene=scene,
-                              line=dict(color=colour_v, width=7),
-                              marker=dict(size=[0, 5], color=colour_v, symbol="diamond"),
-                              name=f"{label} (space)", legendgroup=label, showlegend=first,
-                              hoverinfo="skip")  # fmt: skip
-        fig.add_mesh3d(x=[], y=[], z=[], scene=scene, color="#f2c94c", opacity=0.3,
-                       hoverinfo="skip", name="rotor plane")  # fmt: skip
-        fig.add_scatter3d(x=[], y=[], z=[], line=dict(color="#b8860b", width=5),
-                          name="rotor plane, angle α", legendgroup="plane", showlegend=first,
-                          **lines)  # fmt: skip
-        fig.add_scatter3d(x=[], y=[], z=[], mode="markers", scene=scene,
-                          marker=dict(size=5, color=colour), showlegend=False,
-                          hoverinfo="skip")  # fmt: skip
-        box = dict(range=[-1.5, 1.5], showbackground=False, zeroline=False,
-                   showticklabels=False, showspikes=False, gridcolor="#eee")  # fmt: skip
-        layout[scene] = dict(
-            domain=dict(x=[i * width, (i + 1) * width], y=[0, 1]),
-            xaxis=dict(box, title="x"), yaxis=dict(box, title="y"), zaxis=dict(box, title="z"),
-            aspectmode="cube", camera=dict(eye=dict(x=1.2, y=1.05, z=0.7)),
-            annotations=[],
-        )  # fmt: skip
-    fig.update_layout(
-        **layout,
-        margin=dict(l=0, r=0, t=30, b=0),
-        legend=dict(orientation="h", y=-0.02, x=0.5, xanchor="center"),
-        annotations=[
-            dict(
-                text=f"<b>{name}</b> path",
-                x=(i + 0.5) * width,
-                y=1.02,
-                xref="paper",
-                yref="paper",
-                showarrow=False,
-                font=dict(size=14),
-            )
-            for i, name in enumerate(names)
-        ],
-        uirevision="keep",
-        height=560,
-    )
-    return fig
-
-
-def _payload(data: ViewData) -> dict:
-    idx = _thin(data.t.shape[0], MAX_FRAMES)
-    moments = data.moments
-    verts, _, semi = _ellipsoid(moments)
-    w = data.w
-    wi = np.minimum(idx, w.shape[0] - 1)
-    L = w * np.asarray(moments) if moments is not None else None
+    n = data.t.shape[0]
+    idx = _thin(n, MAX_FRAMES)
+    wi = np.minimum(idx, data.w.shape[0] - 1)
+    scale = _scale(data)
+    axis = data.symmetry_direction
+    vectors = [_vector("omega", data.w, wi, "rad/s")]
+    if data.L is not None:
+        vectors.append(_vector("L", data.L, wi, "kg·m²/s"))
     paths = []
     for name, q in data.paths.items():
         m = q.shape[0]
         keep = idx[idx < m]
         angles, locked = data.euler(name)
         sin_theta = np.abs(np.sin(np.radians(angles[keep, 1])))
-        paths.append(
-            {
-                "name": name,
-                "frames": int(keep.shape[0]),
-                "q": q[keep].round(15).tolist(),
-                "euler": angles[keep].round(10).tolist(),
-                "locked": locked[keep].tolist(),
-                "near": (sin_theta < NEAR_LOCK).tolist(),
-                "sinTheta": sin_theta.tolist(),
-                "endedAt": None if m == data.t.shape[0] else float(data.t[m - 1]),
-            }
-        )
+        traced = _thin(m, MAX_TRACE)
+        position = data.positions.get(name)
+        paths.append({
+            "name": name,
+            "frames": int(keep.shape[0]),
+            "q": q[keep].round(15).tolist(),
+            "euler": angles[keep].round(10).tolist(),
+            "locked": locked[keep].tolist(),
+            "near": (sin_theta < NEAR_LOCK).tolist(),
+            "sinTheta": sin_theta.tolist(),
+            "endedAt": None if m == n else float(data.t[m - 1]),
+            "trace": Q.rotate(q[traced], axis).round(4).tolist(),
+            "traceUpTo": np.searchsorted(traced, keep, side="right").tolist(),
+            "position": None if position is None else (position[keep] * scale).round(6).tolist(),
+        })  # fmt: skip
+    lines = [
+        {"key": line.key, "label": line.label, "colour": line.colour,
+         "point": (line.point[idx] * scale).round(6).tolist(),
+         "direction": (line.direction[idx] / np.maximum(_norms(line.direction[idx]), 1e-300)
+                       [:, None]).round(6).tolist()}
+        for line in data.lines
+    ]  # fmt: skip
     return {
+        "format": 2,
         "title": data.title,
         "t": data.t[idx].tolist(),
-        "w": w[wi].tolist(),
-        "L": None if L is None else L[wi].tolist(),
-        "wMax": float(np.linalg.norm(w, axis=1).max()),
-        "LMax": None if L is None else float(np.linalg.norm(L, axis=1).max()),
-        "vertices": verts.round(6).tolist(),
-        "semiAxes": semi.tolist(),
-        "axis": data.axis,
-        "moments": None if moments is None else list(moments),
+        "body": _body(data, scale),
+        "metresPerUnit": None if data.solid is None or data.solid.relative else 1.0 / scale,
+        "symmetry": axis.tolist(),
+        "vectors": vectors,
         "paths": paths,
-        "notes": list(data.notes),
+        "lines": lines,
+        "elements": _elements(data),
+        "camera": {"azimuth": 40.0, "elevation": 22.0},
     }
 
 
+def _elements(data: ViewData) -> list[dict]:
+    present = {"body": data.solid is not None, "pivot": data.solid is not None
+               and data.solid.pivot is not None, "L": data.L is not None}  # fmt: skip
+    out = [{"key": k, "label": text, "colour": colour}
+           for k, (text, colour) in ELEMENTS.items() if present.get(k, True)]  # fmt: skip
+    out += [{"key": line.key, "label": line.label, "colour": line.colour} for line in data.lines]
+    return out
+
+
 def _script_json(obj) -> str:
-    # Inside <script>, "</" would end the element and "<!--" open a comment: escape all "<".
-    return json.dumps(obj, separators=(",", ":")).replace("<", "\\u003c").replace(">", "\\u003e")
+    """JSON for a ``<script>`` element: never NaN or Infinity (invalid JSON: the page would
+    stay blank), and no ``<``, ``>`` or ``&`` that could end the element."""
+    try:
+        text = json.dumps(obj, separators=(",", ":"), ensure_ascii=False, allow_nan=False)
+    except ValueError:  # pragma: no cover - ViewData refuses non-finite input first
+        raise InputError("the page's data holds a value JSON cannot carry (NaN or infinity)")
+    return text.replace("<", "\\u003c").replace(">", "\\u003e").replace("&", "\\u0026")
+
+
+def _swatch(key: str, colour: str) -> str:
+    if key in ("body", "plane"):
+        shape = f'<rect x="2" y="1" width="24" height="12" rx="2" fill="{colour}"/>'
+    elif key == "pivot":
+        shape = '<circle cx="14" cy="7" r="4.5" fill="#fff" stroke="#000" stroke-width="2.5"/>'
+    else:
+        width = 4 if key in ("omega", "L") else 2.5
+        shape = f'<line x1="2" y1="7" x2="26" y2="7" stroke="{colour}" stroke-width="{width}"/>'
+    return f'<svg width="28" height="14" aria-hidden="true">{shape}</svg>'
+
+
+def _legend(data: ViewData, body: dict | None) -> str:
+    items = []
+    for e in _elements(data):
+        text = html.escape(e["label"])
+        if e["key"] == "body" and body is not None:
+            text += ": " + html.escape(body["label"])
+        items.append(f'<li data-element="{html.escape(e["key"])}" data-drawn="false">'
+                     f'{_swatch(e["key"], e["colour"])} {text}</li>')  # fmt: skip
+    return "\n".join(items)
 
 
 def page_html(data: ViewData) -> str:
-    """The complete page as one string (about 5 MB: plotly.js is inlined for offline use).
+    """The complete page as one string (a few hundred kB; works offline, from a file).
 
     Examples
     --------
     >>> d = ViewData(np.array([0.0]), {"rotor": np.array([[1.0, 0, 0, 0]])}, np.zeros((1, 3)),
     ...              (1.0, 1.0, 2.0), title="<demo>")
     >>> text = page_html(d)
-    >>> "&lt;demo&gt;" in text, "https://" in text.split("<script>", 1)[0]
-    (True, False)
+    >>> "&lt;demo&gt;" in text, "https://" in text, len(text) < 100_000
+    (True, False, True)
     """
-    require_plotly()
-    from plotly.offline import get_plotlyjs
-
-    fig = figure(data)
     here = resources.files(__package__)
     script = here.joinpath("viewer.js").read_text(encoding="utf-8")
     style = here.joinpath("viewer.css").read_text(encoding="utf-8")
+    data_json = payload(data)
     title = html.escape(data.title)
     about = f'<p id="description">{html.escape(data.description)}</p>\n' if data.description else ""
-    figure_json = fig.to_json().replace("<", "\\u003c")
+    panels = "".join(
+        f'<figure class="panel" data-path="{html.escape(p)}"><figcaption><b>{html.escape(p)}'
+        f"</b> path</figcaption><canvas role=\"img\" aria-label=\"the body on the "
+        f'{html.escape(p)} path\"></canvas></figure>'
+        for p in data.paths
+    )
     rows = "".join(
         f'<tr data-path="{html.escape(p)}"><th>{html.escape(p)}</th>'
         '<td class="rotor"></td><td class="q"></td><td class="euler"></td>'
         '<td class="gimbal"></td></tr>'
         for p in data.paths
     )
+    vectors = {v["key"]: v for v in data_json["vectors"]}
+    scales = "; ".join(
+        f"{'ω' if k == 'omega' else 'L'} is drawn {v['length']} units long at its largest, "
+        f"{v['max']:.4g} {v['unit']}"
+        for k, v in vectors.items()
+    )
+    size = ("to scale, " + f"{data_json['metresPerUnit']:.3g} m per unit"
+            if data_json["metresPerUnit"] else "its size relative")  # fmt: skip
     return f"""<!DOCTYPE html>
 <html lang="en"><head><meta charset="utf-8">
+<meta name="viewport" content="width=device-width, initial-scale=1">
 <title>{title}</title>
 <style>{style}</style>
-<script>{get_plotlyjs()}</script>
 </head><body>
 <h1>{title}</h1>
 {about}<div id="controls">
@@ -260,18 +251,19 @@ def page_html(data: ViewData) -> str:
   <input id="slider" type="range" min="0" max="0" value="0" step="1" aria-label="time">
   <span id="time"></span>
 </div>
-<div id="figure"></div>
+<div id="panels">{panels}</div>
+<ul id="legend">
+{_legend(data, data_json["body"])}
+</ul>
 <table id="readouts" data-index="0" data-time="0">
 <thead><tr><th>path</th><th>rotor R = w − x e23 − y e31 − z e12</th>
 <th>quaternion (w, x, y, z)</th><th>z–y′–z″ (ψ, θ, φ)</th><th>gimbal</th></tr></thead>
 <tbody>{rows}</tbody></table>
-<p id="legend-note">Body: the uniform ellipsoid with the run's principal moments (semi-axes
-{", ".join(f"{a:.2f}" for a in _ellipsoid(data.moments)[2])}). ω and L are drawn in space,
-each scaled by its largest value over the run. The rotor's plane is the bivector plane of
-R = cos(α/2) − I u sin(α/2), the arc its angle α. The coloured curve is the trace of body
-axis e{data.axis + 1} on the unit sphere.</p>
-<script type="application/json" id="view-data">{_script_json(_payload(data))}</script>
-<script type="application/json" id="view-figure">{figure_json}</script>
+<p id="legend-note">Space axes x, y, z in grey; the unit sphere (radius 1) carries the trace.
+The body is drawn {size}, turning about the origin. {scales}. The rotor's plane is the
+plane of the bivector of R = cos(α/2) − I u sin(α/2) (the plane ⊥ u), the arc its angle α.
+Drag a picture to turn the view; double-click to reset it.</p>
+<script type="application/json" id="view-data">{_script_json(data_json)}</script>
 <script>{script}</script>
 </body></html>
 """
