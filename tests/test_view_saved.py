@@ -58,13 +58,12 @@ def test_a_large_result_keeps_even_rows_and_those_the_page_needs(tmp_path, small
     assert np.array_equal(tr.q, arrays["q"][rows[rows < 3000]])
     # The page: |ω| and |L| scales of the whole run, the path's end where it ended.
     page = View.from_scene(SCENE, tr).data
-    from ga_rotors.view.page import _payload
+    from ga_rotors.view.page import payload as page_payload
 
-    payload = _payload(page)
-    assert payload["wMax"] == pytest.approx(np.linalg.norm(arrays["w"], axis=1).max(), rel=1e-15)
-    assert payload["LMax"] == pytest.approx(
-        np.linalg.norm(arrays["w"] * moments, axis=1).max(), rel=1e-15
-    )
+    payload = page_payload(page)
+    omega, L = payload["vectors"]
+    assert omega["max"] == pytest.approx(np.linalg.norm(arrays["w"], axis=1).max(), rel=1e-15)
+    assert L["max"] == pytest.approx(np.linalg.norm(arrays["w"] * moments, axis=1).max(), rel=1e-15)
     assert payload["paths"][0]["endedAt"] == pytest.approx(arrays["t"][2999], rel=1e-15)
 
 
@@ -124,7 +123,7 @@ def test_a_cut_archive_is_one_line(tmp_path, cut):
 def test_an_object_array_is_refused_without_unpickling(tmp_path):
     arrays = _result(tmp_path, n=10)
     np.savez(tmp_path / "r.npz", **arrays, extra=np.array([{"a": 1}], dtype=object))
-    with pytest.raises(InputError, match=r"r\.npz: extra: expected finite numbers"):
+    with pytest.raises(InputError, match=r"r\.npz: extra: expected finite real numbers, got object"):
         saved.load_result(tmp_path)
 
 

@@ -202,7 +202,8 @@ def _rod(size, segments):
 
 
 def _ellipsoid(size, segments):
-    nu, nv = segments, max(segments // 2, 4)
+    nu = max(2 * segments // 3 // 4 * 4, 8)  # a curved surface needs fewer than a rim
+    nv = nu // 2
     u = np.linspace(0.0, 2 * np.pi, nu, endpoint=False)
     rings = np.linspace(0.0, np.pi, nv + 1)[1:-1]
     v = [[0.0, 0.0, 1.0]]
@@ -255,7 +256,7 @@ def _box(size, _segments, cuts: int = 3):
     return np.asarray(v), faces, tones, _centre
 
 
-def _ring(size, segments, tube_segments: int = 10):
+def _ring(size, segments, tube_segments: int = 12):
     radius, tube = size
     u = np.linspace(0.0, 2 * np.pi, segments, endpoint=False)
     w = np.linspace(0.0, 2 * np.pi, tube_segments, endpoint=False)

@@ -83,7 +83,7 @@ def _body(data: ViewData, scale: float) -> dict | None:
     label = solid.label or f"{solid.kind}"
     return {
         "label": label,
-        "vertices": (vertices * scale).round(5).tolist(),
+        "vertices": (vertices * scale).round(4).tolist(),
         "faces": faces,
         "tones": tones,
         "centre": (centre * scale).round(6).tolist(),
@@ -152,6 +152,7 @@ def payload(data: ViewData) -> dict:
         "t": data.t[idx].tolist(),
         "body": _body(data, scale),
         "metresPerUnit": None if data.solid is None or data.solid.relative else 1.0 / scale,
+        "inertia": None if data.inertia is None else data.inertia.tolist(),
         "symmetry": axis.tolist(),
         "vectors": vectors,
         "paths": paths,

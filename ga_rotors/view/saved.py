@@ -54,8 +54,9 @@ class _Member:
         self.name = info.filename.removesuffix(".npy")
         with archive.open(info) as fh:
             self.shape, self.fortran, self.dtype = _header(fh)
-        if self.dtype.hasobject or not np.issubdtype(self.dtype, np.number):
-            raise InputError(f"{where}: {self.name}: expected finite numbers")
+        if self.dtype.kind not in "iuf":  # objects, strings, bools, complex numbers
+            raise InputError(f"{where}: {self.name}: expected finite real numbers, got "
+                             f"{self.dtype.name} values")  # fmt: skip
 
     @property
     def rows(self) -> int:
@@ -102,8 +103,11 @@ class _Member:
             return np.asarray(value)
         rows = rows[rows < self.rows]
         out = np.empty((rows.size, *self.shape[1:]), self.dtype.newbyteorder("="))
+        last = -np.inf
         for lo, block in self.blocks():
             self._check(block)
+            if self.name == "t":  # the slider's times: every one after the one before
+                last = self._check_increasing(block, lo, last)
             a, b = np.searchsorted(rows, [lo, lo + block.shape[0]])
             out[a:b] = block[rows[a:b] - lo]
         return out
@@ -111,6 +115,15 @@ class _Member:
     def _check(self, block) -> None:
         if not np.isfinite(block).all():
             raise InputError(f"{self.where}: {self.name}: expected finite numbers")
+
+    def _check_increasing(self, block, lo: int, last: float) -> float:
+        joined = np.concatenate([[last], np.asarray(block, dtype=np.float64)])
+        back = np.flatnonzero(np.diff(joined) <= 0)
+        if back.size:
+            k = lo + int(back[0])
+            raise InputError(f"{self.where}: t: expected strictly increasing times, got "
+                             f"t[{k}] = {joined[back[0] + 1]:.6g} after {joined[back[0]]:.6g}")
+        return float(joined[-1])
 
 
 def _expected_dims() -> dict[str, int]:
