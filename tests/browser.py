@@ -1,12 +1,15 @@
 """Headless Chromium for the tests that look at a page the way a reader does.
 
-Debian's ``chromium`` package (installed by .ci/run); tests using :func:`load` skip with a
-notice where it is absent. The page is opened from a file with every host name mapped to
-nowhere, so a page that needed the network would fail to render.
+Debian's ``chromium`` package (installed by .ci/run); tests using :class:`DevTools` skip with
+a notice where it is absent. One browser serves a whole test module (:meth:`DevTools.open`
+loads each page in turn). Pages are opened from files with every host name mapped to
+nowhere, so a page that needed the network would fail to render. Chromium runs with its
+GPU off: what it draws, it draws in software.
 """
 
 from __future__ import annotations
 
+import base64
 import shutil
 import subprocess
 from pathlib import Path
@@ -31,31 +34,6 @@ def require_chromium() -> str:
     if CHROMIUM is None:
         pytest.skip("headless Chromium not found (apt-get install chromium); page not opened")
     return CHROMIUM
-
-
-def load(page: Path, query: str, workdir: Path, size=(1300, 900)) -> tuple[str, Path]:
-    """Open ``page?query``; return (the DOM after its scripts ran, a screenshot's path)."""
-    exe = require_chromium()
-    shot = workdir / "screenshot.png"
-    profile = workdir / "profile"
-    profile.mkdir()
-    done = subprocess.run(
-        [
-            exe,
-            *FLAGS,
-            f"--user-data-dir={profile}",
-            f"--window-size={size[0]},{size[1]}",
-            "--virtual-time-budget=10000",
-            f"--screenshot={shot}",
-            "--dump-dom",
-            f"{page.resolve().as_uri()}?{query}",
-        ],
-        capture_output=True,
-        text=True,
-        timeout=180,
-    )
-    assert done.returncode == 0, done.stderr[-2000:]
-    return done.stdout, shot
 
 
 class DevTools:
@@ -97,6 +75,11 @@ class DevTools:
         self.session = self._call("Target.attachToTarget", {"targetId": target, "flatten": True})[
             "sessionId"
         ]
+        self.size = size
+        # The page's own pixels are the screenshot's: one device pixel per CSS pixel.
+        self.send("Emulation.setDeviceMetricsOverride",
+                  {"width": size[0], "height": size[1], "deviceScaleFactor": 1, "mobile": False})
+        self._opened = 0
 
     def _message(self) -> dict:
         while b"\0" not in self._buffer:
@@ -149,6 +132,23 @@ class DevTools:
                 return value
             time.sleep(0.1)
         raise TimeoutError(f"never true in the page: {expression}")
+
+    def open(self, page: Path, query: str = "", timeout: float = 60.0) -> None:
+        """Load ``page?query`` and wait until it has drawn (``body[data-ready]``)."""
+        self._opened += 1  # a fresh query each time: never mistaken for the page before
+        url = f"{Path(page).resolve().as_uri()}?{query}{'&' if query else ''}load={self._opened}"
+        self.send("Page.navigate", {"url": url})
+        self.wait_for(f"location.href === {self._json.dumps(url)} && "
+                      "document.body && document.body.dataset.ready === 'true'", timeout)
+
+    def screenshot(self):
+        """The viewport as an (height, width, 3) float array in [0, 1]."""
+        import io
+
+        from matplotlib.image import imread
+
+        png = self.send("Page.captureScreenshot", {"format": "png"})["data"]
+        return imread(io.BytesIO(base64.b64decode(png)), format="png")[..., :3]
 
     def close(self) -> None:
         import os
