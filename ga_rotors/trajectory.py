@@ -247,7 +247,7 @@ class Trajectory:
         return trajectory_html(self)
 
     def view(self, **kwargs):
-        """An interactive page of this run (:class:`ga_rotors.view.View`; needs plotly).
+        """An interactive page of this run (:class:`ga_rotors.view.View`).
 
         In Jupyter the returned view displays itself inline; ``.save(path)`` writes the
         self-contained page. Keywords as for :func:`ga_rotors.view.from_trajectory`.

@@ -48,12 +48,20 @@ def test_a_path_that_stopped_early_says_so():
     assert f"ended at t = {status['ended_at']}" in tr._repr_html_()
 
 
-def test_a_trajectory_plays_in_the_viewer():
-    pytest.importorskip("plotly")
+def test_a_trajectory_plays_in_the_viewer_and_each_cell_stays_light():
+    import re
+
     tr = simulate((1.0, 1.0, 2.0), [1.0, 0, 0, 0], [0.1, 0.0, 1.0], duration=0.5, step=0.1)
     view = tr.view(title="disk")
-    assert view._repr_html_().startswith("<iframe srcdoc=")
+    cell = view._repr_html_()
+    assert cell.startswith("<iframe srcdoc=") and html.unescape(cell).count("<script>") == 1
     assert view.data.paths["rotor"].shape == (6, 4)
+    # The page in the cell is the saved page: its script and its data, no library (each cell
+    # of a notebook used to carry 6 MB of plotly.js). A longer run adds only its samples.
+    longer = simulate((1.0, 1.0, 2.0), [1.0, 0, 0, 0], [0.1, 0.0, 1.0], duration=50.0,
+                      step=0.1).view()._repr_html_()  # fmt: skip
+    assert len(cell) < 150_000 and len(longer) < 600_000
+    assert not re.search(r"<script[^>]*src=", html.unescape(cell))
 
 
 def test_a_symbolic_multivector_shows_its_latex():

@@ -112,7 +112,7 @@ def test_the_viewer_plays_on_the_site(site):
     html = (site / "view" / "index.html").read_text(encoding="utf-8")
     assert '<iframe class="viewer" src="heavy_top.view.html"' in html
     page = (site / "view" / "heavy_top.view.html").read_text(encoding="utf-8")
-    assert "<h1>heavy_top</h1>" in page and 'id="view-data"' in page and "Plotly.newPlot" in page
+    assert "<h1>heavy_top</h1>" in page and 'id="view-data"' in page and "ga_rotors viewer" in page
 
 
 def test_the_site_loads_nothing_from_other_hosts(site):

@@ -108,7 +108,8 @@
     for (let j = 1; j <= k; j++) {
       const next = S.project(lerp(a, b, at(j)));
       let z = (prev[2] + next[2]) / 2 + (style.bias || 0);
-      if (over && j - 1 < over.length) z = Math.min(z, over[j - 1] - 1e-3);
+      // In front of the other line's piece here and its neighbours (their round caps overlap).
+      if (over) for (let m = j - 2; m <= j; m++) if (m >= 0 && m < over.length) z = Math.min(z, over[m] - 1e-3);
       depths.push(z);
       S.items.push({ z, kind: "path", pts: [prev, next], style });
       prev = next;
