@@ -55,8 +55,10 @@ def main(repeats: int = 5, scene: str = "heavy_top", screenshot: str | None = No
               f"{repeats} cold openings, software rendering\n")  # fmt: skip
         print("| page | size | first frame (page's clock) | navigate → first frame (wall) |")
         print("|---|---|---|---|")
-        print(f"| ga-rotors view {scene} | {page.stat().st_size / 1e6:.3f} MB | "
-              f"{_summary(in_page)} | {_summary(wall)} |")
+        print(
+            f"| ga-rotors view {scene} | {page.stat().st_size / 1e6:.3f} MB | "
+            f"{_summary(in_page)} | {_summary(wall)} |"
+        )
         if screenshot:
             _screenshot(page, Path(tmp), Path(screenshot))
 

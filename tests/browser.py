@@ -77,8 +77,10 @@ class DevTools:
         ]
         self.size = size
         # The page's own pixels are the screenshot's: one device pixel per CSS pixel.
-        self.send("Emulation.setDeviceMetricsOverride",
-                  {"width": size[0], "height": size[1], "deviceScaleFactor": 1, "mobile": False})
+        self.send(
+            "Emulation.setDeviceMetricsOverride",
+            {"width": size[0], "height": size[1], "deviceScaleFactor": 1, "mobile": False},
+        )
         self._opened = 0
 
     def _message(self) -> dict:
@@ -138,8 +140,11 @@ class DevTools:
         self._opened += 1  # a fresh query each time: never mistaken for the page before
         url = f"{Path(page).resolve().as_uri()}?{query}{'&' if query else ''}load={self._opened}"
         self.send("Page.navigate", {"url": url})
-        self.wait_for(f"location.href === {self._json.dumps(url)} && "
-                      "document.body && document.body.dataset.ready === 'true'", timeout)
+        self.wait_for(
+            f"location.href === {self._json.dumps(url)} && "
+            "document.body && document.body.dataset.ready === 'true'",
+            timeout,
+        )
 
     def screenshot(self):
         """The viewport as an (height, width, 3) float array in [0, 1]."""

@@ -20,7 +20,7 @@ from hypothesis import strategies as st
 from scipy.spatial.transform import Rotation
 
 from ga_rotors import quaternion as Q
-from ga_rotors import shapes, simulate
+from ga_rotors import simulate
 from ga_rotors.cli import main
 from ga_rotors.errors import GimbalLockWarning, InputError, IntegrationStoppedWarning
 from ga_rotors.scene import Scene, load_scene
@@ -193,8 +193,10 @@ def test_a_scene_is_drawn_the_same_whichever_frame_its_run_is_in(frame):
     if frame == "written":  # the same motion, described in the scene's own frame
         q_user = Q.multiply(tr.q, Q.conjugate(p))
         w_user = Q.rotate(p, tr.w)
-        tr = Trajectory({"t": tr.t, "w": w_user, "q": q_user},
-                        meta=tr.meta | {"body_frame": "the frame the scene is written in"})
+        tr = Trajectory(
+            {"t": tr.t, "w": w_user, "q": q_user},
+            meta=tr.meta | {"body_frame": "the frame the scene is written in"},
+        )
     d = View.from_scene(scene, tr).data
     q = d.paths["quaternion"]
     L_space = Q.rotate(q, d.L)
@@ -230,8 +232,15 @@ def test_the_heavy_top_is_a_disk_on_its_pivot_not_an_egg():
 
 @pytest.mark.parametrize("kind", sorted(KINDS))
 def test_every_shape_is_drawn_with_its_dimensions_and_faces_outward(kind):
-    dims = {"disk": (0.3,), "ring": (0.3,), "sphere": (0.3,), "cylinder": (0.3, 0.8),
-            "rod": (1.0, 0.05), "box": (0.1, 0.06, 0.02), "ellipsoid": (0.1, 0.2, 0.3)}[kind]
+    dims = {
+        "disk": (0.3,),
+        "ring": (0.3,),
+        "sphere": (0.3,),
+        "cylinder": (0.3, 0.8),
+        "rod": (1.0, 0.05),
+        "box": (0.1, 0.06, 0.02),
+        "ellipsoid": (0.1, 0.2, 0.3),
+    }[kind]
     v, faces, tones = Solid(kind, dims).mesh()
     extent = np.ptp(v, axis=0)
     expected = {"disk": (0.6, 0.6, THIN * 0.3), "ring": (0.6 + THIN * 0.3,) * 2 + (THIN * 0.3,),

@@ -94,8 +94,9 @@ def test_slider_time_shows_the_trajectorys_orientation(chrome, run, page, t_want
 
 
 def _panels(shot, state):
-    return [shot[int(p["top"]) : int(p["top"] + p["height"]), int(p["left"]) : int(p["left"] + p["width"])]
-            for p in state["panels"]]  # fmt: skip
+    boxes = [(int(p["top"]), int(p["left"]), int(p["height"]), int(p["width"]))
+             for p in state["panels"]]  # fmt: skip
+    return [shot[top : top + height, left : left + width] for top, left, height, width in boxes]
 
 
 def test_the_picture_is_drawn_and_moves_with_the_slider(chrome, page):
@@ -172,16 +173,22 @@ def test_dragging_a_picture_turns_the_view_and_double_click_resets_it(chrome, pa
     p = before[0]
     x, y = p["left"] + p["width"] / 2, p["top"] + p["height"] / 2
     for kind, dx in (("mousePressed", 0), ("mouseMoved", 60), ("mouseReleased", 60)):
-        chrome.send("Input.dispatchMouseEvent", {"type": kind, "x": x + dx, "y": y,
-                                                 "button": "left", "buttons": 1, "clickCount": 1})
+        chrome.send(
+            "Input.dispatchMouseEvent",
+            {"type": kind, "x": x + dx, "y": y, "button": "left", "buttons": 1, "clickCount": 1},
+        )
     after = _state(chrome)["panels"]
     for b, a in zip(before, after, strict=True):  # every path's picture turns together
         assert not np.allclose(a["camera"]["right"], b["camera"]["right"])
         assert a["elements"]["omega"] != b["elements"]["omega"]
-    chrome.send("Input.dispatchMouseEvent", {"type": "mousePressed", "x": x, "y": y,
-                                             "button": "left", "clickCount": 2})
-    chrome.send("Input.dispatchMouseEvent", {"type": "mouseReleased", "x": x, "y": y,
-                                             "button": "left", "clickCount": 2})
+    chrome.send(
+        "Input.dispatchMouseEvent",
+        {"type": "mousePressed", "x": x, "y": y, "button": "left", "clickCount": 2},
+    )
+    chrome.send(
+        "Input.dispatchMouseEvent",
+        {"type": "mouseReleased", "x": x, "y": y, "button": "left", "clickCount": 2},
+    )
     assert np.allclose(_state(chrome)["panels"][0]["camera"]["right"], p["camera"]["right"])
 
 
@@ -206,7 +213,7 @@ def _rgb(hex_colour: str) -> np.ndarray:
 
 def _near(shot, xy, colour, radius=4, tolerance=0.25) -> float:
     """The share of pixels within ``radius`` of ``xy`` whose colour is within ``tolerance``."""
-    x, y = int(round(xy[0])), int(round(xy[1]))
+    x, y = int(np.rint(xy[0])), int(np.rint(xy[1]))
     window = shot[y - radius : y + radius + 1, x - radius : x + radius + 1]
     return float((np.linalg.norm(window - colour, axis=-1) < tolerance).mean())
 
@@ -256,13 +263,16 @@ def test_the_heavy_top_page_draws_each_element_where_the_run_puts_it(chrome, hea
         cam = panel["camera"]
 
         def screen(p, panel=panel, cam=cam):
-            return (panel["left"] + cam["cx"] + cam["scale"] * np.dot(p, cam["right"]),
-                    panel["top"] + cam["cy"] - cam["scale"] * np.dot(p, cam["up"]))
+            return (
+                panel["left"] + cam["cx"] + cam["scale"] * np.dot(p, cam["right"]),
+                panel["top"] + cam["cy"] - cam["scale"] * np.dot(p, cam["up"]),
+            )
 
         for key, place in places.items():
             xy = screen(place)
             reported = panel["elements"][key]
-            assert np.allclose(reported, np.subtract(xy, [panel["left"], panel["top"]]), atol=0.6), key
+            at = np.subtract(xy, [panel["left"], panel["top"]])
+            assert np.allclose(reported, at, atol=0.6), key
             if key.startswith("e"):  # a body axis may be behind the body: placed, not seen
                 continue
             colour = _rgb(ELEMENTS[key][1])
@@ -279,7 +289,8 @@ def test_the_heavy_top_page_draws_each_element_where_the_run_puts_it(chrome, hea
         assert x0 < cx < x1 and y0 < cy < y1
         region = shot[int(panel["top"] + y0) : int(panel["top"] + y1),
                       int(panel["left"] + x0) : int(panel["left"] + x1)]  # fmt: skip
-        grey = (np.ptp(region, axis=-1) < 0.12) & (region.mean(axis=-1) > 0.3) & (region.mean(axis=-1) < 0.85)
+        lightness = region.mean(axis=-1)
+        grey = (np.ptp(region, axis=-1) < 0.12) & (lightness > 0.3) & (lightness < 0.85)
         # At least half the disk's projected area, π r² |n·eye| (less what ω, L and the axes
         # cover), is body-grey.
         r = scene.data["body"]["radius"] * per_metre * cam["scale"]
@@ -290,12 +301,12 @@ def test_the_heavy_top_page_draws_each_element_where_the_run_puts_it(chrome, hea
         tinted = 0
         for angle in np.linspace(0, 2 * np.pi, 16, endpoint=False):
             px, py = screen(0.7 * (a * np.cos(angle) + b * np.sin(angle)))
-            r_, _, b_ = shot[int(round(py)), int(round(px))]
+            r_, _, b_ = shot[int(np.rint(py)), int(np.rint(px))]
             tinted += r_ > 0.9 and r_ - b_ > 0.08
         assert tinted >= 4, f"the plane's tint at {tinted} of 16 points"
         # The pivot: a black ring with a white middle.
         px, py = screen(np.zeros(3))
-        assert shot[int(round(py)), int(round(px))].min() > 0.9
+        assert shot[int(np.rint(py)), int(np.rint(px))].min() > 0.9
 
     # Each legend entry shows its element's colour.
     boxes = json.loads(chrome.evaluate(

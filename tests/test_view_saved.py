@@ -123,7 +123,7 @@ def test_a_cut_archive_is_one_line(tmp_path, cut):
 def test_an_object_array_is_refused_without_unpickling(tmp_path):
     arrays = _result(tmp_path, n=10)
     np.savez(tmp_path / "r.npz", **arrays, extra=np.array([{"a": 1}], dtype=object))
-    with pytest.raises(InputError, match=r"r\.npz: extra: expected finite real numbers, got object"):
+    with pytest.raises(InputError, match=r"r\.npz: extra: expected finite real numbers, got obj"):
         saved.load_result(tmp_path)
 
 

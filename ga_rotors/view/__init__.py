@@ -89,8 +89,11 @@ class View:
         else:
             r = Q.to_matrix(p)
             inertia = r @ np.diag(scene.body.moments) @ r.T
-        return cls(from_trajectory(trajectory, inertia, title=scene.name,
-                                   description=scene.description, solid=solid))
+        return cls(
+            from_trajectory(
+                trajectory, inertia, title=scene.name, description=scene.description, solid=solid
+            )
+        )
 
     def html(self) -> str:
         """The page, self-contained (its data and its drawing script; nothing else to load)."""

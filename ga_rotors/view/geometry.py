@@ -181,8 +181,8 @@ def _cylinder(size, segments):
     radius, height = size
     a = np.linspace(0.0, 2 * np.pi, segments, endpoint=False)
     ring = np.stack([radius * np.cos(a), radius * np.sin(a), np.zeros(segments)], axis=1)
-    top, bottom = ring + [0, 0, height / 2], ring - [0, 0, height / 2]
-    v = np.vstack([top, bottom, [[0, 0, height / 2], [0, 0, -height / 2]]])
+    lift = np.array([0.0, 0.0, height / 2])
+    v = np.vstack([ring + lift, ring - lift, [lift, -lift]])
     ct, cb, n = 2 * segments, 2 * segments + 1, segments
     faces, tones = [], []
     for k in range(n):
@@ -326,7 +326,7 @@ def from_inertia(inertia, mass=None, centre=(0.0, 0.0, 0.0), pivot=None) -> Soli
     t = np.asarray(inertia, dtype=np.float64)
     body = RigidBody(tuple(t)) if t.shape == (3,) else RigidBody.from_tensor(t)
     size, relative = _semi_axes(body.moments, mass)
-    label = "uniform ellipsoid of the body's moments" + (" (to scale: no mass given)"
+    label = "uniform ellipsoid of the body's moments" + (" (its size relative: no mass given)"
                                                           if relative else "")  # fmt: skip
     return Solid("ellipsoid", size, centre, body.principal_rotation, pivot, relative, label)
 

@@ -177,7 +177,9 @@ def _script_json(obj) -> str:
     try:
         text = json.dumps(obj, separators=(",", ":"), ensure_ascii=False, allow_nan=False)
     except ValueError:  # pragma: no cover - ViewData refuses non-finite input first
-        raise InputError("the page's data holds a value JSON cannot carry (NaN or infinity)")
+        raise InputError(
+            "the page's data holds a value JSON cannot carry (NaN or infinity)"
+        ) from None
     return text.replace("<", "\\u003c").replace(">", "\\u003e").replace("&", "\\u0026")
 
 
@@ -222,8 +224,8 @@ def page_html(data: ViewData) -> str:
     about = f'<p id="description">{html.escape(data.description)}</p>\n' if data.description else ""
     panels = "".join(
         f'<figure class="panel" data-path="{html.escape(p)}"><figcaption><b>{html.escape(p)}'
-        f"</b> path</figcaption><canvas role=\"img\" aria-label=\"the body on the "
-        f'{html.escape(p)} path\"></canvas></figure>'
+        f'</b> path</figcaption><canvas role="img" aria-label="the body on the '
+        f'{html.escape(p)} path"></canvas></figure>'
         for p in data.paths
     )
     rows = "".join(

@@ -121,8 +121,10 @@ class _Member:
         back = np.flatnonzero(np.diff(joined) <= 0)
         if back.size:
             k = lo + int(back[0])
-            raise InputError(f"{self.where}: t: expected strictly increasing times, got "
-                             f"t[{k}] = {joined[back[0] + 1]:.6g} after {joined[back[0]]:.6g}")
+            raise InputError(
+                f"{self.where}: t: expected strictly increasing times, got "
+                f"t[{k}] = {joined[back[0] + 1]:.6g} after {joined[back[0]]:.6g}"
+            )
         return float(joined[-1])
 
 
