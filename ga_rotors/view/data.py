@@ -98,6 +98,18 @@ class Line:
         A point of the line (m) and its direction, space frame, one row per sample.
     colour : str
         ``#rrggbb``.
+
+    Examples
+    --------
+    A body thrown along x, and its velocity line:
+
+    >>> t = np.linspace(0.0, 1.0, 3)
+    >>> where = np.outer(t, [2.0, 0.0, 0.0])
+    >>> line = Line("velocity", "velocity line", where, np.tile([1.0, 0, 0], (3, 1)), "#7b3294")
+    >>> d = ViewData(t, {"rotor": np.tile([1.0, 0, 0, 0], (3, 1))}, np.zeros((3, 3)),
+    ...              positions={"rotor": where}, lines=[line])
+    >>> d.lines[0].key, d.positions["rotor"][-1].tolist()
+    ('velocity', [2.0, 0.0, 0.0])
     """
 
     key: str
