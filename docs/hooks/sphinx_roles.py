@@ -11,8 +11,18 @@ the name as written) and rewritten as an autorefs cross-reference in code type:
   a module the reference does not show);
 * a target outside the package (``numpy.ndarray``, ``scipy.integrate.quad``) is code text:
   the site is built offline, with no other project's inventory;
+* a name written unqualified, as users write them (:meth:`append` in a module's
+  docstring, :meth:`check_step` in a method inherited from a base class), is looked up
+  among the members of the current class, its bases, then the classes of the current
+  module: found once, it links; found in several classes (each writer's ``append``), it
+  is code text, since no single entry is meant;
 * a ``ga_rotors`` name that does not exist at all is a mistake in a docstring: it is
   logged as a warning, which fails ``mkdocs build --strict``, and shown as code text.
+
+Mathematics is written the numpydoc way, :math:`\\tilde R` inline and a ``.. math::``
+directive followed by an indented block for a displayed formula (LaTeX, as in numpy's and
+scipy's docstrings). Both become the ``$...$`` and ``$$...$$`` of the site's Markdown, which
+docs/hooks/mathml.py typesets as MathML.
 
 Registered in mkdocs.yml under the python handler's ``extensions``.
 """
@@ -31,6 +41,10 @@ ROLE = re.compile(
     r":(?:py:)?(?P<role>mod|func|class|data|meth|attr|obj|exc|const|attribute|function)"
     r":`(?P<body>[^`\n]+)`"
 )
+#: The inline formula role; its body is LaTeX.
+MATH_ROLE = re.compile(r":math:`(?P<tex>[^`]+)`")
+#: The directive of a displayed formula; its body is the indented block that follows.
+MATH_DIRECTIVE = re.compile(r"(?P<indent>[ \t]*)\.\. math::[ \t]*")
 #: Roles whose target Sphinx shows with call parentheses.
 CALLABLE = {"func", "meth", "function"}
 ATTRIBUTE = {"attr", "attribute", "data"}
@@ -46,10 +60,41 @@ class SphinxRoles(griffe.Extension):
         if pkg.path != PACKAGE:
             return
         for obj in _walk(pkg):
-            if obj.docstring is not None and ROLE.search(obj.docstring.value):
-                obj.docstring.value = ROLE.sub(
-                    lambda m, obj=obj: _reference(m, obj, loader), obj.docstring.value
-                )
+            if obj.docstring is None:
+                continue
+            text = typeset_math(obj.docstring.value)
+            if ROLE.search(text):
+                text = ROLE.sub(lambda m, obj=obj: _reference(m, obj, loader), text)
+            obj.docstring.value = text
+
+
+def typeset_math(docstring: str) -> str:
+    """``docstring`` with its :math:`...` roles and ``.. math::`` blocks in the site's
+    Markdown: ``$...$`` inline, a displayed formula between two ``$$`` lines."""
+    docstring = MATH_ROLE.sub(lambda m: f"${m['tex'].strip()}$", docstring)
+    lines, out = docstring.splitlines(), []
+    i = 0
+    while i < len(lines):
+        directive = MATH_DIRECTIVE.fullmatch(lines[i])
+        i += 1
+        if directive is None:
+            out.append(lines[i - 1])
+            continue
+        indent, body = directive["indent"], []
+        while i < len(lines) and (
+            not lines[i].strip() or len(lines[i]) - len(lines[i].lstrip()) > len(indent)
+        ):
+            body.append(lines[i])
+            i += 1
+        while body and not body[-1].strip():  # blank lines after the block stay after it
+            body.pop()
+            i -= 1
+        text = [x for x in body if x.strip()]
+        depth = min((len(x) - len(x.lstrip()) for x in text), default=0)
+        if out and out[-1].strip():
+            out.append("")
+        out += [f"{indent}$$", *(f"{indent}{x[depth:]}" for x in text), f"{indent}$$"]
+    return "\n".join(out) + ("\n" if docstring.endswith("\n") else "")
 
 
 def _walk(obj: griffe.Object):
@@ -148,6 +193,37 @@ def _instance_attribute(path: str, loader: griffe.GriffeLoader) -> str | None:
     return f"{cls.path}.{name}"
 
 
+def _unqualified(name: str, obj: griffe.Object) -> list[str]:
+    """The paths of the members called ``name`` that an unqualified role in ``obj``'s
+    docstring can mean: in the enclosing class or its bases if one has it, else in any
+    class of the enclosing module (each class counted once, inherited members included)."""
+    scope = obj
+    while scope is not None and not (scope.is_class or scope.is_module):
+        scope = scope.parent
+    cls = scope if scope is not None and scope.is_class else None
+    module = obj if obj.is_module else obj.module
+
+    def member(owner: griffe.Object) -> str | None:
+        try:
+            found = owner.all_members.get(name)
+            if found is None:
+                return None
+            return found.final_target.path if found.is_alias else found.path
+        except (griffe.AliasResolutionError, griffe.CyclicAliasError):
+            return None
+
+    if cls is not None and (path := member(cls)) is not None:
+        return [path]
+    paths = []
+    for owner in module.classes.values():
+        if owner.is_alias or owner.name.startswith("_"):
+            continue
+        path = member(owner)
+        if path is not None:
+            paths.append(path)
+    return paths
+
+
 def _reference(match: re.Match, obj: griffe.Object, loader: griffe.GriffeLoader) -> str:
     role = match["role"]
     title, target, short = _split(match["body"])
@@ -169,6 +245,13 @@ def _reference(match: re.Match, obj: griffe.Object, loader: griffe.GriffeLoader)
         attribute = _instance_attribute(path, loader) if role in ATTRIBUTE else None
         if attribute is not None:
             return f'<autoref identifier="{html.escape(attribute)}" optional>{code}</autoref>'
+    if "." not in target.lstrip("."):
+        members = _unqualified(target.lstrip("."), obj)
+        if len(members) == 1:
+            return f'<autoref identifier="{html.escape(members[0])}" optional>{code}</autoref>'
+        if members:
+            _log.info(f"{obj.path}: {match[0]}: a member of {len(members)} classes, shown as code")
+            return code
     ours = target.split(".")[0] == PACKAGE or target.startswith(".")
     if ours or ("." not in target and not hasattr(builtins, target)):
         where = f"{obj.relative_filepath}:{obj.docstring.lineno}"

@@ -1,0 +1,71 @@
+"""mkdocs hook: the pages' LaTeX formulas as MathML, made when the site is built.
+
+``pymdownx.arithmatex`` (mkdocs.yml) finds the formulas of a page, ``$...$`` inline and
+``$$...$$`` on lines of their own, and leaves them as ``<span class="arithmatex">\\(...\\)</span>``
+and ``<div class="arithmatex">\\[...\\]</div>``; the API reference's docstrings arrive the same
+way (their ``:math:`` roles and ``.. math::`` blocks are turned into these by
+docs/hooks/sphinx_roles.py). This hook converts each one with ``latex2mathml`` into a
+``<math>`` element, which browsers draw natively: the site ships no JavaScript for
+mathematics and loads nothing from elsewhere.
+
+A formula that does not convert (an unbalanced brace, a command latex2mathml does not
+know) is logged as a warning naming the page and the formula, so ``mkdocs build --strict``
+fails on it instead of showing raw LaTeX.
+"""
+
+from __future__ import annotations
+
+import html
+import logging
+import re
+
+log = logging.getLogger("mkdocs.hooks.math")
+
+#: arithmatex's generic output: inline \(...\) in a span, display \[...\] in a div.
+FORMULA = re.compile(
+    r'<span class="arithmatex">\\\((?P<inline>.*?)\\\)</span>'
+    r'|<div class="arithmatex">\\\[(?P<display>.*?)\\\]</div>',
+    re.S,
+)
+#: A command latex2mathml passed through as a name instead of converting it.
+UNKNOWN = re.compile(r">(\\[A-Za-z]+)<")
+
+
+class MathError(ValueError):
+    """A formula that does not convert to MathML."""
+
+
+def to_mathml(latex: str, display: bool = False) -> str:
+    """The ``<math>`` element of one LaTeX formula (inline, or displayed as a block).
+
+    Raises :class:`MathError` for a formula latex2mathml cannot read or only half reads.
+    """
+    from latex2mathml.converter import convert
+
+    try:
+        out = convert(latex.strip(), display="block" if display else "inline")
+    except Exception as error:  # latex2mathml raises its own exception per mistake
+        raise MathError(f"{type(error).__name__} {error}".strip()) from None
+    unknown = UNKNOWN.search(out)
+    if unknown:
+        raise MathError(f"unknown command {unknown[1]}")
+    return out
+
+
+def typeset(content: str, where: str) -> str:
+    """``content`` (a page's HTML) with every arithmatex formula replaced by MathML."""
+
+    def replace(match: re.Match) -> str:
+        display = match["display"] is not None
+        latex = html.unescape(match["display"] if display else match["inline"])
+        try:
+            return to_mathml(latex, display)
+        except MathError as error:
+            log.warning(f"{where}: the formula {latex.strip()!r} does not typeset: {error}")
+            return match[0]
+
+    return FORMULA.sub(replace, content)
+
+
+def on_page_content(content: str, page, config, files) -> str:
+    return typeset(content, page.file.src_uri)
