@@ -27,6 +27,22 @@ FORMULA = re.compile(
     r'|<div class="arithmatex">\\\[(?P<display>.*?)\\\]</div>',
     re.S,
 )
+#: Bars written as delimiters, \lvert x \rvert or \lVert x \rVert: each pair is grouped, so
+#: the browser draws them as fences around x, not as operators between x and what follows.
+BAR = re.compile(r"\\([lr])(vert|Vert)(?![A-Za-z])")
+#: Environments latex2mathml knows under another name.
+ALIASES = {r"\begin{aligned}": r"\begin{align*}", r"\end{aligned}": r"\end{align*}"}
+#: A function name (\sin, \exp, ...), which latex2mathml writes as an identifier: drawn as an
+#: operator with TeX's thin spaces, none before an opening parenthesis.
+FUNCTION = re.compile(
+    r"<mi>(?P<name>a?(?:rc)?(?:sin|cos|tan|cot)h?|exp|log|ln|sec|csc)</mi>"
+    r"(?P<paren>(?:<mrow>)?<mo[^>]*>&#x00028;)?"
+)
+#: A minus or plus right after another operator (other than a closing fence) is a sign.
+SIGN = re.compile(
+    r"(<mo(?: [^>]*)?>(?!&#x00029;|&#x0005D;|&#x0007D;|&#x0007C;|&#x02016;)[^<]*</mo>)"
+    r"<mo>(&#x02212;|&#x0002B;|&#x000B1;)</mo>"
+)
 #: A command latex2mathml passed through as a name instead of converting it.
 UNKNOWN = re.compile(r">(\\[A-Za-z]+)<")
 
@@ -43,13 +59,25 @@ def to_mathml(latex: str, display: bool = False) -> str:
     from latex2mathml.converter import convert
 
     try:
-        out = convert(latex.strip(), display="block" if display else "inline")
+        out = convert(_prepared(latex), display="block" if display else "inline")
     except Exception as error:  # latex2mathml raises its own exception per mistake
         raise MathError(f"{type(error).__name__} {error}".strip()) from None
     unknown = UNKNOWN.search(out)
     if unknown:
         raise MathError(f"unknown command {unknown[1]}")
-    return out
+    out = FUNCTION.sub(
+        lambda m: f'<mo lspace="0.1667em" rspace="{"0" if m["paren"] else "0.1667em"}">'
+        f"{m['name']}</mo>{m['paren'] or ''}",
+        out,
+    )
+    return SIGN.sub(r'\1<mo form="prefix">\2</mo>', out)
+
+
+def _prepared(latex: str) -> str:
+    """``latex`` with aliased environments renamed and delimiter bars grouped."""
+    for alias, name in ALIASES.items():
+        latex = latex.replace(alias, name)
+    return BAR.sub(lambda m: "{" + m[0] if m[1] == "l" else m[0] + "}", latex.strip())
 
 
 def typeset(content: str, where: str) -> str:

@@ -250,12 +250,12 @@ def _reference(match: re.Match, obj: griffe.Object, loader: griffe.GriffeLoader)
         if len(members) == 1:
             return f'<autoref identifier="{html.escape(members[0])}" optional>{code}</autoref>'
         if members:
-            _log.info(f"{obj.path}: {match[0]}: a member of {len(members)} classes, shown as code")
+            _log.debug(f"{obj.path}: {match[0]}: a member of {len(members)} classes, shown as code")
             return code
     ours = target.split(".")[0] == PACKAGE or target.startswith(".")
     if ours or ("." not in target and not hasattr(builtins, target)):
         where = f"{obj.relative_filepath}:{obj.docstring.lineno}"
         _log.warning(f"{where}: {match[0]}: no such object seen from {obj.path}")
     else:
-        _log.info(f"{obj.path}: {match[0]}: outside {PACKAGE}, shown as code")
+        _log.debug(f"{obj.path}: {match[0]}: outside {PACKAGE}, shown as code")
     return code
