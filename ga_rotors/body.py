@@ -1,4 +1,4 @@
-"""A rigid body: validated inertia, Euler's equations, energy and angular momentum.
+r"""A rigid body: validated inertia, Euler's equations, energy and angular momentum.
 
 Dynamics run in the principal frame, where the inertia tensor is diagonal. A body given
 by a full symmetric tensor is diagonalised once; :attr:`RigidBody.principal_rotation` is
@@ -9,16 +9,19 @@ so an orientation q of the principal frame is q ⊗ P* for the user's body frame
 motion (``simulate``, the exact references) works in the principal frame and answers in
 the user's.
 
-Euler's equations in the body (principal) frame, torque τ in that frame::
+Euler's equations in the body (principal) frame, torque τ in that frame:
 
-    I ω̇ = (I ω) × ω + τ
+.. math::
 
-written per component as ω̇₁ = (I₂ − I₃)/I₁ ω₂ ω₃ + τ₁/I₁ (and cyclic); the torque-free
-part is :func:`ga_rotors._kernels.free_euler_rates`, which torque-free loops call alone
-(the compiled kernels take tuples and check nothing: the public, checked form is
-:meth:`RigidBody.angular_acceleration`). The difference
-(I₂ − I₃) is exactly zero for a symmetric body, so ω₁ stays bit-for-bit constant in the
-torque-free symmetric top, as the exact solution says.
+    \mathsf{I} \dot\omega = (\mathsf{I} \omega) \times \omega + \tau,
+
+written per component as
+:math:`\dot\omega_1 = \frac{I_2 - I_3}{I_1} \omega_2 \omega_3 + \frac{\tau_1}{I_1}` (and cyclic);
+the torque-free part is :func:`ga_rotors._kernels.free_euler_rates`, which torque-free loops
+call alone (the compiled kernels take tuples and check nothing: the public, checked form is
+:meth:`RigidBody.angular_acceleration`). The difference :math:`I_2 - I_3` is exactly zero
+for a symmetric body, so ω₁ stays bit-for-bit constant in the torque-free symmetric top, as
+the exact solution says.
 """
 
 from __future__ import annotations
@@ -300,7 +303,8 @@ class RigidBody:
         return i1 == i2 or i2 == i3 or i1 == i3
 
     def energy(self, w) -> np.ndarray | float:
-        """Kinetic energy ½ ωᵀ I ω for body angular velocities ω of shape (..., 3).
+        r"""Kinetic energy :math:`\tfrac12 \omega^\mathsf{T} \mathsf{I} \omega` for body angular
+        velocities ω of shape (..., 3).
 
         ω is in the user's body frame (as ``simulate`` returns it): for a body given by a
         turned tensor it is carried to the principal frame first, ½ Σ Iₖ ωₖ² there.
@@ -338,7 +342,9 @@ class RigidBody:
         return self.from_principal(None, L)[1]
 
     def angular_acceleration(self, w, torque=None) -> np.ndarray:
-        """ω̇ from Euler's equations, I ω̇ = (I ω) × ω + τ, in the frame of ``w``.
+        r"""ω̇ from Euler's equations,
+        :math:`\mathsf{I} \dot\omega = (\mathsf{I} \omega) \times \omega + \tau`, in the frame of
+        ``w``.
 
         Parameters
         ----------
@@ -376,7 +382,8 @@ class RigidBody:
         return self.from_principal(None, a)[1]
 
     def space_momentum(self, q, w) -> np.ndarray:
-        """Space-frame angular momentum q (I ω) q*: constant in torque-free motion.
+        r"""Space-frame angular momentum :math:`L = q\, (\mathsf{I} \omega)\, q^*`: constant in
+        torque-free motion.
 
         ``q`` and ``w`` are the user's body frame's orientation and angular velocity.
 

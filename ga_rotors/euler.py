@@ -1,13 +1,14 @@
-"""Euler angles ↔ unit quaternions for all 12 axis orders, intrinsic and extrinsic.
+r"""Euler angles ↔ unit quaternions for all 12 axis orders, intrinsic and extrinsic.
 
 Sequences follow scipy's naming: three letters, upper case for intrinsic rotations about
 the moving axes ('ZYX': about z, then the new y′, then the newer x″), lower case for
 extrinsic rotations about the fixed axes ('xyz': about x, then y, then z, all fixed). An
 extrinsic sequence equals its reversed intrinsic twin with the angles reversed:
-'xyz' (α, β, γ) = 'ZYX' (γ, β, α) = q_z(γ) ⊗ q_y(β) ⊗ q_x(α).
+'xyz' (α, β, γ) = 'ZYX' (γ, β, α) =
+:math:`q_z(\gamma) \otimes q_y(\beta) \otimes q_x(\alpha)`.
 
 * The paper's angles: intrinsic 'ZYZ' (ψ precession, θ nutation, φ spin),
-  q = q_z(ψ) ⊗ q_y(θ) ⊗ q_z(φ).
+  :math:`q = q_z(\psi) \otimes q_y(\theta) \otimes q_z(\varphi)`.
 * The notes' aerospace angles: intrinsic 'ZYX' (yaw, pitch, roll).
 
 Angles come back with the first and third in (−π, π] and the middle one in [0, π]
@@ -111,10 +112,10 @@ def _from_quaternion_loop(q, out, locked, i, j, k, extrinsic, tol, gimbal_tol):
 
 
 def to_quaternion(seq: str, angles, degrees: bool = False) -> np.ndarray:
-    """Unit quaternions (..., 4) of Euler angles (..., 3) in sequence ``seq``.
+    r"""Unit quaternions (..., 4) of Euler angles (..., 3) in sequence ``seq``.
 
-    Intrinsic 'IJK' with angles (a, b, c) is q_i(a) ⊗ q_j(b) ⊗ q_k(c); extrinsic 'ijk' is
-    q_k(c) ⊗ q_j(b) ⊗ q_i(a).
+    Intrinsic 'IJK' with angles (a, b, c) is :math:`q_i(a) \otimes q_j(b) \otimes q_k(c)`;
+    extrinsic 'ijk' is :math:`q_k(c) \otimes q_j(b) \otimes q_i(a)`.
 
     Examples
     --------

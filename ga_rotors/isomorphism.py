@@ -1,18 +1,23 @@
-"""The algebra isomorphism ℍ → Cl⁺(3,0) as one coefficient table (pure NumPy, no clifford).
+r"""The algebra isomorphism ℍ → Cl⁺(3,0) as one coefficient table (pure NumPy, no clifford).
 
 Coefficients follow clifford's ``Cl(3)`` blade order (1, e1, e2, e3, e12, e13, e23, e123).
-With I = e123 and the unit vectors' duals e23 = I e1, e31 = I e2, e12 = I e3:
+With :math:`I = e_{123}` and the unit vectors' duals :math:`e_{23} = I e_1`,
+:math:`e_{31} = I e_2`, :math:`e_{12} = I e_3`:
 
-    i ↦ −e23,   j ↦ −e31 = +e13,   k ↦ −e12,
+.. math::
 
-so q = (w, x, y, z) ↦ R = w − x e23 − y e31 − z e12 = w − I q⃗, and the unit quaternion of
-the rotation by α about u maps to the rotor cos(α/2) − I u sin(α/2) = exp(−I u α/2),
-which rotates vectors by v ↦ R v R̃ exactly as q v q* does.
+    i \mapsto -e_{23}, \qquad j \mapsto -e_{31} = +e_{13}, \qquad k \mapsto -e_{12},
 
-Why the signs: (−e23)(−e31) = e2 e3 e3 e1 = e2 e1 = −e12, the image of k, so ij = k is
-kept. The "obvious" map i ↦ e23, j ↦ e31, k ↦ e12 sends ij ↦ e23 e31 = −e12, the image of
-−k: it reverses every product (φ(pq) = φ(q) φ(p)), an anti-isomorphism. Its table is kept
-here too, as :data:`ANTI_ISOMORPHISM`, so the tests and docs can show it failing.
+so :math:`q = (w, x, y, z) \mapsto R = w - x e_{23} - y e_{31} - z e_{12} = w - I \vec q`,
+and the unit quaternion of the rotation by α about u maps to the rotor
+:math:`\cos\frac{\alpha}{2} - I u \sin\frac{\alpha}{2} = \exp(-I u \alpha/2)`, which rotates
+vectors by :math:`v \mapsto R v \tilde R` exactly as :math:`q v q^*` does.
+
+Why the signs: :math:`(-e_{23})(-e_{31}) = e_2 e_3 e_3 e_1 = e_2 e_1 = -e_{12}`, the image of
+k, so ij = k is kept. The "obvious" map :math:`i \mapsto e_{23}`, :math:`j \mapsto e_{31}`,
+:math:`k \mapsto e_{12}` sends ij to :math:`e_{23} e_{31} = -e_{12}`, the image of −k: it
+reverses every product (:math:`\varphi(pq) = \varphi(q)\, \varphi(p)`), an anti-isomorphism.
+Its table is kept here too, as :data:`ANTI_ISOMORPHISM`, so the tests and docs can show it failing.
 
 Examples
 --------

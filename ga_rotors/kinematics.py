@@ -1,27 +1,43 @@
-"""Orientation rates <-> body angular velocity: Euler angles (ZYZ), quaternions, rotors.
+r"""Orientation rates <-> body angular velocity: Euler angles (ZYZ), quaternions, rotors.
 
 The paper's angles are intrinsic z–y′–z″ (ψ precession, θ nutation, φ spin) with
-q = q_z(ψ) ⊗ q_y(θ) ⊗ q_z(φ). Differentiating, the body angular velocity is the sum of the
-three angle rates, each about its axis carried into the body frame::
+:math:`q = q_z(\psi) \otimes q_y(\theta) \otimes q_z(\varphi)`. Differentiating, the body
+angular velocity is the sum of the three angle rates, each about its axis carried into the
+body frame:
 
-    ω = φ̇ e_z + θ̇ R_z(−φ) e_y + ψ̇ R_z(−φ) R_y(−θ) e_z
+.. math::
 
-    ω₁ = −ψ̇ sin θ cos φ + θ̇ sin φ
-    ω₂ =  ψ̇ sin θ sin φ + θ̇ cos φ
-    ω₃ =  ψ̇ cos θ + φ̇
+    \omega = \dot\varphi\, e_z + \dot\theta\, R_z(-\varphi)\, e_y
+        + \dot\psi\, R_z(-\varphi) R_y(-\theta)\, e_z,
 
-(the paper's eq. 15, whose minus signs were lost in print). Its inverse (eq. 19)::
+.. math::
 
-    θ̇ = ω₁ sin φ + ω₂ cos φ
-    ψ̇ = (ω₂ sin φ − ω₁ cos φ) / sin θ
-    φ̇ = ω₃ − ψ̇ cos θ
+    \begin{aligned}
+    \omega_1 &= -\dot\psi \sin\theta \cos\varphi + \dot\theta \sin\varphi \\
+    \omega_2 &= \dot\psi \sin\theta \sin\varphi + \dot\theta \cos\varphi \\
+    \omega_3 &= \dot\psi \cos\theta + \dot\varphi
+    \end{aligned}
 
-is singular at sin θ = 0, where only ψ + φ (θ = 0) or ψ − φ (θ = π) is defined: the
-coordinates' nature, not a property of the motion. ``symbolic/`` checks both maps with SymPy;
+(the paper's eq. 15, whose minus signs were lost in print). Its inverse (eq. 19)
+
+.. math::
+
+    \begin{aligned}
+    \dot\theta &= \omega_1 \sin\varphi + \omega_2 \cos\varphi \\
+    \dot\psi &= (\omega_2 \sin\varphi - \omega_1 \cos\varphi) / \sin\theta \\
+    \dot\varphi &= \omega_3 - \dot\psi \cos\theta
+    \end{aligned}
+
+is singular at :math:`\sin\theta = 0`, where only :math:`\psi + \varphi` (θ = 0) or
+:math:`\psi - \varphi` (θ = π) is defined: the coordinates' nature, not a property of the
+motion. ``symbolic/`` checks both maps with SymPy;
 the tests check them against finite differences of the quaternion.
 
-Quaternion and rotor rates (docs/conventions.md): q̇ = ½ q ⊗ (0, ω), Ṙ = ½ R Ω with
-Ω = −I ω, and back ω = 2 vec(q* ⊗ q̇) = ⟨2 I R̃ Ṙ⟩₁ (I² = −1 turns Ω into ω).
+Quaternion and rotor rates (docs/conventions.md):
+:math:`\dot q = \tfrac12 q \otimes (0, \omega)`, :math:`\dot R = \tfrac12 R \Omega` with
+:math:`\Omega = -I \omega`, and back
+:math:`\omega = 2 \operatorname{vec}(q^* \otimes \dot q) = \langle 2 I \tilde R \dot R \rangle_1`
+(:math:`I^2 = -1` turns Ω into ω).
 """
 
 from __future__ import annotations
@@ -183,7 +199,8 @@ def zyz_rates_from_body_omega(angles, w) -> np.ndarray:
 
 
 def quaternion_rate(q, w) -> np.ndarray:
-    """q̇ = ½ q ⊗ (0, ω) for unit quaternions q (w, x, y, z) and body ω.
+    r""":math:`\dot q = \tfrac12 q \otimes (0, \omega)` for unit quaternions q (w, x, y, z) and
+    body ω.
 
     Examples
     --------
@@ -206,7 +223,8 @@ def quaternion_rate(q, w) -> np.ndarray:
 
 
 def body_omega_from_quaternion_rate(q, qdot) -> np.ndarray:
-    """ω = 2 vec(q* ⊗ q̇) for unit q: the inverse of :func:`quaternion_rate`.
+    r""":math:`\omega = 2 \operatorname{vec}(q^* \otimes \dot q)` for unit q: the inverse of
+    :func:`quaternion_rate`.
 
     The scalar part q·q̇, which the rate of a unit quaternion does not have, is dropped:
     ω is that of q̇'s projection onto the tangent space at q (the least-squares ω for a
@@ -248,7 +266,8 @@ def _unit_rotor(R):
 
 
 def rotor_rate(R, w):
-    """Ṙ = ½ R Ω, Ω = −I ω, for a clifford rotor R and body angular velocity ω.
+    r""":math:`\dot R = \tfrac12 R \Omega`, :math:`\Omega = -I \omega`, for a clifford rotor R and
+    body angular velocity ω.
 
     Parameters
     ----------
@@ -276,7 +295,8 @@ def rotor_rate(R, w):
 
 
 def body_omega_from_rotor_rate(R, Rdot) -> np.ndarray:
-    """ω = ⟨2 I R̃ Ṙ⟩₁: the body angular velocity of a unit rotor moving at Ṙ.
+    r""":math:`\omega = \langle 2 I \tilde R \dot R \rangle_1`: the body angular velocity of a unit
+    rotor moving at Ṙ.
 
     As in :func:`body_omega_from_quaternion_rate`, the part of Ṙ along R (the scalar of
     R̃Ṙ) is dropped.

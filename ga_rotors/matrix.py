@@ -1,6 +1,6 @@
-"""Rotation matrices (..., 3, 3) ↔ unit quaternions (..., 4).
+r"""Rotation matrices (..., 3, 3) ↔ unit quaternions (..., 4).
 
-``M v = q v q*``: the matrix of the active rotation (columns are the images of the body
+:math:`M v = q v q^*`: the matrix of the active rotation (columns are the images of the body
 axes). Matrices must be orthonormal with determinant +1 within
 :data:`ORTHONORMAL_TOLERANCE`; reflections and skewed or scaled matrices are rejected.
 
@@ -128,7 +128,7 @@ def to_quaternion(m) -> np.ndarray:
 
 
 def from_quaternion(q) -> np.ndarray:
-    """Rotation matrices (..., 3, 3) of unit quaternions: M v = q v q*.
+    r"""Rotation matrices (..., 3, 3) of unit quaternions: :math:`M v = q v q^*`.
 
     Examples
     --------

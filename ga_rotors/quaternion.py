@@ -1,4 +1,4 @@
-"""Hamilton quaternions as float arrays of shape (..., 4): q = (w, x, y, z), scalar first.
+r"""Hamilton quaternions as float arrays of shape (..., 4): q = (w, x, y, z), scalar first.
 
 Every function broadcasts over leading axes like a NumPy ufunc; a (4,) input gives a (4,)
 output. Batches run in compiled loops over the scalar kernels of
@@ -10,8 +10,9 @@ Unit quaternions are required wherever a rotation is meant (``rotate``, ``angle`
 ``slerp``, ...): inputs within :data:`~ga_rotors._validate.UNIT_TOLERANCE` (1e-6) of unit
 norm are renormalised, others raise :class:`~ga_rotors.errors.InputError`.
 
-Conventions (``docs/conventions.md``): Hamilton product (ij = k, ijk = -1), active
-rotation v ↦ q v q*, rotation angles 2·atan2(|q⃗|, |w|) ∈ [0, π].
+Conventions (``docs/conventions.md``): Hamilton product (:math:`ij = k`, :math:`ijk = -1`),
+active rotation :math:`v \mapsto q v q^*`, rotation angles
+:math:`2 \operatorname{atan2}(|\vec q|, |w|) \in [0, \pi]`.
 
 Examples
 --------
@@ -98,7 +99,7 @@ def _finite_sum(r) -> bool:
 
 
 def multiply(p, q) -> np.ndarray:
-    """Hamilton product p ⊗ q, broadcast over leading axes.
+    r"""Hamilton product :math:`p \otimes q`, broadcast over leading axes.
 
     Composition of rotations: rotating by ``multiply(p, q)`` is rotating by q, then by p.
 
@@ -133,7 +134,7 @@ def multiply(p, q) -> np.ndarray:
 
 
 def conjugate(q) -> np.ndarray:
-    """q* = (w, -x, -y, -z).
+    r"""The conjugate :math:`q^* = (w, -x, -y, -z)`.
 
     Examples
     --------
@@ -144,7 +145,8 @@ def conjugate(q) -> np.ndarray:
 
 
 def norm(q) -> np.ndarray | float:
-    """|q| = √(w² + x² + y² + z²), without overflow or underflow; shape (...).
+    r"""The norm :math:`|q| = \sqrt{w^2 + x^2 + y^2 + z^2}`, without overflow or underflow;
+    shape (...).
 
     Examples
     --------
@@ -161,7 +163,8 @@ def norm(q) -> np.ndarray | float:
 
 
 def inverse(q) -> np.ndarray:
-    """q⁻¹ = q* / |q|² (the notes print q*/|q|, which is wrong unless |q| = 1).
+    r"""The inverse :math:`q^{-1} = q^* / |q|^2` (the notes print :math:`q^* / |q|`, which is
+    wrong unless :math:`|q| = 1`).
 
     Raises
     ------
@@ -216,7 +219,8 @@ def normalize(q) -> np.ndarray:
 
 
 def rotate(q, v) -> np.ndarray:
-    """Rotate vectors actively: q v q* (body to space), shape (...broadcast..., 3).
+    r"""Rotate vectors actively: :math:`v \mapsto q v q^*` (body to space), shape
+    (...broadcast..., 3).
 
     Parameters
     ----------
@@ -255,10 +259,11 @@ def _axis_angle(q) -> np.ndarray:
 
 
 def to_axis_angle(q) -> tuple[np.ndarray, np.ndarray | float]:
-    """Unit axis (..., 3) and angle (...) ∈ [0, π] of the rotation q.
+    r"""Unit axis (..., 3) and angle (...) ∈ [0, π] of the rotation q.
 
-    The angle is 2·atan2(|q⃗|, |w|): full precision at every angle, where the notes'
-    2·acos(w) loses half the digits when |w| is near 1 (small rotations). q and -q give
+    The angle is :math:`2 \operatorname{atan2}(|\vec q|, |w|)`: full precision at every angle,
+    where the notes' :math:`2 \arccos w` loses half the digits when |w| is near 1 (small
+    rotations). q and -q give
     the same axis and angle.
     At angle 0 the axis is free and +z is returned (never NaN); at exactly π both ±u
     describe the rotation and q⃗/|q⃗| is returned.
@@ -301,9 +306,10 @@ def axis(q) -> np.ndarray:
 
 
 def latitude_longitude(q, degrees: bool = False) -> tuple[np.ndarray | float, np.ndarray | float]:
-    """Latitude and longitude of the rotation axis of unit q (the notes' last formulas).
+    r"""Latitude and longitude of the rotation axis of unit q (the notes' last formulas).
 
-    lat = atan2(u_z, √(u_x² + u_y²)) ∈ [-π/2, π/2], lon = atan2(u_y, u_x) ∈ (-π, π], with u
+    :math:`\text{lat} = \operatorname{atan2}(u_z, \sqrt{u_x^2 + u_y^2}) \in [-\pi/2, \pi/2]`,
+    :math:`\text{lon} = \operatorname{atan2}(u_y, u_x) \in (-\pi, \pi]`, with u
     from :func:`axis` (the axis of the rotation angle in [0, π], so q and -q agree). The
     notes' lon = atan(q₂/q₁) loses the quadrant (it maps axes x and -x to the same
     longitude); atan2 does not. At the poles (and at angle 0, where the axis is +z) the
@@ -399,7 +405,8 @@ def exp(q) -> np.ndarray:
 
 
 def log(q) -> np.ndarray:
-    """Principal quaternion logarithm (ln|q|, u·atan2(|v|, w)), |vector part| ∈ [0, π].
+    r"""Principal quaternion logarithm :math:`(\ln|q|, u \operatorname{atan2}(|v|, w))`, with the
+    vector part's length in :math:`[0, \pi]`.
 
     Inverse of :func:`exp` on nonzero q. At negative real q the direction u is free and
     the z axis is chosen: log(-1) = (0, 0, 0, π).
@@ -418,7 +425,8 @@ def log(q) -> np.ndarray:
 
 
 def slerp(q0, q1, t) -> np.ndarray:
-    """Spherical linear interpolation q0 ⊗ exp(t·log(q0* ⊗ q1)) along the shorter arc.
+    r"""Spherical linear interpolation :math:`q_0 \otimes \exp(t \log(q_0^* \otimes q_1))` along
+    the shorter arc.
 
     Uses the exp/log kernels, so nearly equal rotations interpolate exactly (the textbook
     sin((1-t)Ω)/sin Ω weights divide 0 by 0 there). q1 and -q1 are the same rotation: the
@@ -444,9 +452,11 @@ def slerp(q0, q1, t) -> np.ndarray:
 
 
 def distance(q0, q1) -> np.ndarray | float:
-    """Geodesic angle ∈ [0, π] between the rotations q0 and q1 (the angle of q0* ⊗ q1).
+    r"""Geodesic angle ∈ [0, π] between the rotations q0 and q1 (the angle of
+    :math:`q_0^* \otimes q_1`).
 
-    2·atan2(|vec|, |scalar|): resolves differences down to ~1e-16 rad, where 2·acos(·)
+    :math:`2 \operatorname{atan2}(|\operatorname{vec}|, |\operatorname{scalar}|)`: resolves
+    differences down to ~1e-16 rad, where 2·acos(·)
     cannot go below ~1e-8 rad. q and -q are at distance 0.
 
     Examples

@@ -1,8 +1,13 @@
-"""Rotors in Cl(3,0) as ``clifford`` multivectors: build, convert, compose, apply.
+r"""Rotors in Cl(3,0) as ``clifford`` multivectors: build, convert, compose, apply.
 
-A rotor is an even multivector R = w − x e23 − y e31 − z e12 with R R̃ = 1 that rotates
-vectors by v ↦ R v R̃ (:mod:`ga_rotors.isomorphism` gives the map to quaternions). The
-rotor of the rotation by α about the unit axis u is exp(−I u α/2) = cos(α/2) − I u sin(α/2).
+A rotor is an even multivector :math:`R = w - x e_{23} - y e_{31} - z e_{12}` with
+:math:`R \tilde R = 1` that rotates vectors by :math:`v \mapsto R v \tilde R`
+(:mod:`ga_rotors.isomorphism` gives the map to quaternions). The rotor of the rotation by
+:math:`\alpha` about the unit axis :math:`u` is
+
+.. math::
+
+    R = \exp\left(-I u \frac{\alpha}{2}\right) = \cos\frac{\alpha}{2} - I u \sin\frac{\alpha}{2}.
 
 clifford's ``Cl(3)`` layout is created once, on first use (importing clifford takes about
 a second), so ``import ga_rotors`` and ``import ga_rotors.rotor`` stay light.
@@ -219,7 +224,7 @@ def to_quaternion(R) -> np.ndarray:
 
 
 def normalize(R):
-    """R / |R| for an even multivector R ≠ 0, |R|² = ⟨R R̃⟩₀.
+    r"""R / |R| for an even multivector R ≠ 0, with :math:`|R|^2 = \langle R \tilde R \rangle_0`.
 
     Examples
     --------
@@ -255,7 +260,7 @@ def compose(*rotors):
 
 
 def inverse(R):
-    """R⁻¹ = R̃ (the reverse) for a unit rotor.
+    r"""The inverse :math:`R^{-1} = \tilde R` (the reverse) of a unit rotor.
 
     Examples
     --------
@@ -267,7 +272,7 @@ def inverse(R):
 
 
 def apply(R, v):
-    """Rotate vectors actively: R v R̃.
+    r"""Rotate vectors actively: :math:`v \mapsto R v \tilde R`.
 
     Parameters
     ----------
@@ -329,9 +334,10 @@ def _pure_to_bivector(v):
 
 
 def exp(B):
-    """exp(B) = cos|B| + B sin|B|/|B| for a bivector B; exact at |B| = 0 and tiny |B|.
+    r""":math:`\exp B = \cos|B| + B \sin|B| / |B|` for a bivector B; exact at |B| = 0 and tiny |B|.
 
-    exp(−I u α/2) is the rotor of the rotation by α about u.
+    :math:`\exp(-I u \alpha/2)` is the rotor of the rotation by :math:`\alpha` about
+    :math:`u`.
 
     Examples
     --------
@@ -363,7 +369,8 @@ def log(R):
 
 
 def slerp(R0, R1, t: float):
-    """R₀ exp(t log(R̃₀ R₁)) along the shorter arc (R̃₀R₁ negated if its scalar part is < 0).
+    r"""Interpolation :math:`R_0 \exp\left(t \log(\tilde R_0 R_1)\right)` along the shorter arc
+    (:math:`\tilde R_0 R_1` negated if its scalar part is < 0).
 
     Exact for nearly equal rotors; slerp(R, −R, t) = R. See
     :func:`ga_rotors.quaternion.slerp` for the choices.
@@ -381,9 +388,13 @@ def slerp(R0, R1, t: float):
 
 
 def distance(R0, R1) -> float:
-    """Geodesic angle ∈ [0, π] between the rotations of R0 and R1 (R and −R: distance 0).
+    r"""Geodesic angle ∈ [0, π] between the rotations of R0 and R1 (R and −R: distance 0).
 
-    The angle of R̃₀ R₁, 2·atan2(|⟨·⟩₂|, |⟨·⟩₀|): resolves 1e-16 rad.
+    The angle of :math:`D = \tilde R_0 R_1`, resolved to 1e-16 rad:
+
+    .. math::
+
+        2 \operatorname{atan2}(\lvert \langle D \rangle_2 \rvert, \lvert \langle D \rangle_0 \rvert)
 
     Examples
     --------
@@ -398,7 +409,8 @@ def distance(R0, R1) -> float:
 
 
 def from_axis_angle(axis, angle, degrees: bool = False):
-    """The rotor exp(−I u α/2) of the rotation by α about u (u ≠ 0, normalised here).
+    r"""The rotor :math:`\exp(-I u \alpha/2)` of the rotation by :math:`\alpha` about :math:`u`
+    (:math:`u \ne 0`, normalised here).
 
     Examples
     --------
@@ -426,7 +438,7 @@ def to_axis_angle(R) -> tuple[np.ndarray, float]:
 
 
 def from_rotation_vector(r):
-    """The rotor exp(−I r/2) of the rotation by |r| about r/|r|.
+    r"""The rotor :math:`\exp(-I r/2)` of the rotation by :math:`|r|` about :math:`r/|r|`.
 
     Examples
     --------
@@ -482,7 +494,7 @@ def from_matrix(m):
 
 
 def to_matrix(R) -> np.ndarray:
-    """The rotation matrix M of R: M v = R v R̃.
+    r"""The rotation matrix :math:`M` of :math:`R`: :math:`M v = R v \tilde R`.
 
     Examples
     --------

@@ -49,7 +49,8 @@ def _moments(compute) -> tuple[float, float, float]:
 
 
 def disk(mass: float, radius: float) -> tuple[float, float, float]:
-    """Thin uniform disk, symmetry axis z: (¼mR², ¼mR², ½mR²).
+    r"""Thin uniform disk, symmetry axis z:
+    :math:`(\tfrac14 m R^2, \tfrac14 m R^2, \tfrac12 m R^2)`.
 
     Examples
     --------
@@ -61,7 +62,7 @@ def disk(mass: float, radius: float) -> tuple[float, float, float]:
 
 
 def ring(mass: float, radius: float) -> tuple[float, float, float]:
-    """Thin circular hoop, symmetry axis z: (½mR², ½mR², mR²).
+    r"""Thin circular hoop, symmetry axis z: :math:`(\tfrac12 m R^2, \tfrac12 m R^2, m R^2)`.
 
     Examples
     --------
@@ -73,7 +74,8 @@ def ring(mass: float, radius: float) -> tuple[float, float, float]:
 
 
 def cylinder(mass: float, radius: float, height: float) -> tuple[float, float, float]:
-    """Solid cylinder, symmetry axis z: (m(3R² + h²)/12, same, ½mR²).
+    r"""Solid cylinder, symmetry axis z:
+    :math:`\left(\frac{m (3 R^2 + h^2)}{12}, \frac{m (3 R^2 + h^2)}{12}, \tfrac12 m R^2\right)`.
 
     Examples
     --------
@@ -105,7 +107,8 @@ def rod(mass: float, length: float, radius: float) -> tuple[float, float, float]
 
 
 def box(mass: float, a: float, b: float, c: float) -> tuple[float, float, float]:
-    """Solid cuboid with edges a, b, c along x, y, z: (m(b²+c²)/12, m(a²+c²)/12, m(a²+b²)/12).
+    r"""Solid cuboid with edges a, b, c along x, y, z:
+    :math:`\tfrac{m}{12} (b^2 + c^2, a^2 + c^2, a^2 + b^2)`.
 
     Examples
     --------
@@ -118,7 +121,7 @@ def box(mass: float, a: float, b: float, c: float) -> tuple[float, float, float]
 
 
 def sphere(mass: float, radius: float) -> tuple[float, float, float]:
-    """Solid sphere: ⅖mR² about every axis.
+    r"""Solid sphere: :math:`\tfrac25 m R^2` about every axis.
 
     Examples
     --------

@@ -30,12 +30,19 @@ FORMULA = re.compile(
 #: Bars written as delimiters, \lvert x \rvert or \lVert x \rVert: each pair is grouped, so
 #: the browser draws them as fences around x, not as operators between x and what follows.
 BAR = re.compile(r"\\([lr])(vert|Vert)(?![A-Za-z])")
+#: A pair of plain bars |x| (not \|, not \left| or \right|): written as \lvert x \rvert.
+PLAIN_BARS = re.compile(r"(?<!\\)(?<!\\left)(?<!\\right)\|([^|{}]*?)(?<!\\)\|")
 #: Environments latex2mathml knows under another name.
 ALIASES = {r"\begin{aligned}": r"\begin{align*}", r"\end{aligned}": r"\end{align*}"}
-#: A function name (\sin, \exp, ...), which latex2mathml writes as an identifier: drawn as an
-#: operator with TeX's thin spaces, none before an opening parenthesis.
+#: \operatorname{name}, which latex2mathml spells out letter by letter when the name holds a
+#: digit (atan2): passed to it as text behind a private-use mark, then made an operator.
+OPERATORNAME = re.compile(r"\\operatorname\s*\{\s*([A-Za-z0-9]+)\s*\}")
+MARK = "\ue000"
+#: A function name (\sin, \exp, ... or an \operatorname), which latex2mathml writes as an
+#: identifier or text: drawn as an operator with TeX's thin spaces, none before "(".
 FUNCTION = re.compile(
-    r"<mi>(?P<name>a?(?:rc)?(?:sin|cos|tan|cot)h?|exp|log|ln|sec|csc)</mi>"
+    r"(?:<mi>(?P<name>a?(?:rc)?(?:sin|cos|tan|cot)h?|exp|log|ln|sec|csc)</mi>"
+    rf"|<mtext>{MARK}(?P<operator>[A-Za-z0-9]+)</mtext>)"
     r"(?P<paren>(?:<mrow>)?<mo[^>]*>&#x00028;)?"
 )
 #: A minus or plus right after another operator (other than a closing fence) is a sign.
@@ -66,17 +73,22 @@ def to_mathml(latex: str, display: bool = False) -> str:
     if unknown:
         raise MathError(f"unknown command {unknown[1]}")
     out = FUNCTION.sub(
-        lambda m: f'<mo lspace="0.1667em" rspace="{"0" if m["paren"] else "0.1667em"}">'
-        f"{m['name']}</mo>{m['paren'] or ''}",
+        lambda m: (
+            f'<mo lspace="0.1667em" rspace="{"0" if m["paren"] else "0.1667em"}">'
+            f"{m['name'] or m['operator']}</mo>{m['paren'] or ''}"
+        ),
         out,
     )
     return SIGN.sub(r'\1<mo form="prefix">\2</mo>', out)
 
 
 def _prepared(latex: str) -> str:
-    """``latex`` with aliased environments renamed and delimiter bars grouped."""
+    """``latex`` with aliased environments renamed, operator names marked and delimiter
+    bars grouped."""
     for alias, name in ALIASES.items():
         latex = latex.replace(alias, name)
+    latex = OPERATORNAME.sub(lambda m: rf"\text{{{MARK}{m[1]}}}", latex)
+    latex = PLAIN_BARS.sub(r"\\lvert \1\\rvert", latex)
     return BAR.sub(lambda m: "{" + m[0] if m[1] == "l" else m[0] + "}", latex.strip())
 
 
