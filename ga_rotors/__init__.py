@@ -22,6 +22,8 @@ Names
 * rotations: :mod:`quaternion` (float arrays (..., 4), scalar first), :mod:`rotor`
   (clifford rotors of Cl(3,0)), :mod:`euler` (every sequence, scipy's naming),
   :mod:`matrix`, :mod:`kinematics`;
+* rigid motions: :mod:`motor` (motors of Cl(3,0,1) as float arrays (..., 8): rotation
+  with translation, and the points, lines and planes they move);
 * exact references: :class:`SymmetricTop`, :class:`AsymmetricTop`, :class:`HeavyTop`,
   :class:`DampedSymmetricTop`;
 * :mod:`integrators` (the registry: ``integrators.names()``, ``integrators.get(name)``,
@@ -57,6 +59,7 @@ _EXPORTS: dict[str, tuple[str, str | None]] = {
     "DampedSymmetricTop": ("ga_rotors.reference.damped_top", "DampedSymmetricTop"),
     "quaternion": ("ga_rotors.quaternion", None),
     "rotor": ("ga_rotors.rotor", None),
+    "motor": ("ga_rotors.motor", None),
     "euler": ("ga_rotors.euler", None),
     "matrix": ("ga_rotors.matrix", None),
     "kinematics": ("ga_rotors.kinematics", None),

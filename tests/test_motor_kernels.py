@@ -47,7 +47,7 @@ def rotor_of(q):
 
 def translator(t):
     """1 − ½ e0 t, written with clifford's blades."""
-    return 1 - 0.5 * (e0 ^ (t[0] * e1 + t[1] * e2 + t[2] * e3))
+    return 1 - 0.5 * (e0 * (t[0] * e1 + t[1] * e2 + t[2] * e3))  # e0 t = e0 ∧ t: e0 ⊥ t
 
 
 def unit_motor(q, t):
@@ -130,5 +130,5 @@ def test_the_translator_moves_points_by_plus_t():
     for x in ([0.0, 0.0, 0.0], [3.0, 1.0, -4.0]):
         assert np.allclose((T * point_mv(x) * ~T).value, point_mv(np.add(x, t)).value)
     # and the opposite sign, 1 + ½ e0 t, moves them by −t: the choice is not idle.
-    other = 1 + 0.5 * (e0 ^ (t[0] * e1 + t[1] * e2 + t[2] * e3))
+    other = 1 + 0.5 * (e0 * (t[0] * e1 + t[1] * e2 + t[2] * e3))
     assert np.allclose((other * point_mv([0.0, 0.0, 0.0]) * ~other).value, point_mv(-t).value)
