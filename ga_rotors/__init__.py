@@ -25,7 +25,8 @@ Names
 * rigid motions: :mod:`motor` (motors of Cl(3,0,1) as float arrays (..., 8): rotation
   with translation, and the points, lines and planes they move);
 * exact references: :class:`SymmetricTop`, :class:`AsymmetricTop`, :class:`HeavyTop`,
-  :class:`DampedSymmetricTop`;
+  :class:`DampedSymmetricTop`; with translation, :class:`FreeFlight` and
+  :class:`SpringAtCentreOfMass`;
 * :mod:`integrators` (the registry: ``integrators.names()``, ``integrators.get(name)``,
   ``integrators.catalogue()``), :mod:`effects` (the torques a scene may declare),
   :mod:`errors` (what is raised on purpose; every user error is a ``GaRotorsError``).
@@ -57,6 +58,8 @@ _EXPORTS: dict[str, tuple[str, str | None]] = {
     "AsymmetricTop": ("ga_rotors.reference.asymmetric_top", "AsymmetricTop"),
     "HeavyTop": ("ga_rotors.reference.heavy_top", "HeavyTop"),
     "DampedSymmetricTop": ("ga_rotors.reference.damped_top", "DampedSymmetricTop"),
+    "FreeFlight": ("ga_rotors.reference.rigid_motion", "FreeFlight"),
+    "SpringAtCentreOfMass": ("ga_rotors.reference.rigid_motion", "SpringAtCentreOfMass"),
     "quaternion": ("ga_rotors.quaternion", None),
     "rotor": ("ga_rotors.rotor", None),
     "motor": ("ga_rotors.motor", None),
