@@ -19,7 +19,7 @@ from .._jit import plain
 from .._validate import UNIT_TOLERANCE, as_float_array, check_finite
 from ..errors import InputError
 
-__all__ = ["DUAL", "fail", "line_parts", "norm3", "require_motor"]
+__all__ = ["DUAL", "fail", "leading_shape", "line_parts", "norm3", "require_motor"]
 
 
 def _dual_matrix() -> np.ndarray:
@@ -56,6 +56,17 @@ def require_motor(m: np.ndarray, name: str, tol: float = UNIT_TOLERANCE) -> None
 
 def _first(bad: np.ndarray) -> tuple[int, ...]:
     return tuple(int(i) for i in np.argwhere(bad)[0]) if bad.ndim else ()
+
+
+def leading_shape(*specs) -> tuple[int, ...]:
+    """The broadcast leading shape of (array, name, item ndim) triples, or InputError
+    naming each argument's leading shape (the message :class:`ga_rotors._batch.Batch` gives)."""
+    leading = [(name, a.shape[: a.ndim - k]) for a, name, k in specs]
+    try:
+        return np.broadcast_shapes(*(shape for _, shape in leading))
+    except ValueError:
+        described = ", ".join(f"{name} {shape}" for name, shape in leading)
+        raise InputError(f"leading shapes do not broadcast: {described}") from None
 
 
 def norm3(v: np.ndarray) -> np.ndarray:

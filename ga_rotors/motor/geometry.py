@@ -28,7 +28,7 @@ from .._batch import Batch
 from .._validate import UNIT_TOLERANCE, as_float_array
 from ..errors import InputError
 from . import _loops
-from ._checks import fail, line_parts, norm3
+from ._checks import fail, leading_shape, line_parts, norm3
 
 __all__ = [
     "apply",
@@ -98,13 +98,7 @@ def plane(normal, offset) -> np.ndarray:
     """
     n = as_float_array(normal, "normal", last=3)
     d = as_float_array(offset, "offset")
-    try:
-        shape = np.broadcast_shapes(n.shape[:-1], d.shape)
-    except ValueError:
-        raise InputError(
-            f"leading shapes do not broadcast: normal {n.shape[:-1]}, offset {d.shape}"
-        ) from None
-    out = np.empty((*shape, 4))
+    out = np.empty((*leading_shape((n, "normal", 1), (d, "offset", 0)), 4))
     out[..., 0] = -d
     out[..., 1:] = n
     return out
@@ -147,12 +141,8 @@ def line(point, direction) -> np.ndarray:
     """
     p = as_float_array(point, "point", last=3)
     d = as_float_array(direction, "direction", last=3)
-    try:
-        p, d = np.broadcast_arrays(p, d)
-    except ValueError:
-        raise InputError(
-            f"leading shapes do not broadcast: point {p.shape[:-1]}, direction {d.shape[:-1]}"
-        ) from None
+    shape = (*leading_shape((p, "point", 1), (d, "direction", 1)), 3)
+    p, d = np.broadcast_to(p, shape), np.broadcast_to(d, shape)
     zero = ~np.any(d != 0.0, axis=-1)
     if np.any(zero):
         raise InputError(f"expected nonzero directions, got zero at index {_first(zero)}",

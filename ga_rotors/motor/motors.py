@@ -36,7 +36,7 @@ from ..errors import InputError
 from ..matrix import ORTHONORMAL_TOLERANCE, check_rotation_matrix
 from ..matrix import to_quaternion as _matrix_quaternion
 from . import _loops as L
-from ._checks import DUAL, fail, line_parts, norm3
+from ._checks import DUAL, fail, leading_shape, line_parts, norm3
 
 __all__ = [
     "compose",
@@ -460,13 +460,7 @@ def from_screw(axis, angle, pitch=0.0) -> np.ndarray:
     h = as_float_array(pitch, "pitch", finite=False)
     if np.isnan(h).any():
         raise InputError("expected numbers or ±inf, got NaN", key="pitch")
-    try:
-        shape = np.broadcast_shapes(L_.shape[:-1], alpha.shape, h.shape)
-    except ValueError:
-        raise InputError(
-            f"leading shapes do not broadcast: axis {L_.shape[:-1]}, angle {alpha.shape}, "
-            f"pitch {h.shape}"
-        ) from None
+    shape = leading_shape((L_, "axis", 1), (alpha, "angle", 0), (h, "pitch", 0))
     point, u = line_parts(L_, "axis")
     moment = np.cross(point, u)
     finite = np.isfinite(h)
@@ -541,14 +535,8 @@ def velocity_line(angular_velocity, velocity) -> np.ndarray:
     """
     w = as_float_array(angular_velocity, "angular_velocity", last=3)
     v = as_float_array(velocity, "velocity", last=3)
-    try:
-        w, v = np.broadcast_arrays(w, v)
-    except ValueError:
-        raise InputError(
-            f"leading shapes do not broadcast: angular_velocity {w.shape[:-1]}, "
-            f"velocity {v.shape[:-1]}"
-        ) from None
-    return _bivector(w, -v)
+    shape = (*leading_shape((w, "angular_velocity", 1), (v, "velocity", 1)), 3)
+    return _bivector(np.broadcast_to(w, shape), -np.broadcast_to(v, shape))
 
 
 def velocities(B) -> tuple[np.ndarray, np.ndarray]:
