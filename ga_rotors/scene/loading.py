@@ -13,6 +13,7 @@ from pathlib import Path
 from ..errors import SceneError
 from .model import Scene
 from .reader import suggest
+from .toml_io import read_file
 
 __all__ = ["bundled", "bundled_path", "load_scene"]
 
@@ -87,13 +88,5 @@ def load_scene(path_or_name) -> Scene:
                 f"no such file, and no bundled scene of that name{suggest(name, names)}; "
                 f"bundled: {', '.join(names)}",
             )
-    try:
-        size = path.stat().st_size
-        if size > MAX_FILE_BYTES:
-            raise SceneError(
-                str(path), "", f"{size:,} bytes; a scene file is at most {MAX_FILE_BYTES:,}"
-            )
-        text = path.read_text(encoding="utf-8")
-    except (OSError, UnicodeDecodeError) as exc:
-        raise SceneError(str(path), "", f"cannot read the file: {exc}") from None
+    text = read_file(path, MAX_FILE_BYTES)
     return Scene.from_toml(text, file=str(path), base_dir=path.resolve().parent)

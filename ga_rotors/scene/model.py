@@ -48,7 +48,6 @@ from __future__ import annotations
 import copy
 import functools
 import re
-import tomllib
 from collections.abc import Mapping
 from pathlib import Path
 
@@ -69,7 +68,7 @@ from .schema import (
     adaptive,
     resolve,
 )
-from .toml_io import dumps_toml
+from .toml_io import dumps_toml, parse_toml
 
 __all__ = ["MAX_TURN_PER_STEP", "TIME_RESOLUTION", "Scene"]
 
@@ -171,13 +170,7 @@ class Scene:
         ...
         ga_rotors.errors.SceneError: bad.toml: not valid TOML: ... (at line 1, column 6)
         """
-        try:
-            data = tomllib.loads(text)
-        except tomllib.TOMLDecodeError as exc:
-            raise SceneError(file, "", f"not valid TOML: {exc}") from None
-        except RecursionError:  # tomllib recurses once per level of nesting
-            raise SceneError(file, "", "arrays or tables nested too deeply") from None
-        return cls(data, file=file, base_dir=base_dir)
+        return cls(parse_toml(text, file), file=file, base_dir=base_dir)
 
     def replace(self, changes: Mapping[str, object]) -> Scene:
         """A new scene with some keys changed, given as dotted paths.

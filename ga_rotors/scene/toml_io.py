@@ -1,17 +1,115 @@
-"""Resolved scene data written back as TOML text (reading is the standard library's tomllib).
+"""TOML files from anyone, read with guards; resolved scene data written back as TOML text.
 
-The standard library reads TOML but does not write it; a resolved scene needs only
-tables, sub-tables, arrays of tables and plain values, which :func:`dumps_toml` writes so
-that ``tomllib.loads(dumps_toml(data)) == data`` for any resolved scene.
+Reading: :func:`read_file` takes a regular file of bounded size (never a device, a FIFO
+or a file of gigabytes) and :func:`parse_toml` parses its text with the standard
+library's :mod:`tomllib` (data only, nothing evaluated), refusing nesting beyond
+:data:`MAX_NESTING`; every refusal is one :class:`~ga_rotors.errors.SceneError` line
+naming the file. Scene files and sweep files both come through here.
+
+Writing: the standard library reads TOML but does not write it; a resolved scene needs
+only tables, sub-tables, arrays of tables and plain values, which :func:`dumps_toml`
+writes so that ``tomllib.loads(dumps_toml(data)) == data`` for any resolved scene.
 """
 
 from __future__ import annotations
 
 import json
+import os
 import re
+import stat
+import tomllib
 from collections.abc import Mapping
 
-__all__ = ["dumps_toml"]
+from ..errors import SceneError
+
+__all__ = ["MAX_NESTING", "dumps_toml", "parse_toml", "read_file"]
+
+#: Deepest nesting of tables and arrays a file may have (a scene needs four levels).
+MAX_NESTING = 32
+
+
+def read_file(path, limit: int, what: str = "scene") -> str:
+    """The UTF-8 text of ``path``, a regular file of at most ``limit`` bytes.
+
+    Opened without blocking (a FIFO with no writer does not hang), checked on the open
+    file (a symlink to ``/dev/zero`` is a character device, refused before any read),
+    and never read past ``limit`` (a file that grows while read is refused too).
+
+    Examples
+    --------
+    >>> read_file("/dev/null", 100)
+    Traceback (most recent call last):
+    ...
+    ga_rotors.errors.SceneError: /dev/null: not a regular file (a character device); ...
+    """
+    try:
+        fd = os.open(path, os.O_RDONLY | getattr(os, "O_NONBLOCK", 0))
+    except (OSError, ValueError) as exc:
+        raise SceneError(str(path), "", f"cannot read the file: {exc}") from None
+    with os.fdopen(fd, "rb") as f:
+        mode = os.fstat(fd).st_mode
+        if not stat.S_ISREG(mode):
+            raise SceneError(
+                str(path), "", f"not a regular file ({_kind(mode)}); a {what} file is a text file"
+            )
+        size = os.fstat(fd).st_size
+        data = b"" if size > limit else f.read(limit + 1)
+    if size > limit or len(data) > limit:
+        size = max(size, len(data))
+        raise SceneError(str(path), "", f"{size:,} bytes; a {what} file is at most {limit:,}")
+    try:
+        return data.decode("utf-8")
+    except UnicodeDecodeError as exc:
+        raise SceneError(str(path), "", f"cannot read the file: {exc}") from None
+
+
+def _kind(mode: int) -> str:
+    kinds = ((stat.S_ISDIR, "a directory"), (stat.S_ISCHR, "a character device"),
+             (stat.S_ISBLK, "a block device"), (stat.S_ISFIFO, "a FIFO"),
+             (stat.S_ISSOCK, "a socket"))  # fmt: skip
+    return next((name for test, name in kinds if test(mode)), "not a file")
+
+
+def parse_toml(text: str, file: str) -> dict:
+    """The data of the TOML ``text`` (``file`` names it in errors), at most
+    :data:`MAX_NESTING` levels deep.
+
+    Examples
+    --------
+    >>> parse_toml("a = [[1], [2]]", "x.toml")
+    {'a': [[1], [2]]}
+    >>> parse_toml("a = " + "[" * 40 + "]" * 40, "x.toml")
+    Traceback (most recent call last):
+    ...
+    ga_rotors.errors.SceneError: x.toml: arrays or tables nested too deeply
+    """
+    try:
+        data = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        raise SceneError(file, "", f"not valid TOML: {exc}") from None
+    except RecursionError:  # tomllib recurses once per level of nesting
+        raise SceneError(file, "", _TOO_DEEP) from None
+    except ValueError as exc:  # an integer past Python's digit limit (4,300 digits)
+        raise SceneError(file, "", f"not valid TOML: {str(exc).split(':')[0]}") from None
+    if _depth(data) > MAX_NESTING:
+        raise SceneError(file, "", _TOO_DEEP)
+    return data
+
+
+_TOO_DEEP = "arrays or tables nested too deeply"
+
+
+def _depth(data) -> int:
+    """How deep tables and arrays nest in ``data`` (a walk without recursion)."""
+    deepest, todo = 0, [(data, 1)]
+    while todo:
+        value, depth = todo.pop()
+        items = value.values() if isinstance(value, dict) else value
+        if isinstance(value, dict | list):
+            deepest = max(deepest, depth)
+            if depth <= MAX_NESTING:
+                todo.extend((v, depth + 1) for v in items if isinstance(v, dict | list))
+    return deepest
 
 _BARE = re.compile(r"^[A-Za-z0-9_-]+$")
 
