@@ -1,14 +1,15 @@
-"""Run a sweep: a grid and/or Monte-Carlo draws of scene keys, on Dask, into a zarr store.
+"""Run a sweep: a grid and/or Monte-Carlo draws of scene keys, chunk by chunk into a zarr store.
 
 The sweep file names the scene, the keys to vary (a grid of values, random draws from
 stated distributions with a seed) and the output times; see docs/ensembles.md. Chunks of
-samples run on Dask — on this machine by default (Dask's threaded scheduler, one thread
-per core, in this process), or on an existing cluster with --scheduler ADDRESS — and are
-written to the store as they finish.
-Interrupting and running the same command again resumes from the finished chunks.
-Prints how far the samples spread from the base scene at each output time.
+samples run on this machine by default (Dask's threaded scheduler, one thread per core),
+or on an existing Dask cluster with --scheduler ADDRESS, and are written to the store as
+they finish. Interrupting and running the same command again resumes from the finished
+chunks; a store begun with another scene, sweep or version is not resumed.
+Prints how far each grid point's samples spread from its own nominal run at each output
+time, and how many failed.
 A sweep needing more than --max-steps integration steps (default 1e12), --max-memory GiB
-for the chunks integrating at once (default 2) or --max-disk GiB of store (default 20) is
+(default 2), --max-disk GiB of store (default 20) or --max-files files (default 1e5) is
 refused before anything is written.
 Needs pip install "ga-rotors[dask]".
 """
@@ -34,7 +35,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     where.add_argument(
         "--scheduler", metavar="ADDRESS", default=None,
         help="an existing Dask cluster's scheduler (tcp://host:8786), given 10 s to answer; "
-        "default: Dask's threaded scheduler on this machine",
+        "default: threads on this machine",
     )  # fmt: skip
     where.add_argument(
         "--workers", metavar="N", type=int, default=None,
@@ -42,7 +43,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     )  # fmt: skip
     where.add_argument(
         "--here", action="store_true",
-        help="run the chunks one after the other in this process, without Dask",
+        help="run the chunks one after the other in this thread",
     )  # fmt: skip
     parser.add_argument(
         "--max-steps", metavar="N", type=float, default=None,
@@ -51,12 +52,15 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     )  # fmt: skip
     parser.add_argument(
         "--max-memory", metavar="GIB", type=float, default=None,
-        help="refuse a sweep whose chunks integrating at once need more memory "
-        "(default 2 GiB)",
+        help="refuse a sweep needing more memory (default 2 GiB)",
     )  # fmt: skip
     parser.add_argument(
         "--max-disk", metavar="GIB", type=float, default=None,
         help="refuse a sweep whose store needs more disk (default 20 GiB)",
+    )  # fmt: skip
+    parser.add_argument(
+        "--max-files", metavar="N", type=float, default=None,
+        help="refuse a sweep whose store needs more files (default 1e5)",
     )  # fmt: skip
     bar = parser.add_mutually_exclusive_group()
     bar.add_argument(
@@ -72,12 +76,18 @@ def run(args: argparse.Namespace) -> int:
     from pathlib import Path
 
     from ..errors import InputError
-    from ..sweep import keep_freed_memory, open_sweep, run_sweep, summary
-    from ..sweep.budget import DEFAULT
+    from ..sweep import open_sweep, run_sweep, summary
+    from ..sweep.budget import DEFAULT, SweepBudget
+    from ..sweep.summary import lines
     from .run import ProgressBar, budget_from_args
 
     start = time.perf_counter()
-    budget = budget_from_args(args, DEFAULT)
+    files = DEFAULT.max_files if args.max_files is None else args.max_files
+    if not files > 0:  # NaN too
+        raise InputError(f"expected a positive number, got {args.max_files!r}", key="--max-files")
+    limits = budget_from_args(args, DEFAULT)
+    budget = SweepBudget(max_steps=limits.max_steps, max_memory_gib=limits.max_memory_gib,
+                         max_disk_gib=limits.max_disk_gib, max_files=files)  # fmt: skip
     if args.workers is not None and args.workers < 1:
         raise InputError(f"--workers: expected a positive number, got {args.workers}")
     if args.out is None:
@@ -85,7 +95,6 @@ def run(args: argparse.Namespace) -> int:
         out.parent.mkdir(parents=True, exist_ok=True)
     else:
         out = Path(args.out)
-    keep_freed_memory()  # this process ends with the sweep: its freed memory may stay
     bar = ProgressBar(sys.stderr, args.progress, delay=0.0)
     try:
         store = run_sweep(
@@ -94,6 +103,6 @@ def run(args: argparse.Namespace) -> int:
         )  # fmt: skip
     finally:
         bar.close()
-    print(summary(open_sweep(store)))
+    print("\n".join(lines(summary(open_sweep(store)))))
     print(f"\nwrote {store} ({time.perf_counter() - start:.1f} s)")
     return 0

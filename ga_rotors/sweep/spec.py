@@ -1,12 +1,13 @@
 """A sweep file: which scene, which keys vary over a grid or by random draws, and the seed.
 
-A sweep is data (TOML, parsed with :mod:`tomllib`, nothing evaluated)::
+A sweep is data (TOML, read with the scene files' guards and parsed with :mod:`tomllib`,
+nothing evaluated)::
 
     [sweep]
     scene = "spinning_disk"   # a bundled scene's name, or a file relative to this one
-    samples = 1000            # random draws per grid point (default 1)
-    seed = 2026               # required when there are draws
-    chunk = 1024              # samples per stored chunk (default 1024)
+    samples = 1000            # random draws per grid point (with [[draw]] tables)
+    seed = 2026               # required with [[draw]] tables
+    chunk = 65536             # at most this many samples a chunk (default 65536)
     times = [5.0, 10.0]       # output times in s (default: the end of the run)
 
     [set]                     # fixed changes to the scene, any key (optional)
@@ -19,55 +20,125 @@ A sweep is data (TOML, parsed with :mod:`tomllib`, nothing evaluated)::
     key = "body.mass"
     normal = [2.0, 0.02]      # mean, standard deviation; or uniform = [low, high]
 
-Sample ``s`` belongs to grid point ``s // samples`` (grid points in row-major order of
-the ``[grid]`` keys: the last key varies fastest). Its draws come from the random
-stream of its block of :data:`BLOCK` consecutive samples, seeded by
-``SeedSequence(seed, spawn_key=(block,))``: the numbers of a sample depend on the seed
-and its index only, never on how the sweep is chunked or which worker runs it, nor on
-the versions of numpy or scipy (the normal's quantile is ga_rotors' own, see
-:data:`DRAWS_VERSION`).
-Grid and draw keys must be under ``body``, ``initial`` or ``effects`` (what differs
-between the samples of one ensemble); ``time`` and ``integrator`` keys go in ``[set]``.
+The samples form an array with one axis per grid key (in the file's order) and, with
+draws, a last axis ``sample`` of ``samples`` draws per grid point. Sample ``s`` is its
+position in row-major order (the last axis varies fastest). Its draws come from the
+random stream of its block of :data:`BLOCK` consecutive samples,
+``Generator(PCG64(SeedSequence(seed, spawn_key=(block,))))``: sample ``s`` takes the
+uniform numbers ``(s mod BLOCK)·d`` to ``(s mod BLOCK)·d + d − 1`` of its block's stream
+(``d`` draws a sample, in the order of the ``[[draw]]`` tables), each ``u =
+Generator.random() + 2⁻⁵⁴`` (never 0); a normal draw is ``mean + std·ndtri(u)``
+(:func:`scipy.special.ndtri`, with ``u`` below 1), a uniform one ``low + u·(high −
+low)``. So a sample's numbers depend on the seed and its position only, never on how
+the sweep is chunked or which worker draws it.
+
+Grid and draw keys are single numbers under ``body``, ``initial`` or ``effects`` (what
+may differ between the samples of one ensemble; a vector key is varied by its
+components, ``initial.angular_velocity.body[2]``); ``time`` and ``integrator`` keys go
+in ``[set]``.
 """
 
 from __future__ import annotations
 
+import functools
 import hashlib
+import json
 import math
-import tomllib
+import re
+import sys
 from dataclasses import dataclass
 from pathlib import Path
 
-import numba
 import numpy as np
-from llvmlite import ir
-from numba.extending import intrinsic
 
-from .._jit import jit
 from ..errors import InputError, SceneError
-from ..files import aligned_empty
 from ..scene.reader import Reader, join
-from . import _normal
 
-__all__ = ["BLOCK", "DISTRIBUTIONS", "DRAWS_VERSION", "Sweep", "load_sweep"]
+__all__ = [
+    "BLOCK",
+    "DEFAULT_CHUNK",
+    "DISTRIBUTIONS",
+    "Draw",
+    "Sweep",
+    "coordinate_name",
+    "load_sweep",
+    "read_sweep",
+]
 
 #: Samples per random-number block (a constant of the format: changing it changes draws).
 BLOCK = 4096
 
-#: How the draws are made from the seed, recorded in every store (``draws_version``): 2
-#: since the normal draws take ga_rotors' own quantile (:mod:`ga_rotors.sweep._normal`);
-#: version 1 took scipy's ``ndtri``, which may differ in the last bits. A store of
-#: another version with normal draws is not resumed (its remaining chunks would draw
-#: other numbers than its first ones).
-DRAWS_VERSION = 2
+#: Samples a chunk holds at most, unless the sweep file says otherwise.
+DEFAULT_CHUNK = 65536
 
 #: distribution name -> its two parameters.
 DISTRIBUTIONS = {"normal": ("mean", "std"), "uniform": ("low", "high")}
 
-_VARYING = ("body.", "initial.", "effects[")
+#: Largest seed (SeedSequence takes any, the store's attribute a 128-bit integer).
+MAX_SEED = 2**128 - 1
 
-#: The largest float64 below 1: where a normal draw's u = 1 goes (its quantile is inf).
+_VARYING = ("body.", "initial.", "effects[")
+_PARTS = re.compile(r"[^.\[\]]+|\[\d+\]")
+
+#: The largest float64 below 1: where a normal draw's u that rounded to 1 goes.
 _BELOW_ONE = np.nextafter(1.0, 0.0)
+
+
+def coordinate_name(key: str) -> str:
+    """The name of a varied key's coordinate in a sweep store: the scene key with every
+    run of characters other than letters, digits and ``_`` made one ``_`` (a valid
+    Python identifier and netCDF name: ``ds.body_moments_0``).
+
+    Examples
+    --------
+    >>> coordinate_name("body.moments[0]"), coordinate_name("effects[1].pivot_to_com[2]")
+    ('body_moments_0', 'effects_1_pivot_to_com_2')
+    """
+    return re.sub(r"[^A-Za-z0-9_]+", "_", key).strip("_")
+
+
+def block_shape(shape: tuple[int, ...], most: int) -> tuple[int, ...]:
+    """The largest block of at most ``most`` elements of an array of ``shape`` that is
+    consecutive in row-major order: whole trailing axes while they fit, part of the
+    next, one along the others.
+
+    Examples
+    --------
+    >>> block_shape((3, 5, 4), 10), block_shape((3, 5, 4), 100)
+    ((1, 2, 4), (3, 5, 4))
+    """
+    out, inner = list(shape), 1
+    for i in reversed(range(len(out))):
+        if inner * out[i] > most:
+            out[i] = max(1, most // inner)
+            out[:i] = [1] * i
+            break
+        inner *= out[i]
+    return tuple(out)
+
+
+@dataclass(frozen=True)
+class Draw:
+    """A randomly drawn key: ``normal`` (a = mean, b = std) or ``uniform`` (a = low,
+    b = high)."""
+
+    key: str
+    distribution: str
+    a: float
+    b: float
+
+    @property
+    def centre(self) -> float:
+        """The value a grid point's nominal run takes: the mean, or the interval's middle."""
+        return self.a if self.distribution == "normal" else self.a + (self.b - self.a) / 2
+
+    def from_uniform(self, u: np.ndarray) -> np.ndarray:
+        """This draw's values for the uniform numbers ``u`` in (0, 1]."""
+        if self.distribution == "normal":
+            from scipy.special import ndtri
+
+            return ndtri(np.minimum(u, _BELOW_ONE)) * self.b + self.a
+        return u * (self.b - self.a) + self.a
 
 
 @dataclass(frozen=True)
@@ -79,12 +150,17 @@ class Sweep:
     scene : Scene
         The base scene, with ``[set]`` applied.
     grid : tuple of (key, ndarray)
-        Keys and their values, one row per value.
-    draws : tuple of (key, distribution, (a, b))
-    samples, seed, chunk : int
-    times : ndarray or None
-    text : str
-        The sweep file's text; ``digest`` identifies the sweep (a store belongs to one).
+        Each grid key and its values.
+    draws : tuple of Draw
+    samples : int
+        Draws per grid point (1 without draws).
+    seed : int or None
+    chunk : int
+        Samples a chunk holds at most.
+    times : ndarray
+        The output times (s) as the file gives them (default: the end of the run).
+    text, file : str
+        The sweep file's text and name.
 
     Examples
     --------
@@ -101,14 +177,10 @@ class Sweep:
     ... key = "initial.angular_velocity.body[2]"
     ... normal = [0.0, 0.01]
     ... ''')
-    >>> s.size, s.keys
-    (6, ['initial.angular_velocity.body[1]', 'initial.angular_velocity.body[2]'])
-    >>> v = s.values(0, 6)
-    >>> v["initial.angular_velocity.body[1]"].tolist()
+    >>> s.dims, s.shape, s.size
+    (('initial_angular_velocity_body_1', 'sample'), (2, 3), 6)
+    >>> s.values(0, 6)["initial.angular_velocity.body[1]"].tolist()
     [10.0, 10.0, 10.0, 12.0, 12.0, 12.0]
-    >>> bool(np.array_equal(s.values(2, 5)["initial.angular_velocity.body[2]"],
-    ...                     v["initial.angular_velocity.body[2]"][2:5]))
-    True
     """
 
     scene: object
@@ -117,9 +189,30 @@ class Sweep:
     samples: int
     seed: int | None
     chunk: int
-    times: np.ndarray | None
+    times: np.ndarray
     text: str
     file: str
+
+    # ------------------------------------------------------------------ the layout
+
+    @property
+    def keys(self) -> list[str]:
+        """The varied keys: the grid's, then the draws'."""
+        return [k for k, _ in self.grid] + [d.key for d in self.draws]
+
+    @property
+    def names(self) -> dict[str, str]:
+        """Each varied key -> its coordinate's name (:func:`coordinate_name`)."""
+        return {key: coordinate_name(key) for key in self.keys}
+
+    @property
+    def dims(self) -> tuple[str, ...]:
+        """The samples' dimensions: one per grid key, then ``sample`` with draws."""
+        return tuple(coordinate_name(k) for k, _ in self.grid) + (("sample",) if self.draws else ())
+
+    @property
+    def shape(self) -> tuple[int, ...]:
+        return tuple(len(v) for _, v in self.grid) + ((self.samples,) if self.draws else ())
 
     @property
     def grid_points(self) -> int:
@@ -132,196 +225,130 @@ class Sweep:
         return self.grid_points * self.samples
 
     @property
-    def keys(self) -> list[str]:
-        return [k for k, _ in self.grid] + [k for k, _, _ in self.draws]
-
-    @property
-    def rows(self) -> tuple[tuple[str, int], ...]:
-        """Each varied key with its number of rows in :meth:`columns` (3 for a vector)."""
-        widths = [int(np.prod(v.shape[1:])) for _, v in self.grid] + [1] * len(self.draws)
-        return tuple(zip(self.keys, widths, strict=True))
-
-    @property
-    def chunks(self) -> int:
-        return -(-self.size // self.chunk)
-
-    @property
-    def digest(self) -> str:
-        return hashlib.sha256(self.text.encode()).hexdigest()[:16]
-
-    def values(self, lo: int, hi: int) -> dict[str, np.ndarray]:
-        """Each varied key's values for samples ``lo`` to ``hi - 1``."""
-        return self.columns(lo, hi)[1]
-
-    def columns(self, lo: int, hi: int) -> tuple[np.ndarray, dict[str, np.ndarray]]:
-        """The values of samples ``lo`` to ``hi - 1`` as one array, and by key.
-
-        ``cols`` (rows, n) holds one row per varied number, in the order of :attr:`keys`
-        (a key whose values are vectors takes one row per component); the dict gives each
-        key's values as views of it, what :meth:`values` returns.
+    def chunk_shape(self) -> tuple[int, ...]:
+        """A chunk's extent along each of :attr:`dims` (:func:`block_shape` of at most
+        :attr:`chunk` samples): a chunk is a block of consecutive samples, and a
+        rectangle of the store.
 
         Examples
         --------
-        >>> s = load_sweep('[sweep]\\nscene = "heavy_top"\\n[grid]\\n"body.mass" = [1.0, 2.0]')
-        >>> cols, values = s.columns(0, 2)
-        >>> cols.tolist(), values["body.mass"].tolist()
-        ([[1.0, 2.0]], [1.0, 2.0])
+        >>> s = load_sweep('[sweep]\\nscene = "heavy_top"\\nchunk = 4\\n[grid]\\n'
+        ...                '"body.mass" = [1.0, 2.0, 3.0]\\n"body.moments[0]" = [1.0, 2.0]')
+        >>> s.shape, s.chunk_shape, s.chunks
+        ((3, 2), (2, 2), 2)
         """
-        n = hi - lo
-        widths = [width for _, width in self.rows]
-        cols = aligned_empty((sum(widths), n))  # its rows are written to the store as they are
+        return block_shape(self.shape, self.chunk)
+
+    @property
+    def chunk_counts(self) -> tuple[int, ...]:
+        """Chunks along each dimension."""
+        return tuple(-(-n // c) for n, c in zip(self.shape, self.chunk_shape, strict=True))
+
+    @property
+    def chunks(self) -> int:
+        return math.prod(self.chunk_counts)
+
+    def chunk_region(self, c: int) -> tuple[int, int, dict[str, slice]]:
+        """Chunk ``c``'s samples ``lo`` to ``hi - 1`` and its region of the store."""
+        at = np.unravel_index(c, self.chunk_counts)
+        start = [int(i) * n for i, n in zip(at, self.chunk_shape, strict=True)]
+        stop = [min(a + n, m) for a, n, m in zip(start, self.chunk_shape, self.shape, strict=True)]
+        lo = int(np.ravel_multi_index(start, self.shape))
+        count = math.prod(b - a for a, b in zip(start, stop, strict=True))
+        region = {d: slice(a, b) for d, a, b in zip(self.dims, start, stop, strict=True)}
+        return lo, lo + count, region
+
+    # ------------------------------------------------------------------ the values
+
+    def values(self, lo: int, hi: int) -> dict[str, np.ndarray]:
+        """Each varied key's values for samples ``lo`` to ``hi - 1``.
+
+        Examples
+        --------
+        >>> s = load_sweep('[sweep]\\nscene = "heavy_top"\\nsamples = 4\\nseed = 7\\n'
+        ...                '[[draw]]\\nkey = "body.mass"\\nuniform = [1.0, 2.0]')
+        >>> a = s.values(0, 4)["body.mass"]
+        >>> bool(np.array_equal(s.values(1, 3)["body.mass"], a[1:3])), bool(np.all(a > 1))
+        (True, True)
+        """
         out: dict[str, np.ndarray] = {}
-        row = 0
         if self.grid:
-            s = np.arange(lo, hi, dtype=np.int64)
-            shape = [len(v) for _, v in self.grid]
-            index = np.unravel_index(s // self.samples, shape)
-            for (key, v), idx, width in zip(self.grid, index, widths, strict=False):
-                block = cols[row : row + width]
-                block[:] = v[idx].reshape(n, width).T
-                out[key] = block[0] if v.ndim == 1 else block.T.reshape(n, *v.shape[1:])
-                row += width
+            point = np.arange(lo, hi, dtype=np.int64) // self.samples
+            index = np.unravel_index(point, [len(v) for _, v in self.grid])
+            out.update((key, v[i]) for (key, v), i in zip(self.grid, index, strict=True))
         if self.draws:
-            kinds = np.array([dist == "normal" for _, dist, _ in self.draws])
-            a = np.array([p[0] for _, _, p in self.draws])
-            # the uniform's width as numpy computed it (b - a in float64), the normal's std
-            b = np.array([p[1] - p[0] if d == "uniform" else p[1] for _, d, p in self.draws])
-            draws = cols[row:]
-            _draw(_streams(self.seed, lo, hi, len(self.draws)), lo, kinds, a, b, draws)
-            for j, (key, _, _) in enumerate(self.draws):
-                out[key] = draws[j]
-        return cols, out
+            u = self._uniform(lo, hi)
+            out.update((d.key, d.from_uniform(u[:, j])) for j, d in enumerate(self.draws))
+        return out
+
+    def _uniform(self, lo: int, hi: int) -> np.ndarray:
+        """The uniform numbers of samples lo..hi-1, one column a draw, from their blocks."""
+        nvars = len(self.draws)
+        u = np.empty((hi - lo, nvars))
+        for block in range(lo // BLOCK, -(-hi // BLOCK)):
+            a, b = max(lo, block * BLOCK), min(hi, (block + 1) * BLOCK)
+            bits = np.random.PCG64(np.random.SeedSequence(self.seed, spawn_key=(block,)))
+            bits.advance((a - block * BLOCK) * nvars)
+            np.random.Generator(bits).random(out=u[a - lo : b - lo])
+        u += 2.0**-54
+        return u
+
+    def nominal_values(self) -> dict[str, np.ndarray]:
+        """Each varied key's value in each grid point's nominal run: the point's grid
+        values and the draws' centres (:attr:`Draw.centre`)."""
+        points = self.grid_points
+        out = {}
+        if self.grid:
+            index = np.unravel_index(np.arange(points), [len(v) for _, v in self.grid])
+            out.update((key, v[i]) for (key, v), i in zip(self.grid, index, strict=True))
+        out.update((d.key, np.full(points, d.centre)) for d in self.draws)
+        return out
+
+    def run_times(self) -> np.ndarray:
+        """:attr:`times` on the scene's step grid, as the ensemble computes them."""
+        t0, h = self.scene.data["time"]["start"], self.scene.step
+        return t0 + np.rint((self.times - t0) / h) * h
+
+    # ------------------------------------------------------------------ what it is
+
+    @property
+    def digests(self) -> dict[str, str]:
+        """What a store begun by this sweep records, to refuse resuming it with other
+        inputs: the resolved scene (``[set]`` applied), the sweep's settings, and the
+        versions that make its numbers."""
+        settings = {
+            "samples": self.samples, "seed": self.seed, "chunk": self.chunk,
+            "times": self.times.tolist(),
+            "grid": [[key, v.tolist()] for key, v in self.grid],
+            "draws": [[d.key, d.distribution, d.a, d.b] for d in self.draws],
+        }  # fmt: skip
+        return {
+            "scene_digest": _sha(self.scene.to_toml()),
+            "sweep_digest": _sha(json.dumps(settings, sort_keys=True)),
+            "made_with": _versions(),
+        }
 
 
-def _streams(seed: int, lo: int, hi: int, nvars: int) -> np.ndarray:
-    """Where the draws of samples lo..hi-1 start in their blocks' streams: one row per
-    block, its PCG64 state and increment as (high, low) 64-bit words, advanced to the
-    output of sample max(lo, block start), variable 0.
-
-    Sample s, variable j takes the (s mod BLOCK)·nvars + j-th 64-bit output of its
-    block's PCG64 stream, seeded by ``SeedSequence(seed, spawn_key=(block,))``. Each row
-    is numpy's own generator, seeded and advanced (:meth:`numpy.random.PCG64.advance`);
-    :func:`_draw` then runs the streams on in compiled code.
-    """
-    rows = []
-    for block in range(lo // BLOCK, -(-hi // BLOCK)):
-        bits = np.random.PCG64(np.random.SeedSequence(seed, spawn_key=(block,)))
-        bits.advance((max(lo, block * BLOCK) - block * BLOCK) * nvars)
-        state = bits.state["state"]
-        rows.append([w for v in (state["state"], state["inc"]) for w in divmod(v, 2**64)])
-    return np.array(rows, dtype=np.uint64).reshape(-1, 4)  # (0, 4) for no samples
+def _sha(text: str) -> str:
+    return hashlib.sha256(text.encode()).hexdigest()[:16]
 
 
-#: numpy's PCG64: the 128-bit linear congruential generator's multiplier (its output is
-#: XSL-RR: the high word XOR the low one, rotated right by the top 6 bits).
-_PCG_MULTIPLIER = 0x2360ED051FC65DA44385DF649FCCF645
+@functools.cache
+def _versions() -> str:
+    """The packages whose versions make a sweep's numbers: ga_rotors, numpy (the
+    streams), scipy (the normal quantile), numba (the loops)."""
+    import importlib.metadata
+
+    out = []
+    for package in ("ga-rotors", "numpy", "scipy", "numba"):
+        try:
+            out.append(f"{package} {importlib.metadata.version(package)}")
+        except importlib.metadata.PackageNotFoundError:
+            out.append(f"{package} (unknown)")
+    return ", ".join(out)
 
 
-def _plain_pcg_step(hi, lo, inc_hi, inc_lo):
-    """The compiled step in Python integers, for the draws run uncompiled."""
-    state = ((int(hi) << 64 | int(lo)) * _PCG_MULTIPLIER + (int(inc_hi) << 64 | int(inc_lo))) % (
-        1 << 128
-    )
-    return np.uint64(state >> 64), np.uint64(state & (2**64 - 1))
-
-
-@intrinsic
-def _compiled_pcg_step(typingctx, hi, lo, inc_hi, inc_lo):
-    """PCG64's state (hi, lo) after one step, state·multiplier + increment mod 2¹²⁸, in
-    LLVM's 128-bit integers (numba has none; LLVM makes it three 64-bit products)."""
-    words = numba.types.UniTuple(numba.types.uint64, 2)
-    signature = words(numba.types.uint64, numba.types.uint64, numba.types.uint64,
-                      numba.types.uint64)  # fmt: skip
-
-    def codegen(context, builder, sig, args):
-        wide, word = ir.IntType(128), ir.IntType(64)
-
-        def join(high, low):
-            high = builder.shl(builder.zext(high, wide), ir.Constant(wide, 64))
-            return builder.or_(high, builder.zext(low, wide))
-
-        state = builder.mul(join(args[0], args[1]), ir.Constant(wide, _PCG_MULTIPLIER))
-        state = builder.add(state, join(args[2], args[3]))
-        high = builder.trunc(builder.lshr(state, ir.Constant(wide, 64)), word)
-        return context.make_tuple(builder, sig.return_type, (high, builder.trunc(state, word)))
-
-    return signature, codegen
-
-
-_pcg_step = _plain_pcg_step if numba.config.DISABLE_JIT else _compiled_pcg_step
-
-
-@jit(inline="always")
-def _pcg_output(hi, lo):
-    """PCG64's 64-bit output of the state (hi, lo) it has just stepped to."""
-    x = hi ^ lo
-    turn = hi >> np.uint64(58)
-    return (x >> turn) | (x << ((np.uint64(64) - turn) & np.uint64(63)))
-
-
-@jit(inline="always")
-def _uniform(x):
-    """u in (0, 1] from the 64-bit output x: k = x >> 11 (what ``Generator.integers(0,
-    2**53)`` gives: Lemire's method never rejects for a range of 2⁵³), u = (k + ½)·2⁻⁵³ in
-    float64 (k = 2⁵³ − 1 rounds to 1: k + ½ rounds to even above 2⁵²)."""
-    return (float(x >> np.uint64(11)) + 0.5) * 2.0**-53
-
-
-@jit
-def _draw(streams, lo, normal, a, b, out):
-    """out[j, i]: draw j of sample lo + i (:func:`_from_uniform`), from its block's
-    stream (``streams``, :func:`_streams`), the samples of a block in order, their
-    variables in order: the stream's outputs as they come, with no array of them. The
-    streams fill ``out`` with the uniform u, which :func:`_from_uniform` then maps."""
-    nvars, n = out.shape
-    block = -1
-    hi = low = inc_hi = inc_lo = np.uint64(0)
-    for i in range(n):
-        if i == 0 or (lo + i) % BLOCK == 0:
-            block += 1
-            hi, low = streams[block, 0], streams[block, 1]
-            inc_hi, inc_lo = streams[block, 2], streams[block, 3]
-        for j in range(nvars):
-            hi, low = _pcg_step(hi, low, inc_hi, inc_lo)
-            out[j, i] = _uniform(_pcg_output(hi, low))
-    _from_uniform(normal, a, b, out)
-
-
-@jit
-def _from_uniform(normal, a, b, out):
-    """Row j of ``out``, uniform u (:func:`_uniform`), made draw j in place: a normal draw
-    is inverse_normal(u)·std + mean (:mod:`ga_rotors.sweep._normal`, with u = 1 taken as
-    :data:`_BELOW_ONE` so that the quantile stays finite), a uniform one u·(high − low) +
-    low (``b`` holds the width), one rounding per operation.
-
-    A normal row takes the central piece of the quantile for every u at once (a loop
-    without a branch, which LLVM vectorises), lists where u lies in a tail (15 % of the
-    draws, at random: a branch per draw would be mispredicted that often) and takes the
-    tail piece there, one after the other (so the processor overlaps their logarithms),
-    then scales the row. Measured on one thread, 983,040 samples of two normal draws in
-    chunks of 65,536, the streams' set-up included: 13 ms, against about 29 ms with
-    scipy's ``ndtri`` called per draw (26.5 ms for the draw loop, 2.7 for the streams).
-    """
-    nvars, n = out.shape
-    x = np.empty(n)
-    tails = np.empty(n, dtype=np.int64)
-    for j in range(nvars):
-        row, aj, bj = out[j], a[j], b[j]
-        if normal[j]:
-            for i in range(n):
-                row[i] = min(row[i], _BELOW_ONE)
-                x[i] = _normal.central(row[i])
-            k = 0
-            for i in range(n):
-                tails[k] = i
-                k += _normal.in_tail(row[i])
-            for m in range(k):
-                x[tails[m]] = _normal.tail(row[tails[m]])
-            for i in range(n):
-                row[i] = x[i] * bj + aj
-        else:
-            for i in range(n):
-                row[i] = row[i] * bj + aj
+# ---------------------------------------------------------------------- reading
 
 
 def load_sweep(source) -> Sweep:
@@ -329,98 +356,181 @@ def load_sweep(source) -> Sweep:
 
     Examples
     --------
-    >>> load_sweep('[sweep]\\nscene = "heavy_top"\\nsamples = 2').size
+    >>> load_sweep('[sweep]\\nscene = "heavy_top"\\n[grid]\\n"body.mass" = [1, 2]').size
     2
     >>> load_sweep('[sweep]\\nscene = "heavy_top"\\nsampels = 2')
     Traceback (most recent call last):
     ...
     ga_rotors.errors.SceneError: <string>: sweep.sampels: unknown key (did you mean 'samples'?); ...
     """
-    from ..scene import load_scene
+    from ..scene.loading import MAX_FILE_BYTES
+    from ..scene.toml_io import read_file
 
     if isinstance(source, Path) or (isinstance(source, str) and source.endswith(".toml")):
         path = Path(source)
-        try:
-            text = path.read_text(encoding="utf-8")
-        except OSError as exc:
-            raise InputError(f"{path}: cannot read the sweep file ({exc.strerror})") from None
-        file, base = str(path), path.parent
-    else:
-        text, file, base = str(source), "<string>", Path(".")
+        return read_sweep(read_file(path, MAX_FILE_BYTES, what="sweep"), str(path), path.parent)
+    return read_sweep(str(source))
+
+
+def read_sweep(text: str, file: str = "<string>", base=".", scene=None) -> Sweep:
+    """The sweep of the TOML ``text``; ``file`` names it in errors, and a scene file it
+    names is found relative to ``base``. ``scene``: the resolved scene to take instead of
+    the one the text names (with its ``[set]`` already applied: how a Dask worker
+    rebuilds the sweep it was sent).
+
+    Examples
+    --------
+    >>> read_sweep('[sweep]\nscene = "heavy_top"\n[grid]\n"body.mass" = [1, 2]').shape
+    (2,)
+    """
+    from ..scene.toml_io import parse_toml
+
     r = Reader(file)
-    try:
-        data = tomllib.loads(text)
-    except tomllib.TOMLDecodeError as exc:
-        raise SceneError(file, "", f"not valid TOML: {exc}") from None
-    top = r.table(data, "", ("sweep", "set", "grid", "draw"), ("sweep",))
+    top = r.table(parse_toml(text, file), "", ("sweep", "set", "grid", "draw"), ("sweep",))
     sw = r.table(top["sweep"], "sweep", ("scene", "samples", "seed", "chunk", "times"), ("scene",))
+    if scene is None:
+        scene = _scene(r, sw, top.get("set", {}), Path(base))
+    grid = tuple(
+        (key, _grid_values(r, scene, key, values))
+        for key, values in r.table(top.get("grid", {}), "grid", _any_keys(top.get("grid"))).items()
+    )
+    draws = tuple(_draw(r, scene, i, d) for i, d in enumerate(r.array(top.get("draw", []), "draw")))
+    keys = [k for k, _ in grid] + [d.key for d in draws]
+    names = [coordinate_name(k) for k in keys]
+    if len(set(names)) != len(names):
+        twice = next(k for k, n in zip(keys, names, strict=True) if names.count(n) > 1)
+        raise r.error("draw" if draws else "grid", f"{twice!r} is varied twice (or two keys "
+                      "differ only in punctuation)")  # fmt: skip
+    if not keys:
+        raise r.error("grid", "nothing varies; give [grid] values or [[draw]] tables")
+    # checked even when unused: a typo'd seed should not pass silently
+    seed = _count(r, sw["seed"], "sweep.seed", low=0, high=MAX_SEED) if "seed" in sw else None
+    if draws and seed is None:
+        raise r.error("sweep.seed", "missing; random draws need a seed")
+    samples = _count(r, sw.get("samples", 1), "sweep.samples")
+    if samples > 1 and not draws:
+        raise r.error("sweep.samples", f"{samples} samples of each grid point without [[draw]] "
+                      "tables would all be the same run; add a [[draw]] or leave samples out")  # fmt: skip
+    chunk = _count(r, sw.get("chunk", DEFAULT_CHUNK), "sweep.chunk")
+    times = _times(r, scene, sw["times"]) if "times" in sw else None
+    if times is None:
+        t = scene.data["time"]
+        times = np.array([t["start"] + t["duration"]])
+    return Sweep(scene, grid, draws, samples, seed if draws else None, chunk, times, text, r.file)
+
+
+def _scene(r: Reader, sw: dict, changes, base: Path):
+    from ..scene import load_scene
+
     name = r.string(sw["scene"], "sweep.scene")
     candidate = base / name
     try:
         scene = load_scene(candidate if candidate.suffix == ".toml" else name)
     except InputError as exc:
-        raise SceneError(file, "sweep.scene", str(exc)) from None
-    samples = _count(r, sw.get("samples", 1), "sweep.samples")
-    chunk = _count(r, sw.get("chunk", 1024), "sweep.chunk")
-    times = None
-    if "times" in sw:
-        times = np.array(r.numbers(sw["times"], "sweep.times"))
-        if not times.size:
-            raise r.error("sweep.times", "expected at least one output time (s)")
-    changes = r.table(top.get("set", {}), "set", _any_keys(top.get("set", {})))
+        raise SceneError(r.file, "sweep.scene", str(exc)) from None
+    changes = r.table(changes, "set", _any_keys(changes))
     if changes:
         try:
             scene = scene.replace(changes)
         except InputError as exc:
-            raise SceneError(file, "set", str(exc)) from None
-    grid = []
-    for key, values in r.table(top.get("grid", {}), "grid", _any_keys(top.get("grid", {}))).items():
-        _varying(r, key, join("grid", key))
-        items = r.array(values, join("grid", key))
-        if not items:
-            raise r.error(join("grid", key), "expected at least one value")
-        try:
-            grid.append((key, np.array(items, dtype=np.float64)))
-        except (TypeError, ValueError):
-            raise r.error(join("grid", key), "expected numbers or equal-length arrays") from None
-    draws = []
-    for i, d in enumerate(r.array(top.get("draw", []), "draw")):
-        key = join("draw", i)
-        d = r.table(d, key, ("key", *DISTRIBUTIONS), ("key",))
-        k = r.string(d["key"], join(key, "key"))
-        _varying(r, k, join(key, "key"))
-        dist = r.one_of(d, key, DISTRIBUTIONS)
-        a, b = r.vector(d[dist], join(key, dist), 2, unit=" and ".join(DISTRIBUTIONS[dist]))
-        if dist == "normal" and b < 0:
-            raise r.error(join(key, dist), f"expected std ≥ 0, got {b:g}")
-        if dist == "uniform" and b < a:
-            raise r.error(join(key, dist), f"expected low ≤ high, got [{a:g}, {b:g}]")
-        draws.append((k, dist, (a, b)))
-    keys = [k for k, _ in grid] + [k for k, _, _ in draws]
-    if len(set(keys)) != len(keys):
-        raise r.error("draw", "a key is varied twice (in grid and draw, or in two draws)")
-    # checked even when unused: a typo'd seed should not pass silently
-    seed = _count(r, sw["seed"], "sweep.seed", zero=True) if "seed" in sw else None
-    if draws and seed is None:
-        raise r.error("sweep.seed", "missing; random draws need a seed")
-    seed = seed if draws else None
-    return Sweep(scene, tuple(grid), tuple(draws), samples, seed, chunk, times, text, file)
+            raise SceneError(r.file, "set", str(exc)) from None
+    return scene
 
 
 def _any_keys(table) -> list:
     return list(table) if isinstance(table, dict) else []
 
 
-def _count(r: Reader, value, key: str, zero: bool = False) -> int:
-    if isinstance(value, bool) or not isinstance(value, int) or value < (0 if zero else 1):
-        raise r.error(key, f"expected an integer ≥ {0 if zero else 1}, got {value!r}")
+def _count(r: Reader, value, key: str, low: int = 1, high: int | None = None) -> int:
+    if (isinstance(value, bool) or not isinstance(value, int) or value < low
+            or (high is not None and value > high)):  # fmt: skip
+        shown = repr(value) if not isinstance(value, int) or abs(value) < 10**30 else "a larger one"
+        upper = f" and ≤ {high:.3g}" if high is not None else ""
+        raise r.error(key, f"expected an integer ≥ {low}{upper}, got {shown}")
     return int(value)
 
 
-def _varying(r: Reader, key: str, where: str) -> None:
-    if not key.startswith(_VARYING):
+def _number(r: Reader, value, key: str) -> float:
+    """A finite number; an integer too large for a float is refused by name."""
+    if isinstance(value, int) and not isinstance(value, bool) and abs(value) > sys.float_info.max:
+        raise r.error(key, f"expected a finite number, got an integer of {len(str(abs(value)))} "
+                      "digits, beyond float64")  # fmt: skip
+    return r.number(value, key)
+
+
+def _varying(r: Reader, scene, key: str, where: str) -> None:
+    """Refuse a key that cannot vary between samples, or that is not a single number."""
+    if not isinstance(key, str) or not key.startswith(_VARYING):
         raise r.error(
             where,
             f"{key!r} cannot vary between the samples of one ensemble (they share the time "
             "grid and integrator); vary keys under body, initial or effects, or set it in [set]",
         )
+    node = scene.data
+    for part in _PARTS.findall(key):
+        if part.startswith("[") and isinstance(node, list) and int(part[1:-1]) < len(node):
+            node = node[int(part[1:-1])]
+        elif isinstance(node, dict) and part in node:
+            node = node[part]
+        else:
+            return  # not in the resolved scene: the scene's own check names it
+    if isinstance(node, list | dict):
+        size = f"{len(node)} numbers" if isinstance(node, list) else "a table"
+        raise r.error(where, f"{key!r} is {size}; vary one number at a time: its components "
+                      f"{key}[0], {key}[1], ... each as a key of its own")  # fmt: skip
+
+
+def _grid_values(r: Reader, scene, key: str, values) -> np.ndarray:
+    where = join("grid", key)
+    _varying(r, scene, key, where)
+    items = r.array(values, where)
+    if not items:
+        raise r.error(where, "expected at least one value")
+    return np.array([_number(r, v, join(where, i)) for i, v in enumerate(items)])
+
+
+def _draw(r: Reader, scene, i: int, d) -> Draw:
+    where = join("draw", i)
+    d = r.table(d, where, ("key", *DISTRIBUTIONS), ("key",))
+    key = r.string(d["key"], join(where, "key"))
+    _varying(r, scene, key, join(where, "key"))
+    dist = r.one_of(d, where, DISTRIBUTIONS)
+    pair = r.array(d[dist], join(where, dist))
+    if len(pair) != 2:
+        what = " and ".join(DISTRIBUTIONS[dist])
+        raise r.error(join(where, dist), f"expected an array of 2 numbers ({what}), got "
+                      f"{len(pair)} items")  # fmt: skip
+    a, b = (_number(r, v, join(join(where, dist), j)) for j, v in enumerate(pair))
+    if dist == "normal" and b < 0:
+        raise r.error(join(where, dist), f"expected std ≥ 0, got {b:g}")
+    if dist == "uniform" and b < a:
+        raise r.error(join(where, dist), f"expected low ≤ high, got [{a:g}, {b:g}]")
+    if not math.isfinite(b - a if dist == "uniform" else a + 40 * b):
+        raise r.error(join(where, dist), "the draws would overflow float64; choose smaller values")
+    return Draw(key, dist, a, b)
+
+
+def _times(r: Reader, scene, value) -> np.ndarray:
+    """Increasing output times after the start, each a whole number of steps into the run."""
+    from ..simulation import whole_steps
+
+    items = r.array(value, "sweep.times")
+    if not items:
+        raise r.error("sweep.times", "expected at least one output time (s)")
+    times = np.array([_number(r, v, join("sweep.times", i)) for i, v in enumerate(items)])
+    t, h = scene.data["time"], scene.step
+    last = -math.inf
+    for i, ti in enumerate(times):
+        key = join("sweep.times", i)
+        span = f"from {t['start']!r} s to {t['start'] + t['duration']!r} s"
+        if not t["start"] < ti <= t["start"] + t["duration"] * (1 + 1e-12):
+            raise r.error(key, f"{ti!r} s is outside the run ({span}, the start excluded)")
+        try:
+            whole_steps(ti - t["start"], h)
+        except InputError:
+            raise r.error(key, f"{ti!r} s is not a whole number of steps ({h!r} s) after the "
+                          f"start ({t['start']!r} s)") from None  # fmt: skip
+        if ti <= last:
+            raise r.error(key, f"expected increasing times, got {ti!r} s after {last!r} s")
+        last = ti
+    return times

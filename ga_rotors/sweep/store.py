@@ -1,198 +1,195 @@
-"""The sweep's zarr store: created from a description, its chunks written as raw bytes.
+"""A sweep's zarr store: made whole by xarray, filled chunk by chunk through zarr.
 
-A sweep store is zarr format 2 with every variable uncompressed, unfiltered and in C
-order, so its metadata and its chunk files follow from the Zarr v2 storage specification
-alone: a ``.zarray`` and a ``.zattrs`` (holding xarray's ``_ARRAY_DIMENSIONS``) per
-variable, the group's ``.zgroup`` and ``.zattrs``, the consolidated ``.zmetadata``; a
-chunk file is the bytes of the chunk's C-ordered array (an edge chunk extended to the full
-chunk shape). :func:`create` writes the metadata of a template Dataset in a few
-milliseconds (xarray's ``to_zarr(compute=False)`` took 60-180 ms for the same store, a
-tenth of a 10⁶-sample sweep's integration at 100 steps per sample); the tests check that
-xarray reads it back identical to the store xarray itself writes from that template.
-:func:`write_chunk` writes one chunk of one variable, falling back on zarr's own write
-for any other layout (a store made by another tool). Chunk files go straight to the disk
-(``O_DIRECT``) where the system allows it, not through the page cache: see
-:func:`ga_rotors.files.write_direct`.
+:func:`create` writes the whole store's description at once with
+:meth:`xarray.Dataset.to_zarr` (zarr format 2, consolidated metadata, uncompressed:
+orientations and rates are full-precision noise to a compressor), in a staging directory
+renamed into place, so a store is there whole or not at all. The per-sample variables
+are written as placeholders of their fill value, which zarr stores as no chunk at all;
+the grid's coordinates, the output times and the nominal runs are written then.
+:func:`write_chunk` then writes one chunk's region of every per-sample variable through
+zarr, and last its flag in ``chunk_done``: a chunk counts as written only once all of it
+is. What the store holds (names, dimensions, attributes) is described in
+docs/ensembles.md, "The store".
 """
 
 from __future__ import annotations
 
-import json
-import math
 import os
-import threading
+import shutil
+import tempfile
 from pathlib import Path
 
 import numpy as np
 
-from ..files import write_direct
+from ..errors import InputError, first_line
 from ..optional import require
 
-__all__ = ["create", "write_chunk"]
+__all__ = ["FORMAT", "create", "done", "open_store", "write_chunk"]
 
-_ZARR_FORMAT = 2
+#: The layout of the stores this version writes (attribute ``sweep_format``); a store of
+#: another layout is opened but never resumed.
+FORMAT = 2
 
-_ZARR_WRITES = threading.Lock()
+#: What the orientations and rates are expressed in (the ensemble's outputs).
+BODY_FRAME = (
+    "body axes as the scene gives the body; q rotates them to the space frame "
+    "(v_space = q v_body q*), w is the angular velocity in them"
+)
 
-
-def _fill(dtype: np.dtype, encoding: dict):
-    """The ``fill_value`` xarray gives a variable: its ``_FillValue``, NaN for floats."""
-    if "_FillValue" in encoding:
-        return encoding["_FillValue"]
-    return "NaN" if dtype.kind == "f" else None
-
-
-def _json(value):
-    if isinstance(value, np.generic):
-        return value.item()
-    if isinstance(value, np.ndarray):
-        return value.tolist()
-    raise TypeError(f"attribute value {value!r} is not JSON")
+_TIME = {"units": "s", "standard_name": "time", "axis": "T", "long_name": "time"}
+_COMPONENTS = {"quaternion_component": ["w", "x", "y", "z"], "body_axis": ["1", "2", "3"]}
 
 
-def _write(path: Path, data: bytes) -> None:
-    with open(path, "wb") as f:
-        f.write(data)
+def _per_sample(sweep) -> dict:
+    """name -> (dims after the samples', attributes) of the variables every chunk writes."""
+    out = {
+        "q": (("time", "quaternion_component"), {
+            "units": "1", "long_name": "orientation quaternion (w, x, y, z), body to space"}),
+        "w": (("time", "body_axis"), {
+            "units": "rad/s", "long_name": "body angular velocity"}),
+    }  # fmt: skip
+    if sweep.draws:
+        out["angle_from_nominal"] = (("time",), {
+            "units": "rad", "long_name": "geodesic angle from the grid point's nominal "
+            "orientation (q_nominal)"})  # fmt: skip
+    return out
 
 
-def create(path, template, chunks: dict, empty) -> None:
-    """Write the store ``path`` (a new directory) for the Dataset ``template``.
+def template(sweep, nominal=None):
+    """The whole store as a Dataset, every per-sample value at its fill value (NaN).
 
-    Parameters
-    ----------
-    template : xarray.Dataset
-        Every variable and coordinate with its dims, dtype, attributes and (for those
-        written now) data; ``encoding["_FillValue"]`` where it is not NaN / none.
-    chunks : dict of dim -> int
-        Chunk length along those dimensions (whole length along any other).
-    empty : set of str
-        Variables written later chunk by chunk: only their metadata is written (an
-        unwritten chunk reads as the fill value).
-
-    Examples
-    --------
-    >>> import tempfile, pathlib, xarray as xr
-    >>> ds = xr.Dataset({"a": (("s",), np.broadcast_to(np.nan, (5,)))},
-    ...                 coords={"s": np.arange(5)})
-    >>> out = pathlib.Path(tempfile.mkdtemp()) / "x.zarr"
-    >>> create(out, ds, {"s": 2}, {"a"})
-    >>> write_chunk(out, "a", np.array([1.0, 2.0]), 0)
-    >>> xr.open_zarr(out)["a"].values.tolist()
-    [1.0, 2.0, nan, nan, nan]
+    ``nominal``: (q, w) of each grid point's nominal run, (points, time, 4) and
+    (points, time, 3), with draws.
     """
+    from ..results import provenance
+
+    xr = require("xarray", "results")
+    dims, shape, k = sweep.dims, sweep.shape, sweep.times.size
+
+    def empty(*extra):
+        return np.broadcast_to(np.nan, shape + extra)
+
+    data = {
+        name: (dims + more, empty(*(k if d == "time" else len(_COMPONENTS[d]) for d in more)), attrs)
+        for name, (more, attrs) in _per_sample(sweep).items()
+    }
+    data["chunk_done"] = (("chunk",), np.zeros(sweep.chunks, dtype=np.int8), {
+        "long_name": "1 once the chunk's samples are written", "units": "1"})  # fmt: skip
+    coords = {"time": ("time", sweep.times, _TIME), **_COMPONENTS}
+    for key, values in sweep.grid:
+        name = sweep.names[key]
+        coords[name] = (name, values, {"scene_key": key, "long_name": f"scene key {key}"})
+    for d in sweep.draws:
+        coords[sweep.names[d.key]] = (dims, empty(), {
+            "scene_key": d.key, "long_name": f"scene key {d.key}, drawn",
+            "distribution": f"{d.distribution} {d.a!r} {d.b!r}"})  # fmt: skip
+    if nominal is not None:
+        grid = dims[:-1]
+        points = tuple(len(v) for _, v in sweep.grid)
+        described = _per_sample(sweep)
+        for name, values, (more, attrs) in zip(
+            ("q_nominal", "w_nominal"), nominal, (described["q"], described["w"]), strict=True
+        ):
+            attrs = {**attrs, "long_name": f"{attrs['long_name']} of the grid point's nominal "
+                     "run (the draws at their centres)"}  # fmt: skip
+            data[name] = (grid + more, values.reshape(points + values.shape[1:]), attrs)
+    scene = sweep.scene
+    meta = {"integrator": scene.data["integrator"]["method"], "step": scene.step,
+            "steps": scene.steps, "torques": [t.name for t in scene.torques()]}  # fmt: skip
+    attrs = provenance(meta, scene)
+    attrs.update(
+        Conventions="CF-1.10",
+        title=f"ga_rotors sweep of {scene.name}",
+        body_frame=BODY_FRAME,
+        sweep_format=FORMAT,
+        sweep_toml=sweep.text,
+        seed=-1 if sweep.seed is None else sweep.seed if sweep.seed < 2**63 else str(sweep.seed),
+        samples_per_grid_point=sweep.samples,
+        varied_keys=", ".join(sweep.keys),
+        **sweep.digests,
+    )
+    return xr.Dataset(data, coords=coords, attrs=attrs)
+
+
+#: Bytes of a chunk of the variables written when the store is made (the nominal runs).
+WHOLE_CHUNK_BYTES = 2**24
+
+
+def _encoding(sweep, ds) -> dict:
+    """No compression; chunks of the sweep's chunks for what each chunk writes, of at
+    most :data:`WHOLE_CHUNK_BYTES` for what is written when the store is made."""
+    from .spec import block_shape
+
+    chunks = dict(zip(sweep.dims, sweep.chunk_shape, strict=True)) | {"chunk": 1}
+    by_chunk = {*_per_sample(sweep), *(sweep.names[d.key] for d in sweep.draws), "chunk_done"}
+    out = {}
+    for name, v in ds.variables.items():
+        if name in by_chunk:
+            shape = tuple(chunks.get(d, n) for d, n in zip(v.dims, v.shape, strict=True))
+        else:
+            shape = block_shape(v.shape, max(1, WHOLE_CHUNK_BYTES // v.dtype.itemsize))
+        out[name] = {"compressors": None, "chunks": tuple(max(1, n) for n in shape)}
+    return out
+
+
+def create(sweep, path, nominal=None) -> None:
+    """Write the store ``path`` for ``sweep``: all of it, or nothing."""
     path = Path(path)
-    path.mkdir()
-    meta: dict = {".zgroup": {"zarr_format": _ZARR_FORMAT}, ".zattrs": dict(template.attrs)}
-    # xarray names a variable's non-index coordinates in its "coordinates" attribute
-    extra = [n for n in template.coords if n not in template.dims]
-    for name, var in template.variables.items():
-        dtype = var.dtype
-        shape = var.shape
-        chunk = [min(chunks.get(d, n), n) or 1 for d, n in zip(var.dims, shape, strict=True)]
-        if name not in empty:
-            chunk = [n or 1 for n in shape]  # written now, one chunk
-        attrs = dict(var.attrs)
-        if name in template.data_vars:
-            own = [c for c in extra if set(template[c].dims) <= set(var.dims)]
-            if own:
-                attrs["coordinates"] = " ".join(own)
-        attrs["_ARRAY_DIMENSIONS"] = list(var.dims)
-        meta[f"{name}/.zarray"] = {
-            "shape": list(shape),
-            "chunks": chunk,
-            "dtype": dtype.str,
-            "fill_value": _fill(dtype, var.encoding),
-            "order": "C",
-            "filters": None,
-            "dimension_separator": ".",
-            "compressor": None,
-            "zarr_format": _ZARR_FORMAT,
-        }
-        meta[f"{name}/.zattrs"] = attrs
-        (path / name).mkdir()
-        if name not in empty and var.size:
-            key = ".".join(["0"] * max(1, var.ndim))
-            _write(path / name / key, np.ascontiguousarray(var.values, dtype=dtype).tobytes())
-    # compact JSON: json's C encoder (with indent=, the pure-Python one: 1.5 of the
-    # 2.5 ms a store's creation took, holding the GIL while the sweep's threads integrate)
-    for key, value in meta.items():
-        _write(path / key, json.dumps(value, default=_json).encode())
-    consolidated = {"metadata": meta, "zarr_consolidated_format": 1}
-    _write(path / ".zmetadata", json.dumps(consolidated, default=_json).encode())
-
-
-def _layout(store, name: str):
-    """(chunk shape, dtype, fill, separator) of a variable stored as raw chunks, or None."""
+    ds = template(sweep, nominal)
     try:
-        meta = json.loads((Path(store) / name / ".zarray").read_text(encoding="utf-8"))
-    except (OSError, ValueError):
-        return None
-    raw = (
-        meta.get("zarr_format") == 2 and meta.get("compressor") is None
-        and not meta.get("filters") and meta.get("order") == "C"
-    )  # fmt: skip
-    if not raw:
-        return None
-    sep = meta.get("dimension_separator", ".")
-    return tuple(meta["chunks"]), np.dtype(meta["dtype"]), meta["fill_value"], sep
+        staging = Path(tempfile.mkdtemp(dir=path.parent, prefix=f".{path.name}.staging-"))
+    except OSError as exc:
+        raise write_error(path, exc, "creating it") from None
+    try:
+        ds.to_zarr(staging / "new", zarr_format=2, consolidated=True, encoding=_encoding(sweep, ds))
+        os.rename(staging / "new", path)
+    except OSError as exc:
+        raise write_error(path, exc, "creating it") from None
+    finally:
+        shutil.rmtree(staging, ignore_errors=True)
 
 
-def write_chunk(
-    store, name: str, block: np.ndarray, c: int, layouts: dict | None = None, first=None
-) -> None:
-    """Write ``block`` as chunk ``c`` along the first dimension of variable ``name``; or,
-    given ``first``, as the part of that chunk from its row ``first`` on (a piece: the
-    chunk's other rows are left as they are, for the other pieces to write).
+def write_error(store, exc: OSError, what: str) -> InputError:
+    # One line naming the store. An InputError pickles as its message, so a Dask
+    # worker's reaches the command as it is.
+    return InputError(f"cannot write {store} ({what}): {exc.strerror or exc}", key="--out")
 
-    Raw bytes straight into the chunk's file (nothing to encode; zarr's own write path
-    cost about a quarter of a 10⁶-sample sweep's time); zarr's write when the variable's
-    layout is not the raw one. ``layouts``, a dict the caller keeps for this store (and
-    drops if the store is made again), remembers each variable's layout after its first
-    chunk: reading and parsing six metadata files a chunk was 3-4 ms of CPU per 10⁶
-    samples.
 
-    Examples
-    --------
-    >>> import tempfile, pathlib, xarray as xr
-    >>> ds = xr.Dataset({"a": (("s", "k"), np.broadcast_to(np.nan, (3, 2)))})
-    >>> out = pathlib.Path(tempfile.mkdtemp()) / "x.zarr"
-    >>> create(out, ds, {"s": 2}, {"a"})
-    >>> write_chunk(out, "a", np.array([[5.0, 6.0]]), 1)  # the edge chunk: one row of two
-    >>> xr.open_zarr(out)["a"].values.tolist()
-    [[nan, nan], [nan, nan], [5.0, 6.0]]
-    >>> write_chunk(out, "a", np.array([[3.0, 4.0]]), 0, first=1)  # chunk 0 in two pieces
-    >>> write_chunk(out, "a", np.array([[1.0, 2.0]]), 0, first=0)
-    >>> xr.open_zarr(out)["a"].values.tolist()
-    [[1.0, 2.0], [3.0, 4.0], [5.0, 6.0]]
-    """
-    if layouts is None:
-        layout = _layout(store, name)
-    else:
-        if name not in layouts:
-            layouts[name] = _layout(store, name)
-        layout = layouts[name]
-    if layout is None:
-        zarr = require("zarr", "results")
-        array = zarr.open_group(store, mode="r+", zarr_format=2)[name]
-        lo = c * array.chunks[0] + (first or 0)
-        with _ZARR_WRITES:  # zarr reads, changes and rewrites a chunk a piece is part of
-            array[lo : lo + block.shape[0]] = block
-        return
-    chunks, dtype, _, sep = layout
-    data = np.ascontiguousarray(block, dtype=dtype)
-    start = first or 0
-    if data.shape[1:] != chunks[1:] or start + data.shape[0] > chunks[0]:
-        raise ValueError(f"{name}: block of shape {data.shape} for chunks of {chunks}")
-    path = Path(store, name, sep.join([str(c)] + ["0"] * (len(chunks) - 1)))
-    size = math.prod(chunks) * dtype.itemsize
-    if first is None:
-        write_direct(path, data)
-    else:  # its own bytes of the file: a piece's first row is a page boundary where it can be
-        write_direct(path, data, at=start * (size // chunks[0]))
-    if start + data.shape[0] < chunks[0]:
-        # The edge chunk is stored at the full chunk shape, but what lies past the array's
-        # end is never read: the file is extended to that size (a hole, nothing written)
-        # rather than padded with the fill value (a 10⁶-sample sweep's last chunk, a
-        # quarter full, wrote 5 MB for 1.3 MB of samples, at the very end of the sweep).
-        # A piece extends it too (a file only grows to it, whichever piece comes first).
-        os.truncate(path, size)
+def group(path, mode: str = "r+"):
+    """The store's zarr group, for writing chunks (or reading its flags)."""
+    zarr = require("zarr", "results")
+    return zarr.open_group(str(path), mode=mode, zarr_format=2, use_consolidated=True)
+
+
+def write_chunk(root, sweep, c: int, outputs: dict, path) -> None:
+    """Write chunk ``c``'s ``outputs`` (name -> array, the chunk's samples first, flat)
+    into its region of each variable of the group ``root`` (the store ``path``), then its
+    flag."""
+    lo, hi, region = sweep.chunk_region(c)
+    extents = tuple(s.stop - s.start for s in region.values())
+    where = tuple(region.values())
+    try:
+        for name, a in outputs.items():
+            root[name][where] = a.reshape(extents + a.shape[1:])
+        root["chunk_done"][c] = 1
+    except OSError as exc:  # a full disk, a store removed under the sweep...
+        raise write_error(path, exc, f"chunk {c}") from None
+
+
+def done(root) -> np.ndarray:
+    """Which chunks of the store are written (its flags, unwritten ones 0)."""
+    return root["chunk_done"][:] == 1
+
+
+def open_store(path):
+    """The store at ``path`` as a lazy Dataset, checked to be a sweep store."""
+    xr = require("xarray", "results")
+    try:
+        ds = xr.open_zarr(path, consolidated=True)
+    except (OSError, ValueError, KeyError) as exc:
+        raise InputError(f"{path}: not a sweep store ({first_line(exc)})") from None
+    lacking = [v for v in ("chunk_done", "q", "w") if v not in ds]
+    lacking += [a for a in ("sweep_format", "scene_digest", "sweep_digest") if a not in ds.attrs]
+    if lacking:
+        raise InputError(f"{path}: not a sweep store (no {', '.join(lacking)})")
+    return ds
