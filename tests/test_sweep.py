@@ -32,9 +32,9 @@ from ga_rotors.sweep import (  # noqa: E402
     load_sweep,
     open_sweep,
     run_sweep,
+    spec,
     summary,
 )
-from ga_rotors.sweep import spec  # noqa: E402
 
 SWEEP = """
 [sweep]
@@ -80,8 +80,10 @@ def _oracle_draws(seed: int, lo: int, hi: int, draws) -> dict:
 
 def test_the_draws_are_numpys_generator_and_scipys_ndtri_whatever_the_chunking():
     sweep = load_sweep(SWEEP.replace("samples = 5", f"samples = {BLOCK + 300}"))
-    draws = [("initial.angular_velocity.body[0]", "normal", (0.0, 0.1)),
-             ("body.mass", "uniform", (0.25, 0.35))]  # fmt: skip
+    draws = [
+        ("initial.angular_velocity.body[0]", "normal", (0.0, 0.1)),
+        ("body.mass", "uniform", (0.25, 0.35)),
+    ]
     lo, hi = BLOCK - 200, BLOCK + 100  # across a block's end
     expected = _oracle_draws(42, lo, hi, draws)
     for cuts in ([lo, hi], [lo, lo + 1, BLOCK, BLOCK + 7, hi]):
@@ -126,7 +128,9 @@ def test_chunks_are_rectangles_of_consecutive_samples_covering_each_once(shape, 
     flat = np.arange(math.prod(shape)).reshape(shape)
     for c in range(math.prod(counts)):
         at = np.unravel_index(c, counts)
-        region = tuple(slice(i * b, min((i + 1) * b, n)) for i, b, n in zip(at, block, shape, strict=True))
+        region = tuple(
+            slice(i * b, min((i + 1) * b, n)) for i, b, n in zip(at, block, shape, strict=True)
+        )
         seen[region] += 1
         covered = flat[region].ravel()
         assert np.array_equal(covered, np.arange(covered[0], covered[0] + covered.size))
@@ -186,7 +190,9 @@ def test_the_store_holds_what_the_ensemble_computes_for_those_values(reference):
     q = reference["q"].values
     q = q / np.linalg.norm(q, axis=-1, keepdims=True)
     expected = Q.distance(q, reference["q_nominal"].values[:, None])
-    np.testing.assert_allclose(reference["angle_from_nominal"].values, expected, rtol=4e-15, atol=1e-17)
+    np.testing.assert_allclose(
+        reference["angle_from_nominal"].values, expected, rtol=4e-15, atol=1e-17
+    )
     assert np.all(reference["angle_from_nominal"].values[..., 1] > 0)
 
 
@@ -216,8 +222,9 @@ def test_threads_and_clusters_write_what_one_thread_writes(tmp_path, reference):
         distributed.Client(cluster) as client,
     ):
         seen = []
-        out = run_sweep(SWEEP, tmp_path / "c.zarr", client=client,
-                        progress=lambda d, n: seen.append((d, n)))  # fmt: skip
+        out = run_sweep(
+            SWEEP, tmp_path / "c.zarr", client=client, progress=lambda d, n: seen.append((d, n))
+        )
         xr.testing.assert_identical(open_sweep(out).load(), reference)
         assert seen[0] == (0, 4) and seen[-1] == (4, 4)
         # the command on this cluster's address leaves it running
@@ -337,11 +344,14 @@ def test_the_summary_is_each_grid_points_spread_from_its_own_nominal_run(referen
 
 def test_samples_that_blow_up_are_counted_as_failed_with_why(tmp_path, capsys):
     """Issue 30 item 7: a summary states how many samples failed and why, rather than
-    leaving them out of a count of samples. Past about 5,000 rad/s (one of the five draws here), RK4's 1 ms steps
-    overflow within 0.1 s on this body; below it the state stays finite, its norm drifting
-    (the angle does not depend on it). The second grid point's nominal run overflows."""
-    text = SWEEP.replace('"initial.angular_velocity.body[1]" = [9.0, 10.0]',
-                         '"initial.angular_velocity.body[1]" = [10.0, 900000.0]')  # fmt: skip
+    leaving them out of a count of samples. Past about 5,000 rad/s (one of the five draws
+    here), RK4's 1 ms steps overflow within 0.1 s on this body; below it the state stays
+    finite, its norm drifting (the angle does not depend on it). The second grid point's
+    nominal run overflows."""
+    text = SWEEP.replace(
+        '"initial.angular_velocity.body[1]" = [9.0, 10.0]',
+        '"initial.angular_velocity.body[1]" = [10.0, 900000.0]',
+    )
     text = text.replace("normal = [0.0, 0.1]", "normal = [0.0, 2000.0]")
     text = text.replace('"time.duration" = 0.02', '"time.duration" = 0.1')
     text = text.replace("times = [0.01, 0.02]", "times = [0.05, 0.1]")
@@ -360,7 +370,10 @@ def test_samples_that_blow_up_are_counted_as_failed_with_why(tmp_path, capsys):
     finite = np.isfinite(q).all(axis=-1)
     assert np.array_equal(np.isnan(angle[0]), ~finite[0])
     assert abs(np.linalg.norm(q[0][finite[0]], axis=-1) - 1).max() > 1e-9  # drifted, still angled
-    assert np.isfinite(s["angle_median"].values[0]).all() and np.isnan(s["angle_median"].values[1]).all()
+    assert (
+        np.isfinite(s["angle_median"].values[0]).all()
+        and np.isnan(s["angle_median"].values[1]).all()
+    )
     assert f"{failed[0, -1]} of 5: its state stopped being finite" in printed
     assert "the grid point's nominal run stopped being finite" in printed
 
@@ -418,7 +431,9 @@ def test_the_command_runs_resumes_and_prints_each_grid_points_spread(tmp_path, c
 
 def test_a_sweep_without_draws_has_no_sample_dimension(tmp_path):
     text = '[sweep]\nscene = "intermediate_axis_flip"\n[set]\n"time.duration" = 0.01\n'
-    text += '[grid]\n"body.mass" = [0.3, 0.4, 0.5]\n"initial.angular_velocity.body[1]" = [9.0, 10.0]\n'
+    text += (
+        '[grid]\n"body.mass" = [0.3, 0.4, 0.5]\n"initial.angular_velocity.body[1]" = [9.0, 10.0]\n'
+    )
     ds = open_sweep(run_sweep(text, tmp_path / "g.zarr", workers=2))
     assert ds["q"].dims == ("body_mass", GRID, "time", "quaternion_component")
     assert "angle_from_nominal" not in ds and "q_nominal" not in ds

@@ -28,45 +28,67 @@ DEFAULT_OUT = "results"
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("sweep", metavar="SWEEP", help="a sweep file (.toml)")
     parser.add_argument(
-        "--out", metavar="STORE", default=None,
+        "--out",
+        metavar="STORE",
+        default=None,
         help=f"the zarr store to write or resume (default: ./{DEFAULT_OUT}/<sweep name>.zarr)",
-    )  # fmt: skip
+    )
     where = parser.add_mutually_exclusive_group()
     where.add_argument(
-        "--scheduler", metavar="ADDRESS", default=None,
+        "--scheduler",
+        metavar="ADDRESS",
+        default=None,
         help="an existing Dask cluster's scheduler (tcp://host:8786), given 10 s to answer; "
         "default: threads on this machine",
-    )  # fmt: skip
+    )
     where.add_argument(
-        "--workers", metavar="N", type=int, default=None,
+        "--workers",
+        metavar="N",
+        type=int,
+        default=None,
         help="threads on this machine (default: one per core)",
-    )  # fmt: skip
+    )
     where.add_argument(
-        "--here", action="store_true",
+        "--here",
+        action="store_true",
         help="run the chunks one after the other in this thread",
-    )  # fmt: skip
+    )
     parser.add_argument(
-        "--max-steps", metavar="N", type=float, default=None,
-        help="refuse a sweep needing more integration steps, summed over samples "
-        "(default 1e12)",
-    )  # fmt: skip
+        "--max-steps",
+        metavar="N",
+        type=float,
+        default=None,
+        help="refuse a sweep needing more integration steps, summed over samples (default 1e12)",
+    )
     parser.add_argument(
-        "--max-memory", metavar="GIB", type=float, default=None,
+        "--max-memory",
+        metavar="GIB",
+        type=float,
+        default=None,
         help="refuse a sweep needing more memory (default 2 GiB)",
-    )  # fmt: skip
+    )
     parser.add_argument(
-        "--max-disk", metavar="GIB", type=float, default=None,
+        "--max-disk",
+        metavar="GIB",
+        type=float,
+        default=None,
         help="refuse a sweep whose store needs more disk (default 20 GiB)",
-    )  # fmt: skip
+    )
     parser.add_argument(
-        "--max-files", metavar="N", type=float, default=None,
+        "--max-files",
+        metavar="N",
+        type=float,
+        default=None,
         help="refuse a sweep whose store needs more files (default 1e5)",
-    )  # fmt: skip
+    )
     bar = parser.add_mutually_exclusive_group()
     bar.add_argument(
-        "--progress", dest="progress", action="store_true", default=None,
+        "--progress",
+        dest="progress",
+        action="store_true",
+        default=None,
         help="always show progress (default: only on a terminal)",
-    )  # fmt: skip
+    )
     bar.add_argument(
         "--no-progress", dest="progress", action="store_false", help="never show progress"
     )
@@ -86,8 +108,12 @@ def run(args: argparse.Namespace) -> int:
     if not files > 0:  # NaN too
         raise InputError(f"expected a positive number, got {args.max_files!r}", key="--max-files")
     limits = budget_from_args(args, DEFAULT)
-    budget = SweepBudget(max_steps=limits.max_steps, max_memory_gib=limits.max_memory_gib,
-                         max_disk_gib=limits.max_disk_gib, max_files=files)  # fmt: skip
+    budget = SweepBudget(
+        max_steps=limits.max_steps,
+        max_memory_gib=limits.max_memory_gib,
+        max_disk_gib=limits.max_disk_gib,
+        max_files=files,
+    )
     if args.workers is not None and args.workers < 1:
         raise InputError(f"--workers: expected a positive number, got {args.workers}")
     if args.out is None:
@@ -98,9 +124,14 @@ def run(args: argparse.Namespace) -> int:
     bar = ProgressBar(sys.stderr, args.progress, delay=0.0)
     try:
         store = run_sweep(
-            Path(args.sweep), out, client="sync" if args.here else None,
-            scheduler=args.scheduler, workers=args.workers, progress=bar, budget=budget,
-        )  # fmt: skip
+            Path(args.sweep),
+            out,
+            client="sync" if args.here else None,
+            scheduler=args.scheduler,
+            workers=args.workers,
+            progress=bar,
+            budget=budget,
+        )
     finally:
         bar.close()
     print("\n".join(lines(summary(open_sweep(store)))))

@@ -111,6 +111,7 @@ def _depth(data) -> int:
                 todo.extend((v, depth + 1) for v in items if isinstance(v, dict | list))
     return deepest
 
+
 _BARE = re.compile(r"^[A-Za-z0-9_-]+$")
 
 

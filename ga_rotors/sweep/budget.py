@@ -78,6 +78,14 @@ def _stored(sweep) -> list[int]:
     return [4 * k, 3 * k] + ([k] + [1] * len(sweep.draws) if sweep.draws else [])
 
 
+def _fixed_files(sweep, chunked: int) -> int:
+    """Files of a store beside its chunks': the group's three, two of metadata a
+    variable, one of data for each variable written whole (time, the component labels,
+    the grid's values, the nominal runs)."""
+    whole = 3 + len(sweep.grid) + (2 if sweep.draws else 0)
+    return 3 + 2 * (chunked + whole) + whole
+
+
 def estimate(sweep, threads: int | None = None) -> SweepEstimate:
     """The steps, memory, disk and files ``sweep`` will take on ``threads`` threads
     (default: one per core), each integrating a chunk at a time.
@@ -95,7 +103,7 @@ def estimate(sweep, threads: int | None = None) -> SweepEstimate:
     ... normal = [2.0, 0.02]
     ... ''')
     >>> print(estimate(s, threads=2))
-    3e+10 steps, 1e+06 samples: about 74 MiB of memory, 72.7 MiB of files in 16 chunks (97 files)
+    3e+10 steps, 1e+06 samples: about 90.9 MiB of memory, 72.1 MiB of files in 16 chunks (108 files)
     """
     threads = threads or os.cpu_count() or 1
     values, k = _stored(sweep), sweep.times.size
@@ -110,7 +118,7 @@ def estimate(sweep, threads: int | None = None) -> SweepEstimate:
         bytes=min(threads, sweep.chunks) * chunk * per_sample + points * 8 * 7 * k * 3 + summary,
         disk=sweep.chunks * per_chunk + points * 8 * 7 * k,
         chunks=sweep.chunks,
-        files=sweep.chunks * (len(values) + 1) + 2 * (len(values) + len(sweep.grid) + 6),
+        files=sweep.chunks * (len(values) + 1) + _fixed_files(sweep, len(values) + 1),
     )
 
 
@@ -139,18 +147,23 @@ def check(sweep, budget: Budget = DEFAULT, threads: int | None = None) -> SweepE
         over.append(f"{e.steps:.3g} integration steps (budget {budget.max_steps:.3g})")
         raise_with.append("--max-steps N")
     if e.disk / 2**30 > budget.max_disk_gib:
-        over.append(f"about {e.disk / 2**30:.3g} GiB of files (budget {budget.max_disk_gib:g} "
-                    f"GiB; each chunk's file takes at least {BLOCK_BYTES // 1024} KiB)")  # fmt: skip
+        over.append(
+            f"about {e.disk / 2**30:.3g} GiB of files (budget {budget.max_disk_gib:g} "
+            f"GiB; each chunk's file takes at least {BLOCK_BYTES // 1024} KiB)"
+        )
         raise_with.append("--max-disk GIB")
     if over:
-        raise r.error("sweep.samples", f"{e.samples:.3g} samples need {' and '.join(over)}; "
-                      f"to run it anyway raise the budget: ga-rotors sweep {' '.join(raise_with)}")  # fmt: skip
+        raise r.error(
+            "sweep.samples",
+            f"{e.samples:.3g} samples need {' and '.join(over)}; "
+            f"to run it anyway raise the budget: ga-rotors sweep {' '.join(raise_with)}",
+        )
     max_files = getattr(budget, "max_files", DEFAULT.max_files)
     if e.files > max_files:
         raise r.error(
             "sweep.chunk",
             f"{e.samples:.3g} samples in chunks of {sweep.chunk:,} make {e.chunks:,} chunks "
-            f"and {e.files:,} files (budget {max_files:,} files); choose a larger chunk "
+            f"and {e.files:,} files (budget {max_files:,.0f} files); choose a larger chunk "
             f"({DEFAULT_CHUNK} is the default), or raise the budget: ga-rotors sweep --max-files N",
         )
     if e.bytes / 2**30 > budget.max_memory_gib:
@@ -161,4 +174,3 @@ def check(sweep, budget: Budget = DEFAULT, threads: int | None = None) -> SweepE
             "choose a smaller chunk, or raise the budget: ga-rotors sweep --max-memory GIB",
         )
     return e
-

@@ -151,12 +151,13 @@ def run_chunk(remote: _Remote, c: int) -> int:
     if key not in _REBUILT:
         from ..scene import Scene
 
-        scene = Scene.from_toml(remote.scene_toml, file=remote.scene_file,
-                                base_dir=remote.base_dir)  # fmt: skip
+        scene = Scene.from_toml(remote.scene_toml, file=remote.scene_file, base_dir=remote.base_dir)
         sweep = read_sweep(remote.text, remote.file, scene=scene)
         if tuple(sweep.digests.items()) != remote.digests:
-            raise InputError(f"{remote.file}: a worker rebuilt another sweep than the one it "
-                             f"was sent ({sweep.digests} against {dict(remote.digests)})")  # fmt: skip
+            raise InputError(
+                f"{remote.file}: a worker rebuilt another sweep than the one it "
+                f"was sent ({sweep.digests} against {dict(remote.digests)})"
+            )
         _REBUILT.clear()  # one sweep at a time per process
         _REBUILT[key] = _Job(sweep, Path(remote.store), zstore.group(remote.store), None)
     return _run_chunk(_REBUILT[key], c)
@@ -191,10 +192,14 @@ def _on_cluster(client, job: _Job, todo: list[int], store: Path, done) -> None:
     distributed = require("distributed", "dask")
     sweep = job.sweep
     remote = _Remote(
-        sweep.text, sweep.file, sweep.scene.to_toml(), sweep.scene.file,
+        sweep.text,
+        sweep.file,
+        sweep.scene.to_toml(),
+        sweep.scene.file,
         None if sweep.scene.base_dir is None else str(sweep.scene.base_dir),
-        str(store.resolve()), tuple(sweep.digests.items()),
-    )  # fmt: skip
+        str(store.resolve()),
+        tuple(sweep.digests.items()),
+    )
     futures = client.map(run_chunk, [remote] * len(todo), todo, pure=False)
     try:
         for _ in distributed.as_completed(futures, with_results=True):
@@ -226,9 +231,11 @@ def _on_threads(job: _Job, todo: list[int], threads: int, done) -> None:
         # store from its start (only a preference: any order writes the same store)
         keys = list(reversed(graph))
         threaded.get(
-            dict(zip(keys, (graph[k] for k in keys), strict=True)), keys, pool=pool,
+            dict(zip(keys, (graph[k] for k in keys), strict=True)),
+            keys,
+            pool=pool,
             callbacks=[(None, None, None, lambda *_: done(), None)],
-        )  # fmt: skip
+        )
     finally:
         pool.shutdown(wait=True, cancel_futures=True)
 
@@ -295,25 +302,33 @@ def _resumable(store: Path, ds, sweep: Sweep, finished: bool) -> None:
     """Refuse to resume a store begun with another scene, sweep or versions."""
     stop = "choose another store or delete it"
     if ds.attrs["sweep_format"] != zstore.FORMAT:
-        raise InputError(f"{store} is a sweep store of another layout (format "
-                         f"{ds.attrs['sweep_format']}, this ga_rotors writes {zstore.FORMAT}); "
-                         f"{stop}", key="--out")  # fmt: skip
+        raise InputError(
+            f"{store} is a sweep store of another layout (format "
+            f"{ds.attrs['sweep_format']}, this ga_rotors writes {zstore.FORMAT}); "
+            f"{stop}",
+            key="--out",
+        )
     mine = sweep.digests
     if ds.attrs["sweep_digest"] != mine["sweep_digest"]:
-        raise InputError(f"{store} holds another sweep (its grid, draws, samples, seed, chunk "
-                         f"or times differ from this file's); {stop}", key="--out")  # fmt: skip
+        raise InputError(
+            f"{store} holds another sweep (its grid, draws, samples, seed, chunk "
+            f"or times differ from this file's); {stop}",
+            key="--out",
+        )
     if ds.attrs["scene_digest"] != mine["scene_digest"]:
         raise InputError(
             f"{store} was begun with another scene (the scene this sweep resolves to, its "
             "file, bundled scene or [set], has changed since); its unwritten chunks would "
-            f"not match its written ones: restore the scene, or {stop}", key="--out",
-        )  # fmt: skip
+            f"not match its written ones: restore the scene, or {stop}",
+            key="--out",
+        )
     if ds.attrs.get("made_with") != mine["made_with"] and not finished:
         raise InputError(
             f"{store} was begun with {ds.attrs.get('made_with')}; this is {mine['made_with']}: "
             f"its unwritten chunks would not match its written ones; finish it with those "
-            f"versions, or {stop}", key="--out",
-        )  # fmt: skip
+            f"versions, or {stop}",
+            key="--out",
+        )
 
 
 def run_sweep(
@@ -438,4 +453,3 @@ def open_sweep(store):
             "run the sweep again to finish it"
         )
     return ds
-

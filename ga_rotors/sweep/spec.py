@@ -51,7 +51,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..errors import InputError, SceneError
+from ..errors import ECHO_LIMIT, InputError, SceneError
 from ..scene.reader import Reader, join
 
 __all__ = [
@@ -233,7 +233,8 @@ class Sweep:
         Examples
         --------
         >>> s = load_sweep('[sweep]\\nscene = "heavy_top"\\nchunk = 4\\n[grid]\\n'
-        ...                '"body.mass" = [1.0, 2.0, 3.0]\\n"body.moments[0]" = [1.0, 2.0]')
+        ...                '"body.mass" = [1.0, 2.0, 3.0]\\n'
+        ...                '"effects[0].pivot_to_com[2]" = [0.03, 0.04]')
         >>> s.shape, s.chunk_shape, s.chunks
         ((3, 2), (2, 2), 2)
         """
@@ -317,11 +318,13 @@ class Sweep:
         inputs: the resolved scene (``[set]`` applied), the sweep's settings, and the
         versions that make its numbers."""
         settings = {
-            "samples": self.samples, "seed": self.seed, "chunk": self.chunk,
+            "samples": self.samples,
+            "seed": self.seed,
+            "chunk": self.chunk,
             "times": self.times.tolist(),
             "grid": [[key, v.tolist()] for key, v in self.grid],
             "draws": [[d.key, d.distribution, d.a, d.b] for d in self.draws],
-        }  # fmt: skip
+        }
         return {
             "scene_digest": _sha(self.scene.to_toml()),
             "sweep_digest": _sha(json.dumps(settings, sort_keys=True)),
@@ -380,13 +383,15 @@ def read_sweep(text: str, file: str = "<string>", base=".", scene=None) -> Sweep
 
     Examples
     --------
-    >>> read_sweep('[sweep]\nscene = "heavy_top"\n[grid]\n"body.mass" = [1, 2]').shape
+    >>> read_sweep('[sweep]\\nscene = "heavy_top"\\n[grid]\\n"body.mass" = [1, 2]').shape
     (2,)
     """
     from ..scene.toml_io import parse_toml
 
     r = Reader(file)
-    top = r.table(parse_toml(text, file), "", ("sweep", "set", "grid", "draw"), ("sweep",))
+    data = parse_toml(text, file)
+    _printable(r, data)
+    top = r.table(data, "", ("sweep", "set", "grid", "draw"), ("sweep",))
     sw = r.table(top["sweep"], "sweep", ("scene", "samples", "seed", "chunk", "times"), ("scene",))
     if scene is None:
         scene = _scene(r, sw, top.get("set", {}), Path(base))
@@ -399,18 +404,37 @@ def read_sweep(text: str, file: str = "<string>", base=".", scene=None) -> Sweep
     names = [coordinate_name(k) for k in keys]
     if len(set(names)) != len(names):
         twice = next(k for k, n in zip(keys, names, strict=True) if names.count(n) > 1)
-        raise r.error("draw" if draws else "grid", f"{twice!r} is varied twice (or two keys "
-                      "differ only in punctuation)")  # fmt: skip
+        raise r.error(
+            "draw" if draws else "grid",
+            f"{twice!r} is varied twice (or two keys differ only in punctuation)",
+        )
     if not keys:
         raise r.error("grid", "nothing varies; give [grid] values or [[draw]] tables")
+    # the scene checks every key once now (an unknown key, a number where it wants a
+    # vector), rather than the first chunk after the store is made
+    probe = {k: float(v[0]) for k, v in grid} | {d.key: d.centre for d in draws}
+    try:
+        scene.replace(probe)
+    except InputError as exc:
+        shown = ", ".join(f"{k} = {v!r}" for k, v in probe.items())
+        raise SceneError(
+            r.file,
+            "",
+            f"the scene refuses the first grid point ({shown}): {exc.key}: {exc.detail}"
+            if exc.key
+            else str(exc),
+        ) from None
     # checked even when unused: a typo'd seed should not pass silently
     seed = _count(r, sw["seed"], "sweep.seed", low=0, high=MAX_SEED) if "seed" in sw else None
     if draws and seed is None:
         raise r.error("sweep.seed", "missing; random draws need a seed")
     samples = _count(r, sw.get("samples", 1), "sweep.samples")
     if samples > 1 and not draws:
-        raise r.error("sweep.samples", f"{samples} samples of each grid point without [[draw]] "
-                      "tables would all be the same run; add a [[draw]] or leave samples out")  # fmt: skip
+        raise r.error(
+            "sweep.samples",
+            f"{samples} samples of each grid point without [[draw]] "
+            "tables would all be the same run; add a [[draw]] or leave samples out",
+        )
     chunk = _count(r, sw.get("chunk", DEFAULT_CHUNK), "sweep.chunk")
     times = _times(r, scene, sw["times"]) if "times" in sw else None
     if times is None:
@@ -437,13 +461,37 @@ def _scene(r: Reader, sw: dict, changes, base: Path):
     return scene
 
 
+def _printable(r: Reader, data) -> None:
+    """Refuse control characters in the keys and strings of a sweep file: none has a use
+    for them, and echoed in an error they would reach the user's terminal raw."""
+    todo = [data]
+    while todo:
+        value = todo.pop()
+        items = value.items() if isinstance(value, dict) else enumerate(value)
+        for key, item in items:
+            for text in (key, item):
+                if isinstance(text, str) and not text.isprintable():
+                    shown = repr(text)[: 2 * ECHO_LIMIT]
+                    raise r.error(
+                        "",
+                        f"control characters in a key or string ({shown}); a "
+                        "sweep file has no use for them",
+                    )
+            if isinstance(item, dict | list):
+                todo.append(item)
+
+
 def _any_keys(table) -> list:
     return list(table) if isinstance(table, dict) else []
 
 
 def _count(r: Reader, value, key: str, low: int = 1, high: int | None = None) -> int:
-    if (isinstance(value, bool) or not isinstance(value, int) or value < low
-            or (high is not None and value > high)):  # fmt: skip
+    if (
+        isinstance(value, bool)
+        or not isinstance(value, int)
+        or value < low
+        or (high is not None and value > high)
+    ):
         shown = repr(value) if not isinstance(value, int) or abs(value) < 10**30 else "a larger one"
         upper = f" and ≤ {high:.3g}" if high is not None else ""
         raise r.error(key, f"expected an integer ≥ {low}{upper}, got {shown}")
@@ -453,8 +501,11 @@ def _count(r: Reader, value, key: str, low: int = 1, high: int | None = None) ->
 def _number(r: Reader, value, key: str) -> float:
     """A finite number; an integer too large for a float is refused by name."""
     if isinstance(value, int) and not isinstance(value, bool) and abs(value) > sys.float_info.max:
-        raise r.error(key, f"expected a finite number, got an integer of {len(str(abs(value)))} "
-                      "digits, beyond float64")  # fmt: skip
+        raise r.error(
+            key,
+            f"expected a finite number, got an integer of {len(str(abs(value)))} "
+            "digits, beyond float64",
+        )
     return r.number(value, key)
 
 
@@ -476,8 +527,11 @@ def _varying(r: Reader, scene, key: str, where: str) -> None:
             return  # not in the resolved scene: the scene's own check names it
     if isinstance(node, list | dict):
         size = f"{len(node)} numbers" if isinstance(node, list) else "a table"
-        raise r.error(where, f"{key!r} is {size}; vary one number at a time: its components "
-                      f"{key}[0], {key}[1], ... each as a key of its own")  # fmt: skip
+        raise r.error(
+            where,
+            f"{key!r} is {size}; vary one number at a time: its components "
+            f"{key}[0], {key}[1], ... each as a key of its own",
+        )
 
 
 def _grid_values(r: Reader, scene, key: str, values) -> np.ndarray:
@@ -498,8 +552,9 @@ def _draw(r: Reader, scene, i: int, d) -> Draw:
     pair = r.array(d[dist], join(where, dist))
     if len(pair) != 2:
         what = " and ".join(DISTRIBUTIONS[dist])
-        raise r.error(join(where, dist), f"expected an array of 2 numbers ({what}), got "
-                      f"{len(pair)} items")  # fmt: skip
+        raise r.error(
+            join(where, dist), f"expected an array of 2 numbers ({what}), got {len(pair)} items"
+        )
     a, b = (_number(r, v, join(join(where, dist), j)) for j, v in enumerate(pair))
     if dist == "normal" and b < 0:
         raise r.error(join(where, dist), f"expected std ≥ 0, got {b:g}")
@@ -520,7 +575,7 @@ def _times(r: Reader, scene, value) -> np.ndarray:
     times = np.array([_number(r, v, join("sweep.times", i)) for i, v in enumerate(items)])
     t, h = scene.data["time"], scene.step
     last = -math.inf
-    for i, ti in enumerate(times):
+    for i, ti in enumerate(times.tolist()):
         key = join("sweep.times", i)
         span = f"from {t['start']!r} s to {t['start'] + t['duration']!r} s"
         if not t["start"] < ti <= t["start"] + t["duration"] * (1 + 1e-12):
@@ -528,8 +583,11 @@ def _times(r: Reader, scene, value) -> np.ndarray:
         try:
             whole_steps(ti - t["start"], h)
         except InputError:
-            raise r.error(key, f"{ti!r} s is not a whole number of steps ({h!r} s) after the "
-                          f"start ({t['start']!r} s)") from None  # fmt: skip
+            raise r.error(
+                key,
+                f"{ti!r} s is not a whole number of steps ({h!r} s) after the "
+                f"start ({t['start']!r} s)",
+            ) from None
         if ti <= last:
             raise r.error(key, f"expected increasing times, got {ti!r} s after {last!r} s")
         last = ti

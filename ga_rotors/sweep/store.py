@@ -43,15 +43,20 @@ _COMPONENTS = {"quaternion_component": ["w", "x", "y", "z"], "body_axis": ["1", 
 def _per_sample(sweep) -> dict:
     """name -> (dims after the samples', attributes) of the variables every chunk writes."""
     out = {
-        "q": (("time", "quaternion_component"), {
-            "units": "1", "long_name": "orientation quaternion (w, x, y, z), body to space"}),
-        "w": (("time", "body_axis"), {
-            "units": "rad/s", "long_name": "body angular velocity"}),
-    }  # fmt: skip
+        "q": (
+            ("time", "quaternion_component"),
+            {"units": "1", "long_name": "orientation quaternion (w, x, y, z), body to space"},
+        ),
+        "w": (("time", "body_axis"), {"units": "rad/s", "long_name": "body angular velocity"}),
+    }
     if sweep.draws:
-        out["angle_from_nominal"] = (("time",), {
-            "units": "rad", "long_name": "geodesic angle from the grid point's nominal "
-            "orientation (q_nominal)"})  # fmt: skip
+        out["angle_from_nominal"] = (
+            ("time",),
+            {
+                "units": "rad",
+                "long_name": "geodesic angle from the grid point's nominal orientation (q_nominal)",
+            },
+        )
     return out
 
 
@@ -70,19 +75,32 @@ def template(sweep, nominal=None):
         return np.broadcast_to(np.nan, shape + extra)
 
     data = {
-        name: (dims + more, empty(*(k if d == "time" else len(_COMPONENTS[d]) for d in more)), attrs)
+        name: (
+            dims + more,
+            empty(*(k if d == "time" else len(_COMPONENTS[d]) for d in more)),
+            attrs,
+        )
         for name, (more, attrs) in _per_sample(sweep).items()
     }
-    data["chunk_done"] = (("chunk",), np.zeros(sweep.chunks, dtype=np.int8), {
-        "long_name": "1 once the chunk's samples are written", "units": "1"})  # fmt: skip
+    data["chunk_done"] = (
+        ("chunk",),
+        np.zeros(sweep.chunks, dtype=np.int8),
+        {"long_name": "1 once the chunk's samples are written", "units": "1"},
+    )
     coords = {"time": ("time", sweep.times, _TIME), **_COMPONENTS}
     for key, values in sweep.grid:
         name = sweep.names[key]
         coords[name] = (name, values, {"scene_key": key, "long_name": f"scene key {key}"})
     for d in sweep.draws:
-        coords[sweep.names[d.key]] = (dims, empty(), {
-            "scene_key": d.key, "long_name": f"scene key {d.key}, drawn",
-            "distribution": f"{d.distribution} {d.a!r} {d.b!r}"})  # fmt: skip
+        coords[sweep.names[d.key]] = (
+            dims,
+            empty(),
+            {
+                "scene_key": d.key,
+                "long_name": f"scene key {d.key}, drawn",
+                "distribution": f"{d.distribution} {d.a!r} {d.b!r}",
+            },
+        )
     if nominal is not None:
         grid = dims[:-1]
         points = tuple(len(v) for _, v in sweep.grid)
@@ -90,12 +108,19 @@ def template(sweep, nominal=None):
         for name, values, (more, attrs) in zip(
             ("q_nominal", "w_nominal"), nominal, (described["q"], described["w"]), strict=True
         ):
-            attrs = {**attrs, "long_name": f"{attrs['long_name']} of the grid point's nominal "
-                     "run (the draws at their centres)"}  # fmt: skip
+            attrs = {
+                **attrs,
+                "long_name": f"{attrs['long_name']} of the grid point's nominal "
+                "run (the draws at their centres)",
+            }
             data[name] = (grid + more, values.reshape(points + values.shape[1:]), attrs)
     scene = sweep.scene
-    meta = {"integrator": scene.data["integrator"]["method"], "step": scene.step,
-            "steps": scene.steps, "torques": [t.name for t in scene.torques()]}  # fmt: skip
+    meta = {
+        "integrator": scene.data["integrator"]["method"],
+        "step": scene.step,
+        "steps": scene.steps,
+        "torques": [t.name for t in scene.torques()],
+    }
     attrs = provenance(meta, scene)
     attrs.update(
         Conventions="CF-1.10",
@@ -165,7 +190,7 @@ def write_chunk(root, sweep, c: int, outputs: dict, path) -> None:
     """Write chunk ``c``'s ``outputs`` (name -> array, the chunk's samples first, flat)
     into its region of each variable of the group ``root`` (the store ``path``), then its
     flag."""
-    lo, hi, region = sweep.chunk_region(c)
+    region = sweep.chunk_region(c)[2]
     extents = tuple(s.stop - s.start for s in region.values())
     where = tuple(region.values())
     try:

@@ -76,13 +76,19 @@ def summary(ds):
         return out.compute()
     a = ds["angle_from_nominal"]
     stats = xr.apply_ufunc(
-        _spread, _per_point(a), input_core_dims=[["sample"]],
-        output_core_dims=[["statistic"]], dask="parallelized", output_dtypes=[float],
+        _spread,
+        _per_point(a),
+        input_core_dims=[["sample"]],
+        output_core_dims=[["statistic"]],
+        dask="parallelized",
+        output_dtypes=[float],
         dask_gufunc_kwargs={"output_sizes": {"statistic": 4}},
-    )  # fmt: skip
+    )
     described = {
-        "angle_median": "median", "angle_p95": "95th percentile", "angle_max": "largest",
-    }  # fmt: skip
+        "angle_median": "median",
+        "angle_p95": "95th percentile",
+        "angle_max": "largest",
+    }
     out = xr.Dataset(
         {
             name: stats.isel(statistic=i).assign_attrs(
@@ -92,8 +98,10 @@ def summary(ds):
             for i, (name, what) in enumerate(described.items())
         }
     )
-    out["failed"] = stats.isel(statistic=3).astype(np.int64).assign_attrs(
-        long_name="samples without an angle from the nominal run", reason=FAILED
+    out["failed"] = (
+        stats.isel(statistic=3)
+        .astype(np.int64)
+        .assign_attrs(long_name="samples without an angle from the nominal run", reason=FAILED)
     )
     nominal = np.isfinite(ds["q_nominal"]).all("quaternion_component")
     out["nominal_failed"] = (~nominal).assign_attrs(
@@ -130,12 +138,15 @@ def histogram(ds, bins: int = 50):
         return out.reshape(*block.shape[:-1], bins)
 
     count = xr.apply_ufunc(
-        counts, _per_point(a), input_core_dims=[["sample"]], output_core_dims=[["bin"]],
-        dask="parallelized", output_dtypes=[np.int64], dask_gufunc_kwargs={"output_sizes": {"bin": bins}},
-    )  # fmt: skip
-    return xr.Dataset(
-        {"count": count, "edges": (("bin_edge",), edges, {"units": "rad"})}
-    ).compute()
+        counts,
+        _per_point(a),
+        input_core_dims=[["sample"]],
+        output_core_dims=[["bin"]],
+        dask="parallelized",
+        output_dtypes=[np.int64],
+        dask_gufunc_kwargs={"output_sizes": {"bin": bins}},
+    )
+    return xr.Dataset({"count": count, "edges": (("bin_edge",), edges, {"units": "rad"})}).compute()
 
 
 def lines(s, most: int = 20) -> list[str]:
@@ -161,7 +172,9 @@ def lines(s, most: int = 20) -> list[str]:
         here = s.isel(dict(zip(grid, np.unravel_index(p, sizes), strict=True)))
         where = ", ".join(f"{d} = {here[d].item():.6g}" for d in grid)
         out.append(f"{where} ({n} samples)" if where and spread else where or f"{n} samples")
-        out.append("  t [s]  median [deg]  95% [deg]  max [deg]  failed" if spread else "  t [s]  failed")
+        out.append(
+            "  t [s]  median [deg]  95% [deg]  max [deg]  failed" if spread else "  t [s]  failed"
+        )
         for j, t in enumerate(s["time"].values):
             failed = int(here["failed"].values[j])
             why = f": {FAILED}" if failed else ""
@@ -170,9 +183,13 @@ def lines(s, most: int = 20) -> list[str]:
                 continue
             if bool(here["nominal_failed"].values[j]):
                 why = ": the grid point's nominal run stopped being finite"
-            deg = [np.degrees(float(here[v].values[j])) for v in ("angle_median", "angle_p95", "angle_max")]
-            out.append(f"  {t:<6.6g} {deg[0]:<13.4g} {deg[1]:<10.4g} {deg[2]:<10.4g} "
-                       f"{failed} of {n}{why}")  # fmt: skip
+            deg = [
+                np.degrees(float(here[v].values[j]))
+                for v in ("angle_median", "angle_p95", "angle_max")
+            ]
+            out.append(
+                f"  {t:<6.6g} {deg[0]:<13.4g} {deg[1]:<10.4g} {deg[2]:<10.4g} {failed} of {n}{why}"
+            )
     if math.prod(sizes) > most:
         out.append(f"... and {math.prod(sizes) - most} more grid points (summary() has them all)")
     return out
