@@ -26,6 +26,7 @@ resuming it with any of them changed is refused.
 from __future__ import annotations
 
 import os
+from concurrent.futures import Future, ThreadPoolExecutor
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -103,14 +104,25 @@ def _refused(sweep: Sweep, lo: int, values: dict, exc: InputError, what="sample"
 
 @dataclass(frozen=True)
 class _Job:
-    """What a chunk's task needs in this process: the sweep, the store (its path and zarr
-    group), and the nominal runs' orientations (all grid points, or None to read them
-    from the store)."""
+    """What a chunk's task needs in this process: the sweep, the store (its path, and its
+    zarr group once the store is made: ``made``, a future), and the nominal runs'
+    orientations (all grid points, or None to read them from the store)."""
 
     sweep: Sweep
     store: Path
-    root: object
+    made: Future
     nominal: np.ndarray | None
+
+    @property
+    def root(self):
+        """The store's zarr group, once it is made (raises what making it raised)."""
+        return self.made.result()
+
+
+def _done(value) -> Future:
+    future = Future()
+    future.set_result(value)
+    return future
 
 
 def _run_chunk(job: _Job, c: int) -> int:
@@ -159,7 +171,7 @@ def run_chunk(remote: _Remote, c: int) -> int:
                 f"was sent ({sweep.digests} against {dict(remote.digests)})"
             )
         _REBUILT.clear()  # one sweep at a time per process
-        _REBUILT[key] = _Job(sweep, Path(remote.store), zstore.group(remote.store), None)
+        _REBUILT[key] = _Job(sweep, Path(remote.store), _done(zstore.group(remote.store)), None)
     return _run_chunk(_REBUILT[key], c)
 
 
@@ -213,7 +225,7 @@ def _on_threads(job: _Job, todo: list[int], threads: int, done) -> None:
     way on a pool of this call's, shut down (its running chunks finished, the others
     cancelled) before this returns or raises: an interrupted sweep leaves no write
     going on behind it."""
-    from concurrent.futures import ThreadPoolExecutor, as_completed
+    from concurrent.futures import as_completed
 
     from ..optional import MissingExtraError
 
@@ -408,14 +420,23 @@ def run_sweep(
         dask_client, owned = _client(client, scheduler)
     else:
         dask_client, owned = None, False
+    threaded = dask_client is None and client != "sync"
+    maker = ThreadPoolExecutor(1, thread_name_prefix="ga_rotors-store")
     try:
-        if not store.exists():
+        if store.exists():
+            made = _done(zstore.group(store))
+        elif threaded and todo:
+            # made while the threads integrate their first chunks, which wait for it
+            # before they write: its Python and files overlap their integration
+            made = maker.submit(lambda: zstore.create(sweep, store, both) or zstore.group(store))
+        else:
             zstore.create(sweep, store, both)
+            made = _done(zstore.group(store))
         if progress is not None:
             progress(count[0], sweep.chunks)
         if not todo:
             return store
-        job = _Job(sweep, store, zstore.group(store), nominal)
+        job = _Job(sweep, store, made, nominal)
         if dask_client is not None:
             _on_cluster(dask_client, job, todo, store, done)
         elif client == "sync":
@@ -425,6 +446,7 @@ def run_sweep(
         else:
             _on_threads(job, todo, threads, done)
     finally:
+        maker.shutdown(wait=True)
         if owned:
             dask_client.close()
     return store

@@ -140,13 +140,29 @@ def template(sweep, nominal=None):
 WHOLE_CHUNK_BYTES = 2**24
 
 
+def have_dask() -> bool:
+    """Whether Dask is installed (it is an extra: ``ga-rotors[dask]``)."""
+    from ..optional import MissingExtraError
+
+    try:
+        require("dask.array", "dask")
+    except MissingExtraError:
+        return False
+    return True
+
+
+def _by_chunk(sweep) -> set[str]:
+    """The variables each chunk writes its region of (the others are written whole now)."""
+    return {*_per_sample(sweep), *(sweep.names[d.key] for d in sweep.draws), "chunk_done"}
+
+
 def _encoding(sweep, ds) -> dict:
     """No compression; chunks of the sweep's chunks for what each chunk writes, of at
     most :data:`WHOLE_CHUNK_BYTES` for what is written when the store is made."""
     from .spec import block_shape
 
     chunks = dict(zip(sweep.dims, sweep.chunk_shape, strict=True)) | {"chunk": 1}
-    by_chunk = {*_per_sample(sweep), *(sweep.names[d.key] for d in sweep.draws), "chunk_done"}
+    by_chunk = _by_chunk(sweep)
     out = {}
     for name, v in ds.variables.items():
         if name in by_chunk:
@@ -158,15 +174,28 @@ def _encoding(sweep, ds) -> dict:
 
 
 def create(sweep, path, nominal=None) -> None:
-    """Write the store ``path`` for ``sweep``: all of it, or nothing."""
+    """Write the store ``path`` for ``sweep``: all of it, or nothing.
+
+    With Dask, the variables the chunks fill in are Dask arrays that ``to_zarr(...,
+    compute=False)`` describes without computing; without it, numpy placeholders that
+    zarr finds equal to the fill value and stores as no chunk (a pass over the values).
+    """
     path = Path(path)
     ds = template(sweep, nominal)
+    encoding = _encoding(sweep, ds)
+    lazy = have_dask()
+    if lazy:
+        for name in _by_chunk(sweep) - {"chunk_done"}:
+            ds[name] = ds[name].chunk(
+                dict(zip(ds[name].dims, encoding[name]["chunks"], strict=True))
+            )
     try:
         staging = Path(tempfile.mkdtemp(dir=path.parent, prefix=f".{path.name}.staging-"))
     except OSError as exc:
         raise write_error(path, exc, "creating it") from None
     try:
-        ds.to_zarr(staging / "new", zarr_format=2, consolidated=True, encoding=_encoding(sweep, ds))
+        new = staging / "new"
+        ds.to_zarr(new, zarr_format=2, consolidated=True, encoding=encoding, compute=not lazy)
         os.rename(staging / "new", path)
     except OSError as exc:
         raise write_error(path, exc, "creating it") from None
