@@ -69,7 +69,8 @@ class SweepEstimate(Estimate):
     files: int = 0
 
     def __str__(self) -> str:
-        return f"{super().__str__()} in {self.chunks:,} chunks ({self.files:,} files)"
+        chunks = f"{self.chunks:,} chunk{'s' if self.chunks != 1 else ''}"
+        return f"{super().__str__()} in {chunks} ({self.files:,} files)"
 
 
 def _stored(sweep) -> list[int]:
