@@ -8,6 +8,7 @@ import contextlib
 import io
 import itertools
 import math
+import os
 import socket
 
 import numpy as np
@@ -455,3 +456,56 @@ def test_an_unreachable_scheduler_is_one_line_and_writes_nothing(tmp_path, capsy
     err = capsys.readouterr().err.strip()
     assert err.startswith("ga-rotors: error: --scheduler: cannot reach tcp://")
     assert "\n" not in err and not (tmp_path / "d.zarr").exists()
+
+
+@pytest.mark.parametrize("where", [{"client": "sync"}, {"workers": 2}], ids=["here", "threads"])
+def test_a_full_disk_while_making_the_store_is_one_line_and_leaves_nothing(
+    tmp_path, monkeypatch, where
+):
+    # on threads the store is made while the first chunks integrate: the first chunk to
+    # write raises what making it raised
+    def disk_full(*args, **kwargs):
+        raise OSError(28, "No space left on device")
+
+    monkeypatch.setattr(xr.Dataset, "to_zarr", disk_full)
+    with pytest.raises(InputError, match=r"cannot write .*s\.zarr \(creating it\): No space"):
+        run_sweep(SWEEP, tmp_path / "s.zarr", **where)
+    assert list(tmp_path.iterdir()) == []  # no store, no staging left
+
+
+def test_a_store_of_an_earlier_layout_is_named_as_such(tmp_path, capsys):
+    old = tmp_path / "old.zarr"
+    xr.Dataset({"value_0": ("sample", np.arange(3.0))}, attrs={"sweep_digest": "abc"}).to_zarr(
+        old, zarr_format=2, consolidated=True
+    )
+    with pytest.raises(InputError, match=r"a sweep store of an earlier ga_rotors .*open_zarr"):
+        open_sweep(old)
+    with pytest.raises(InputError, match="earlier ga_rotors"):
+        run_sweep(SWEEP, old, client="sync")
+
+
+LONG = os.environ.get("GA_ROTORS_LONG") == "1"
+
+
+@pytest.mark.skipif(not LONG, reason="long mode: set GA_ROTORS_LONG=1 (about a minute)")
+def test_long_a_large_sweep_is_the_same_store_however_it_runs(tmp_path):
+    """Three blocks of draws across many chunks of a grid: in this thread, on threads and
+    on a local cluster of worker processes, the same store bit for bit, and its draws the
+    documented ones sample by sample."""
+    text = SWEEP.replace("samples = 5", f"samples = {BLOCK + 1500}").replace(
+        "chunk = 4", "chunk = 1000"
+    )
+    here = open_sweep(run_sweep(text, tmp_path / "here.zarr", client="sync")).load()
+    threads = open_sweep(run_sweep(text, tmp_path / "threads.zarr", workers=3)).load()
+    xr.testing.assert_identical(here, threads)
+    from ga_rotors.sweep import local_cluster
+
+    with local_cluster(2) as cluster, distributed.Client(cluster) as client:
+        out = run_sweep(text, tmp_path / "cluster.zarr", client=client)
+    xr.testing.assert_identical(here, open_sweep(out).load())
+    sweep = load_sweep(text)
+    draws = [("initial.angular_velocity.body[0]", "normal", (0.0, 0.1)),
+             ("body.mass", "uniform", (0.25, 0.35))]  # fmt: skip
+    expected = _oracle_draws(42, 0, sweep.size, draws)
+    for key, values in expected.items():
+        assert np.array_equal(here[spec.coordinate_name(key)].values.ravel(), values)

@@ -41,13 +41,22 @@ _COMPONENTS = {"quaternion_component": ["w", "x", "y", "z"], "body_axis": ["1", 
 
 
 def _per_sample(sweep) -> dict:
-    """name -> (dims after the samples', attributes) of the variables every chunk writes."""
+    """name -> (dims after the samples', attributes) of the variables every chunk writes
+    (units from the results' one table of them)."""
+    from ..results.variables import describe
+
     out = {
         "q": (
             ("time", "quaternion_component"),
-            {"units": "1", "long_name": "orientation quaternion (w, x, y, z), body to space"},
+            {
+                "units": describe("q")[0],
+                "long_name": "orientation quaternion (w, x, y, z), body to space",
+            },
         ),
-        "w": (("time", "body_axis"), {"units": "rad/s", "long_name": "body angular velocity"}),
+        "w": (
+            ("time", "body_axis"),
+            {"units": describe("w")[0], "long_name": "body angular velocity"},
+        ),
     }
     if sweep.draws:
         out["angle_from_nominal"] = (
@@ -242,6 +251,11 @@ def open_store(path):
         ds = xr.open_zarr(path, consolidated=True)
     except (OSError, ValueError, KeyError) as exc:
         raise InputError(f"{path}: not a sweep store ({first_line(exc)})") from None
+    if "sweep_format" not in ds.attrs and "sweep_digest" in ds.attrs:
+        raise InputError(
+            f"{path}: a sweep store of an earlier ga_rotors (its inputs as value_0, value_1, "
+            "...): xarray.open_zarr reads it; this version neither opens nor resumes it"
+        )
     lacking = [v for v in ("chunk_done", "q", "w") if v not in ds]
     lacking += [a for a in ("sweep_format", "scene_digest", "sweep_digest") if a not in ds.attrs]
     if lacking:
