@@ -101,7 +101,7 @@ def test_the_uniform_that_rounds_to_one_gives_a_finite_normal_draw():
     # its high end (the interval is closed)
     u = np.array([1 - 2.0**-53]) + 2.0**-54
     assert u[0] == 1.0
-    normal = spec.Draw("body.mass", "normal", 2.0, 0.02).from_uniform(u)
+    normal = spec.Draw("body.mass", "normal", 2.0, 0.02).from_uniform(u.copy())
     assert np.isfinite(normal[0]) and normal[0] > 2.0 + 0.02 * 8
     assert spec.Draw("body.mass", "uniform", 1.0, 3.0).from_uniform(u)[0] == 3.0
 

@@ -343,6 +343,19 @@ def _resumable(store: Path, ds, sweep: Sweep, finished: bool) -> None:
         )
 
 
+def _import_first() -> None:
+    """Import here what the tasks and the store's maker import: two threads importing one
+    package at once can find it half made (a KeyError from the import system, seen)."""
+    import scipy.special  # noqa: F401  (the normal draws)
+
+    from .. import ensemble  # noqa: F401
+
+    require("zarr", "results")
+    require("xarray", "results")
+    if zstore.have_dask():  # also imports dask.array
+        require("dask.threaded", "dask")
+
+
 def run_sweep(
     source, out, *, client=None, scheduler=None, workers=None, progress=None, budget=None
 ) -> Path:
@@ -381,8 +394,7 @@ def run_sweep(
     >>> ds["q"].dims, ds["body_mass"].attrs["scene_key"]
     (('sample', 'time', 'quaternion_component'), 'body.mass')
     """
-    require("zarr", "results")
-    require("xarray", "results")
+    _import_first()
     if client is None and scheduler:
         require("distributed", "dask")  # before anything is written
     if workers is not None and workers < 1:

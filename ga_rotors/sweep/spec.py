@@ -133,12 +133,16 @@ class Draw:
         return self.a if self.distribution == "normal" else self.a + (self.b - self.a) / 2
 
     def from_uniform(self, u: np.ndarray) -> np.ndarray:
-        """This draw's values for the uniform numbers ``u`` in (0, 1]."""
+        """This draw's values for the uniform numbers ``u`` in (0, 1], made in ``u``."""
         if self.distribution == "normal":
             from scipy.special import ndtri
 
-            return ndtri(np.minimum(u, _BELOW_ONE)) * self.b + self.a
-        return u * (self.b - self.a) + self.a
+            ndtri(np.minimum(u, _BELOW_ONE, out=u), out=u)
+            u *= self.b
+        else:
+            u *= self.b - self.a
+        u += self.a
+        return u
 
 
 @dataclass(frozen=True)
@@ -279,11 +283,11 @@ class Sweep:
             out.update((key, v[i]) for (key, v), i in zip(self.grid, index, strict=True))
         if self.draws:
             u = self._uniform(lo, hi)
-            out.update((d.key, d.from_uniform(u[:, j])) for j, d in enumerate(self.draws))
+            out.update((d.key, d.from_uniform(u[j])) for j, d in enumerate(self.draws))
         return out
 
     def _uniform(self, lo: int, hi: int) -> np.ndarray:
-        """The uniform numbers of samples lo..hi-1, one column a draw, from their blocks."""
+        """The uniform numbers of samples lo..hi-1 from their blocks, one row a draw."""
         nvars = len(self.draws)
         u = np.empty((hi - lo, nvars))
         for block in range(lo // BLOCK, -(-hi // BLOCK)):
@@ -291,8 +295,9 @@ class Sweep:
             bits = np.random.PCG64(np.random.SeedSequence(self.seed, spawn_key=(block,)))
             bits.advance((a - block * BLOCK) * nvars)
             np.random.Generator(bits).random(out=u[a - lo : b - lo])
-        u += 2.0**-54
-        return u
+        rows = np.ascontiguousarray(u.T)  # each draw's values contiguous, as the store's
+        rows += 2.0**-54
+        return rows
 
     def nominal_values(self) -> dict[str, np.ndarray]:
         """Each varied key's value in each grid point's nominal run: the point's grid

@@ -69,11 +69,13 @@ def _per_sample(sweep) -> dict:
     return out
 
 
-def template(sweep, nominal=None):
+def template(sweep, nominal=None, lazy: bool = False):
     """The whole store as a Dataset, every per-sample value at its fill value (NaN).
 
     ``nominal``: (q, w) of each grid point's nominal run, (points, time, 4) and
-    (points, time, 3), with draws.
+    (points, time, 3), with draws. ``lazy``: the per-sample values as Dask arrays in the
+    store's chunks (which ``to_zarr(compute=False)`` describes without computing: made
+    with ``dask.array.full``, since chunking a numpy array has Dask hash its values).
     """
     from ..results import provenance
 
@@ -81,6 +83,9 @@ def template(sweep, nominal=None):
     dims, shape, k = sweep.dims, sweep.shape, sweep.times.size
 
     def empty(*extra):
+        if lazy:
+            full = require("dask.array", "dask").full
+            return full(shape + extra, np.nan, chunks=sweep.chunk_shape + extra)
         return np.broadcast_to(np.nan, shape + extra)
 
     data = {
@@ -190,14 +195,9 @@ def create(sweep, path, nominal=None) -> None:
     zarr finds equal to the fill value and stores as no chunk (a pass over the values).
     """
     path = Path(path)
-    ds = template(sweep, nominal)
-    encoding = _encoding(sweep, ds)
     lazy = have_dask()
-    if lazy:
-        for name in _by_chunk(sweep) - {"chunk_done"}:
-            ds[name] = ds[name].chunk(
-                dict(zip(ds[name].dims, encoding[name]["chunks"], strict=True))
-            )
+    ds = template(sweep, nominal, lazy)
+    encoding = _encoding(sweep, ds)
     try:
         staging = Path(tempfile.mkdtemp(dir=path.parent, prefix=f".{path.name}.staging-"))
     except OSError as exc:
@@ -233,7 +233,9 @@ def write_chunk(root, sweep, c: int, outputs: dict, path) -> None:
     where = tuple(region.values())
     try:
         for name, a in outputs.items():
-            root[name][where] = a.reshape(extents + a.shape[1:])
+            # every chunk holds samples: zarr need not check whether it is all fill value
+            array = root[name].with_config({"write_empty_chunks": True})
+            array[where] = a.reshape(extents + a.shape[1:])
         root["chunk_done"][c] = 1
     except OSError as exc:  # a full disk, a store removed under the sweep...
         raise write_error(path, exc, f"chunk {c}") from None
