@@ -45,7 +45,6 @@ DIARY = re.compile(
 #: Guides whose owners are moving their history out at the time of writing: when one comes
 #: clean, its strict xfail fails and the line goes.
 STILL_DIARIES = {
-    "ensembles.md": "the sweep guide's optimisation rounds (h-sweep)",
     "cache.md": "the cache guide's measurement history (h-loop)",
 }
 GUIDES = sorted(DOCS.rglob("*.md"))
