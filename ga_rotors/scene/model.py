@@ -1,6 +1,6 @@
 """The Scene: a validated scene and the values derived from it, each computed once.
 
-A scene is a TOML file (read with the standard library's :mod:`tomllib`; scene files are
+A scene is a TOML file (read with the standard library's ``tomllib``; scene files are
 data and are never evaluated) or the same nested dictionary built in Python. The schema,
 every key with its type, default and units, is in ``docs/scenes.md``; in short::
 
@@ -158,7 +158,7 @@ class Scene:
 
     @classmethod
     def from_toml(cls, text: str, *, file: str = "<string>", base_dir=None) -> Scene:
-        """Parse TOML text (data only: :mod:`tomllib`, nothing evaluated).
+        """Parse TOML text (data only: ``tomllib``, nothing evaluated).
 
         Examples
         --------

@@ -2,7 +2,7 @@
 
 Reading: :func:`read_file` takes a regular file of bounded size (never a device, a FIFO
 or a file of gigabytes) and :func:`parse_toml` parses its text with the standard
-library's :mod:`tomllib` (data only, nothing evaluated), refusing nesting beyond
+library's ``tomllib`` (data only, nothing evaluated), refusing nesting beyond
 :data:`MAX_NESTING`; every refusal is one :class:`~ga_rotors.errors.SceneError` line
 naming the file. Scene files and sweep files both come through here.
 

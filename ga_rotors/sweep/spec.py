@@ -1,6 +1,6 @@
 """A sweep file: which scene, which keys vary over a grid or by random draws, and the seed.
 
-A sweep is data (TOML, read with the scene files' guards and parsed with :mod:`tomllib`,
+A sweep is data (TOML, read with the scene files' guards and parsed with ``tomllib``,
 nothing evaluated)::
 
     [sweep]
