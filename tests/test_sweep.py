@@ -249,6 +249,7 @@ def test_without_dask_the_chunks_run_on_a_thread_pool(tmp_path, reference, monke
     monkeypatch.setattr(optional.importlib, "import_module", fake)
     out = run_sweep(SWEEP, tmp_path / "s.zarr", workers=2)
     xr.testing.assert_identical(open_sweep(out).load(), reference)
+    xr.testing.assert_identical(summary(open_sweep(out)), summary(reference))
     with pytest.raises(optional.MissingExtraError, match="dask"):
         run_sweep(SWEEP, tmp_path / "d.zarr", scheduler="tcp://127.0.0.1:1")
     assert not (tmp_path / "d.zarr").exists()

@@ -5,7 +5,8 @@ point at a time, with xarray on Dask (chunk by chunk, in parallel): the median, 
 95th percentile and the largest angle of each grid point at each output time (numpy's
 ``nanquantile`` and ``nanmax``, exact), and how many samples have no angle there
 because their state stopped being finite. A task holds one grid point's angles at a
-few output times (at most :data:`HELD_BYTES`, or one time's), never the whole store.
+few output times (at most :data:`HELD_BYTES`, or one time's), never the whole store
+(without Dask, the angles are read whole).
 :func:`histogram` counts them in equal bins.
 """
 
@@ -28,7 +29,12 @@ FAILED = "its state stopped being finite during the integration (NaN from then o
 
 
 def _per_point(a):
-    """``a`` (dims ..., sample, time) chunked whole along ``sample``, few times a chunk."""
+    """``a`` (dims ..., sample, time) chunked whole along ``sample``, few times a chunk
+    (without Dask, read whole)."""
+    from .store import have_dask
+
+    if not have_dask():
+        return a.load()
     times = max(1, HELD_BYTES // (8 * a.sizes["sample"]))
     return a.chunk({"sample": -1, "time": times})
 
