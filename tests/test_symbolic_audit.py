@@ -183,6 +183,72 @@ def test_docs_audit_page_is_the_generator_output(audit, series, monkeypatch):
         assert len(_verdict_rows(page)) == 2 + len(audit.findings)
 
 
+def _page_formulas(page: str) -> list[str]:
+    """The inline formulas of a Markdown page, outside code."""
+    page = re.sub(r"```.*?```", "", page, flags=re.S)
+    page = re.sub(r"`[^`]*`", "", page)
+    return re.findall(r"(?<![\\$])\$(?!\$)(.+?)(?<!\\)\$", page)
+
+
+def test_docs_audit_page_typesets_its_formulas(audit):
+    """The page's formulas are LaTeX the site converts (the strict build would fail on one
+    that does not); what the source printed stays verbatim, in code; the terminal keeps
+    the plain notation."""
+    mathml = _site_hook("mathml")
+    page = audit.markdown()
+    formulas = _page_formulas(page)
+    assert len(formulas) > 1000  # every finding has some
+    for latex in formulas:
+        mathml.to_mathml(latex)  # raises MathError on a formula that does not convert
+    f = audit.find("(36)")
+    section = page.split('<a id="paper--36"></a>', 1)[1].split("<a id=", 1)[0]
+    assert f"- printed (as extracted): `{f.printed}`" in section
+    assert r"$\dot{q}_{0} = - \tfrac{1}{2} (q_{1} \omega_{x3} + q_{2} \omega_{y3}" in section
+    assert "$" not in audit.table() and "\\" not in audit.table()
+    assert "$" not in f.report()
+
+
+@pytest.mark.parametrize(
+    ("plain", "typeset"),
+    [
+        # indices, accents, powers, the conjugate's star, bars, roots and fractions
+        ("q̇0 = −½ q1ωx3", r"$\dot{q}_{0} = - \tfrac{1}{2} q_{1} \omega_{x3}$"),
+        ("q⁻¹ = q*/|q|²", r"$q^{-1} = q^{*}/\lvert q\rvert^{2}$"),
+        (
+            "θ = 2 atan2(√(q1² + q2²), q0)",
+            r"$\theta = 2 \operatorname{atan2}(\sqrt{q_{1}^{2} + q_{2}^{2}}, q_{0})$",
+        ),
+        # the paper's shorthand, axis-indexed names, Cl's upright name, sets and spaces
+        ("cψsθ in Rz(ψ)", r"$c_{\psi} s_{\theta}$ in $R_{z}(\psi)$"),
+        ("Cl⁺(3,0) ≅ ℍ", r"$\mathrm{Cl}^{+}(3,0) \cong \mathbb{H}$"),
+        ("e_A = e_{i1} ⋯ e_{i_k}", r"$e_{A} = e_{i_{1}} \cdots e_{i_{k}}$"),
+        # formulas end at prose; numbers and quotations alone are no formula
+        ("with i = e1, j = e2 (Fig. 5, 0.44 %)", r"with $i = e_{1}$, $j = e_{2}$ (Fig. 5, 0.44 %)"),
+        ("the 'q 2' of (12), i.e. a unit q", r"the 'q 2' of (12), i.e. a unit $q$"),
+        ("for all a, b in ℍ", r"for all $a, b$ in $\mathbb{H}$"),
+        (
+            "ψ in (−π, π] and 1.6E-15 per step",
+            r"$\psi$ in $(- \pi, \pi]$ and $1.6 \times 10^{-15}$ per step",
+        ),
+    ],
+)
+def test_audit_formulas_are_found_and_written_as_latex(plain, typeset):
+    from ga_rotors.symbolic.audit.typeset import mark
+
+    assert mark(plain) == typeset
+
+
+def _site_hook(name: str):
+    """A module of docs/hooks/ (the site's math hook needs the docs extra's latex2mathml)."""
+    import importlib.util
+
+    pytest.importorskip("latex2mathml")
+    spec = importlib.util.spec_from_file_location(name, ROOT / "docs" / "hooks" / f"{name}.py")
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
 def test_verdict_rows_ignore_printed_forms_only():
     row = "| paper | [(12)](#paper--12) | rotation matrix | wrong | Qᵀ = x + y |"
     other = "| paper | [(12)](#paper--12) | rotation matrix | wrong | Qᵀ = y + x |"

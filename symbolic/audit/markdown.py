@@ -1,8 +1,15 @@
-"""docs/audit.md, rendered from an :class:`~symbolic.audit.Audit` (deterministic text)."""
+"""docs/audit.md, rendered from an :class:`~symbolic.audit.Audit` (deterministic text).
+
+The findings are written in the plain notation ``ga-rotors verify`` prints; here their
+formulas are typeset (:func:`~symbolic.audit.typeset.mark` writes them as ``$...$`` LaTeX,
+which the site turns into MathML). The text printed by the source stays as extracted, in
+code.
+"""
 
 from __future__ import annotations
 
 from .core import Finding, Verdict
+from .typeset import mark
 
 __all__ = ["HEADER", "render", "sympy_series"]
 
@@ -38,8 +45,9 @@ modulo q0² + q1² + q2² + q3² − 1.
 """
 
 
-def _cell(text: str) -> str:
-    return text.replace("|", "\\|").replace("\n", " ")
+def _cell(text: str, formulas: bool = True) -> str:
+    """A table cell: formulas typeset, the table's bars escaped, on one line."""
+    return (mark(text) if formulas else text).replace("|", "\\|").replace("\n", " ")
 
 
 def _code(text: str) -> str:
@@ -54,24 +62,39 @@ def _anchor(f: Finding) -> str:
 
 def _finding(f: Finding) -> list[str]:
     verdict = f"**{f.verdict.value}**"
-    lines = [f'<a id="{_anchor(f)}"></a>', f"### {f.source} {f.label}: {f.topic} ({verdict})", ""]
+    title = f"### {f.source} {f.label}: {mark(f.topic)} ({verdict})"
+    lines = [f'<a id="{_anchor(f)}"></a>', title, ""]
     lines.append(f"- printed (as extracted): {_code(f.printed)}")
-    lines.append(f"- read as: {_code(f.reading)}")
-    lines.append(f"- reconstruction: {f.reconstruction}")
+    lines.append(f"- read as: {mark(f.reading)}")
+    lines.append(f"- reconstruction: {mark(f.reconstruction)}")
     for r in f.readings:
-        mark = "tested" if r.tested else "considered"
-        lines.append(f"- reading ({mark}): {r.text} → {r.outcome}")
+        state = "tested" if r.tested else "considered"
+        lines.append(f"- reading ({state}): {mark(r.text)} → {mark(r.outcome)}")
     if f.corrected:
         name = "corrected form" if f.verdict is Verdict.WRONG else "convention"
-        lines.append(f"- {name}: {f.corrected}")
-    lines.append(f"- evidence: {f.evidence}")
+        lines.append(f"- {name}: {mark(f.corrected)}")
+    lines.append(f"- evidence: {mark(f.evidence)}")
     if f.notes:
-        lines.append(f"- note: {f.notes}")
+        lines.append(f"- note: {mark(f.notes)}")
     if f.checks:
         lines.append("- our derivation:")
         for s in f.checks:
-            lines.append(f"  - [{'ok' if s.holds else 'FAILED'}] {s.claim}")
+            lines.append(f"    - [{'ok' if s.holds else 'FAILED'}] {mark(s.claim)}")
     lines.append("")
+    return lines
+
+
+def _derivation(d) -> list[str]:
+    """One derivation: its statement and steps typeset, each step's computation as code."""
+    lines = [f"### {mark(d.title)}{' (critical)' if d.critical else ''}", "", mark(d.statement), ""]
+    for s in d.steps:
+        lines.append(f"- [{'ok' if s.holds else 'FAILED'}] {mark(s.claim)}")
+        if s.shown:
+            lines.extend(["", "    ```text", *(f"    {line}" for line in s.shown.splitlines())])
+            lines.extend(["    ```", ""])
+    if d.details:
+        lines.extend(["", "```text", *d.details, "```"])
+    lines.extend(["", f"Result: {'holds' if d.ok else 'FAILS'}.", ""])
     return lines
 
 
@@ -118,9 +141,14 @@ def render(audit) -> str:
     for f in audit.findings:
         label = f"[{f.label}](#{_anchor(f)})"
         fix = f.corrected if f.verdict is not Verdict.CORRECT else ""
-        lines.append(
-            f"| {f.source} | {_cell(label)} | {_cell(f.topic)} | {f.verdict.value} | {_cell(fix)} |"
+        cells = (
+            f.source,
+            _cell(label, formulas=False),
+            _cell(f.topic),
+            f.verdict.value,
+            _cell(fix),
         )
+        lines.append(f"| {' | '.join(cells)} |")
     lines.append("")
     for source in SOURCES:
         lines.append(f"## {source.capitalize()}")
@@ -137,10 +165,5 @@ def render(audit) -> str:
     )
     lines.append("")
     for d in audit.derivations:
-        lines.append(f"### {d.title}{' (critical)' if d.critical else ''}")
-        lines.append("")
-        lines.append("```text")
-        lines.append(d.report())
-        lines.append("```")
-        lines.append("")
+        lines.extend(_derivation(d))
     return "\n".join(lines).rstrip() + "\n"

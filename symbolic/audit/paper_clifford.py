@@ -186,7 +186,7 @@ def eq45() -> Finding:
         "(45)",
         "index sets of the basis blades",
         printed="A = i 1 , i 2 ,⋯ , i k | 1 ≤ i 1 i 2 ≤⋯ ≤ i k ≤ n",
-        reading="A = {(i1, …, ik) | 1 ≤ i1 < i2 ≤ ⋯ ≤ ik ≤ n}",
+        reading="A = {(i1, …, i_k) ∣ 1 ≤ i1 < i2 ≤ ⋯ ≤ i_k ≤ n}",
         reconstruction="the braces and one relation sign (between i1 and i2, read as <) were "
         "lost; the other relations print as ≤.",
         readings=(
@@ -198,12 +198,12 @@ def eq45() -> Finding:
                 tested=True,
             ),
             Reading(
-                "all strict, 1 ≤ i1 < i2 < ⋯ < ik ≤ n",
+                "all strict, 1 ≤ i1 < i2 < ⋯ < i_k ≤ n",
                 f"exactly the {len(strict)} = 2ⁿ blades ({strict_is_basis})",
             ),
         ),
         verdict=verdict_of(len(printed) == 2**n),
-        corrected="A = {(i1, …, ik) | 1 ≤ i1 < i2 < ⋯ < ik ≤ n}, as the text itself says before "
+        corrected="A = {(i1, …, i_k) ∣ 1 ≤ i1 < i2 < ⋯ < i_k ≤ n}, as the text itself says before "
         "(42) ('sendo i1 < ⋯ < ik').",
         evidence=f"with ≤ the sets include repeated indices, and e_i e_i = B(e_i, e_i) makes "
         f"those blades multiples of lower ones: {len(printed)} sets for a {2**n}-dimensional "
@@ -230,12 +230,12 @@ def eq46() -> Finding:
         "(46)",
         "basis blade as a product of basis vectors",
         printed="e A = e 1 e 2 e i k , e = e 0 = 1",
-        reading="e_A = e_{i1} e_{i2} ⋯ e_{ik},  e_∅ = e_0 = 1",
+        reading="e_A = e_{i1} e_{i2} ⋯ e_{i_k},  e_∅ = e_0 = 1",
         reconstruction="the subscripts i1, i2 were flattened, and the ⋯ and ∅ lost.",
         verdict=verdict_of(ok),
-        evidence="for strictly increasing A the product e_{i1} ⋯ e_{ik} is the basis blade e_A "
+        evidence="for strictly increasing A the product e_{i1} ⋯ e_{i_k} is the basis blade e_A "
         "with sign +1 (every A in Cl(3,0), Cl(0,2), Cl(1,3)).",
-        checks=(step("e_{i1} ⋯ e_{ik} = +e_A for increasing A", "exhaustive", ok),),
+        checks=(step("e_{i1} ⋯ e_{i_k} = +e_A for increasing A", "exhaustive", ok),),
     )
 
 

@@ -99,12 +99,12 @@ def eq13() -> Finding:
         "rounded to 4 decimals (0.44 % low); use the exact values. The torque-free motion is "
         "unaffected: it depends only on the ratios (I_y−I_z)/I_x, (I_z−I_x)/I_y, (I_x−I_y)/I_z, "
         f"which are {tuple(ratios_exact)} for both.",
-        evidence=f"∫ σ r² dA over the disk = {axial}, ∫ σ y² dA = {diametral} (SymPy "
+        evidence=f"∫ σ r² dA over the disk = {show(axial)}, ∫ σ y² dA = {show(diametral)} (SymPy "
         f"integration); ratios exact {ratios_exact}, printed {ratios_printed}.",
         checks=(
             step(
                 "disk moments by integration: axial ½mR², diametral ¼mR²",
-                f"axial = {axial}, diametral = {diametral}",
+                f"axial = {show(axial)}, diametral = {show(diametral)}",
                 sympy.simplify(axial - m * radius**2 / 2) == 0
                 and sympy.simplify(diametral - m * radius**2 / 4) == 0,
             ),
@@ -192,7 +192,7 @@ def eq14() -> Finding:
         readings=(
             Reading(
                 "as printed, entry (2,1) = −cψcθsφ + sψcφ",
-                f"not orthogonal: row 1 · row 2 = {off} at (ψ, θ, φ) = (0.3, 0.5, 0.7); "
+                f"not orthogonal: its rows r1 · r2 = {off} at (ψ, θ, φ) = (0.3, 0.5, 0.7); "
                 f"equals Rz(ψ)Ry(θ)Rz(φ)? {is_active}; its transpose? {is_passive}",
                 tested=True,
             ),
@@ -206,7 +206,7 @@ def eq14() -> Finding:
         "[Rz(ψ) Ry(θ) Rz(φ)]ᵀ, the passive matrix (components in B3 of a vector given in I; the "
         "paper does not say which way R acts, and (12), (38)-(40) use it this way). The active "
         "body-to-space matrix is its transpose.",
-        evidence=f"entry-wise trigonometric identities; the printed matrix has row 1 · row 2 = "
+        evidence=f"entry-wise trigonometric identities; the printed matrix has rows with r1 · r2 = "
         f"{off} ≠ 0 at (0.3, 0.5, 0.7) rad, so it is not a rotation for any sign convention. "
         f"Rz(ψ)Ry(θ)Rz(φ) = {matrix_str(r)}.",
         checks=(
@@ -363,7 +363,7 @@ def _recovers(inverse) -> bool:
 def eq19() -> Finding:
     omega, check = zyz_body_rates()
     jac = rotations.rate_jacobian(omega, RATES)
-    det = sympy.factor(trig.reduce_on_circles(jac.det()))
+    det = sympy.trigsimp(jac.det())
     det_is_minus_sin = trig.is_identity(jac.det(), -sin(THETA))
     holds = _recovers(printed19(minus=True))
     plus_holds = _recovers(printed19(minus=False))
@@ -382,7 +382,7 @@ def eq19() -> Finding:
         ),
         verdict=verdict_of(holds),
         evidence="substituting (15) into the printed right-hand sides returns (ψ̇, θ̇, φ̇) "
-        f"identically; the Jacobian of (15) has determinant {show(det)} = −sin θ, so the "
+        f"identically; the Jacobian of (15) has determinant {show(det)}, so the "
         "inverse exists exactly where sin θ ≠ 0.",
         checks=(
             check,
@@ -409,7 +409,7 @@ def eq19_singular() -> Finding:
         corrected="sin θ = 0, hence (19) singular, at θ = nπ for every integer n: θ = π "
         "(n = 1, odd) is as singular as θ = 0. For θ ∈ [0, π] both ends are singular.",
         evidence="det ∂ω/∂(ψ̇, θ̇, φ̇) = −sin θ at θ = nπ: "
-        + ", ".join(f"n = {n}: {sympy.simplify(v)}" for n, v in at.items())
+        + ", ".join(f"n = {n} gives {sympy.simplify(v)}" for n, v in at.items())
         + ("; zero for every n shown." if every_integer else "."),
         checks=(step("det vanishes at θ = nπ for n = −1, 0, 1, 2, 3", str(at), every_integer),),
     )

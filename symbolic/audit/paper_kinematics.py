@@ -814,7 +814,7 @@ def time_step() -> Finding:
             ),
         ),
         verdict=verdict_of(stable),
-        evidence=f"RK4's amplification on y' = iωy is R(z) = 1 + z + z²/2 + z³/6 + z⁴/24; "
+        evidence=f"RK4's amplification on y′ = iω y is R(z) = 1 + z + z²/2 + z³/6 + z⁴/24; "
         f"|R(ix)|² = {show(gain2)} (exact), ≤ 1 only for x ≤ 2√2.",
         checks=(
             step(
