@@ -1,26 +1,41 @@
-"""The heavy symmetric (Lagrange) top, exactly: cos θ(t) through Jacobi's sn, ψ(t) and φ(t)
-through elliptic integrals of the third kind.
+r"""The heavy symmetric (Lagrange) top, exactly: :math:`\cos\theta(t)` through Jacobi's
+:math:`\operatorname{sn}`, :math:`\psi(t)` and :math:`\phi(t)` through elliptic integrals of
+the third kind.
 
 Goldstein, *Classical Mechanics* §5.7, rederived for this package's conventions and checked
 against a 30-digit Taylor integration (``tests/test_reference_heavy.py``).
 
-Model. A body with principal moments (I⊥, I⊥, I₃) about a fixed point, centre of mass on the
-body z axis at distance l, gravity −g ẑ (space). In the body frame the torque is
-τ = mgl · (Z × e₃) = mgl · (Z_y, −Z_x, 0), Z = q* ẑ q the body components of the vertical,
-and the energy is E = ½ Σ I_k ω_k² + mgl Z_z. Orientation in the paper's intrinsic z–y′–z″
-angles, q = q_z(ψ) ⊗ q_y(θ) ⊗ q_z(φ): ψ precession, θ nutation (the symmetry axis's angle
-from the vertical), φ spin.
+Model. A body with principal moments :math:`(I_\perp, I_\perp, I_3)` about a fixed point,
+centre of mass on the body z axis at distance :math:`l`, gravity :math:`-g\hat z` (space).
+In the body frame the torque is :math:`\tau = mgl\,(Z \times e_3) = mgl\,(Z_y, -Z_x, 0)`,
+:math:`Z = q^* \hat z q` the body components of the vertical, and the energy is
+:math:`E = \tfrac12 \sum_k I_k \omega_k^2 + mgl Z_z`. Orientation in the paper's intrinsic
+z–y′–z″ angles, :math:`q = q_z(\psi) \otimes q_y(\theta) \otimes q_z(\phi)`: :math:`\psi`
+precession, :math:`\theta` nutation (the symmetry axis's angle from the vertical),
+:math:`\phi` spin.
 
-Solution. ω₃ = L₃/I₃ and L_Z are constant; with u = cos θ, a = L₃/I⊥, b = L_Z/I⊥,
-α = 2E′/I⊥ (E′ = E − ½I₃ω₃²), β = 2mgl/I⊥::
+Solution. :math:`\omega_3 = L_3/I_3` and :math:`L_Z` are constant; with
+:math:`u = \cos\theta`, :math:`a = L_3/I_\perp`, :math:`b = L_Z/I_\perp`,
+:math:`\alpha = 2E'/I_\perp` (:math:`E' = E - \tfrac12 I_3\omega_3^2`),
+:math:`\beta = 2mgl/I_\perp`:
 
-    u̇² = f(u) = (1 − u²)(α − βu) − (b − au)² = β (u − u₁)(u − u₂)(u − u₃),
-    u(t) = u₁ + (u₂ − u₁) sn²(λt + r₀ | m),  m = (u₂ − u₁)/(u₃ − u₁),  λ = ½√(β (u₃ − u₁)),
-    ψ̇ = (b − au)/(1 − u²) = (b − a)/(2(1 − u)) + (b + a)/(2(1 + u)),
-    φ̇ = ω₃ − u ψ̇ = ω₃ − a − (b − a)/(2(1 − u)) + (b + a)/(2(1 + u)),
+.. math::
 
-and 1 ∓ u = (1 ∓ u₁)(1 − n_± sn²) with n₊ = (u₂ − u₁)/(1 − u₁), n₋ = −(u₂ − u₁)/(1 + u₁), so
-∫ dt/(1 ∓ u) is :func:`ga_rotors.reference.elliptic.pi_integral` in closed form.
+    \begin{aligned}
+    \dot u^2 &= f(u) = (1 - u^2)(\alpha - \beta u) - (b - au)^2
+      = \beta (u - u_1)(u - u_2)(u - u_3), \\
+    u(t) &= u_1 + (u_2 - u_1) \operatorname{sn}^2(\lambda t + r_0 \mid m), \quad
+      m = \frac{u_2 - u_1}{u_3 - u_1}, \quad
+      \lambda = \tfrac12 \sqrt{\beta (u_3 - u_1)}, \\
+    \dot\psi &= \frac{b - au}{1 - u^2} = \frac{b - a}{2(1 - u)} + \frac{b + a}{2(1 + u)}, \\
+    \dot\phi &= \omega_3 - u\dot\psi
+      = \omega_3 - a - \frac{b - a}{2(1 - u)} + \frac{b + a}{2(1 + u)},
+    \end{aligned}
+
+and :math:`1 \mp u = (1 \mp u_1)(1 - n_\pm \operatorname{sn}^2)` with
+:math:`n_+ = (u_2 - u_1)/(1 - u_1)`, :math:`n_- = -(u_2 - u_1)/(1 + u_1)`, so
+:math:`\int \mathrm{d}t/(1 \mp u)` is :func:`ga_rotors.reference.elliptic.pi_integral` in
+closed form.
 
 Precision. The coefficients of the cubic are computed exactly (rational arithmetic on the
 float inputs, the orientation taken as the rotation q/|q|) and rounded once, in two

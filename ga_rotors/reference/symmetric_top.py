@@ -1,25 +1,34 @@
-"""The torque-free symmetric top in closed form.
+r"""The torque-free symmetric top in closed form.
 
-Two equal principal moments I⊥ and a distinct I_k about body axis k (x, y or z). With
-L_s = q₀ (I ω₀) q₀* the space-frame angular momentum (constant) and L_k = I_k ω_k(0)::
+Two equal principal moments :math:`I_\perp` and a distinct :math:`I_k` about body axis
+:math:`k` (x, y or z). With :math:`L_s = q_0 (\mathsf{I}\omega_0) q_0^*` the space-frame
+angular momentum (constant) and :math:`L_k = I_k \omega_k(0)`:
 
-    q(t) = Exp(t L_s / I⊥) ⊗ q₀ ⊗ Exp(t ν e_k),      ν = (1/I_k − 1/I⊥) L_k
+.. math::
 
-with Exp(v) the unit quaternion of rotation vector v. Derivation: A(t) = Exp(t L_s/I⊥) and
-B(t) = Exp(t ν e_k) give q̇ = ½ q ⊗ (0, q* (L_s/I⊥) q + ν e_k). Since A fixes L_s and B
-rotates about e_k, the body momentum L_b = q* L_s q = B* L_b(0) B keeps its k component
-L_k, so the bracket is L_b/I⊥ + (1/I_k − 1/I⊥) L_k e_k = I⁻¹ L_b = ω: the orientation obeys
-q̇ = ½ q ⊗ (0, I⁻¹ q* L_s q) with L_s fixed, which is exactly torque-free motion (Euler's
-equations plus the kinematics). The body rate ω(t) = I⁻¹ L_b(t) is the transverse part of
-ω₀ turning about e_k at rate −ν, with ω_k constant.
+    q(t) = \operatorname{Exp}(t L_s / I_\perp) \otimes q_0 \otimes \operatorname{Exp}(t \nu e_k),
+    \qquad \nu = \Bigl(\frac{1}{I_k} - \frac{1}{I_\perp}\Bigr) L_k
+
+with :math:`\operatorname{Exp}(v)` the unit quaternion of rotation vector :math:`v`.
+Derivation: :math:`A(t) = \operatorname{Exp}(t L_s/I_\perp)` and
+:math:`B(t) = \operatorname{Exp}(t \nu e_k)` give
+:math:`\dot q = \tfrac12\, q \otimes (0, q^* (L_s/I_\perp) q + \nu e_k)`. Since :math:`A`
+fixes :math:`L_s` and :math:`B` rotates about :math:`e_k`, the body momentum
+:math:`L_b = q^* L_s q = B^* L_b(0) B` keeps its :math:`k` component :math:`L_k`, so the
+bracket is :math:`L_b/I_\perp + (1/I_k - 1/I_\perp) L_k e_k = \mathsf{I}^{-1} L_b = \omega`:
+the orientation obeys :math:`\dot q = \tfrac12\, q \otimes (0, \mathsf{I}^{-1} q^* L_s q)`
+with :math:`L_s` fixed, which is exactly torque-free motion (Euler's equations plus the
+kinematics). The body rate :math:`\omega(t) = \mathsf{I}^{-1} L_b(t)` is the transverse
+part of :math:`\omega_0` turning about :math:`e_k` at rate :math:`-\nu`, with
+:math:`\omega_k` constant.
 
 A body given by a rotated tensor (:meth:`ga_rotors.body.RigidBody.from_tensor`) is solved
 in its principal frame and answered in the user's body frame, as ``simulate`` integrates
 it (:meth:`~ga_rotors.body.RigidBody.to_principal`).
 
-Accuracy: every angle is formed as t·(rate) and reduced by sin/cos once, so the result
-is exact to a few ulp of the total turned angle (|L_s| t/I⊥ ≈ 314 rad in the paper's 10 s
-run: ~1e-13 rad).
+Accuracy: every angle is formed as :math:`t \cdot \text{rate}` and reduced by sin/cos once,
+so the result is exact to a few ulp of the total turned angle
+(:math:`\lvert L_s\rvert t/I_\perp \approx 314` rad in the paper's 10 s run: ~1e-13 rad).
 """
 
 from __future__ import annotations
