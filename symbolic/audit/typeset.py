@@ -8,7 +8,7 @@ each as ``$...$`` LaTeX (:func:`latex`), which the site's math hook turns into M
 What counts as a formula: a run of symbols (Greek letters, indexed names such as ``q1``,
 ``e23`` or ``ωx3``, accented names such as ``q̇``, powers, operators, numbers, brackets)
 that holds at least one operator, relation, power, accent, index or Greek letter. Prose
-words end a formula; a quotation (``'...'``) and code (```...```) are left as they are.
+words end a formula; a quotation (``'...'``) and code in backticks are left as they are.
 The notation read inside a formula:
 
 * a letter followed by digits is indexed: ``q0`` is :math:`q_0`, ``e23`` is :math:`e_{23}`,
