@@ -62,7 +62,8 @@ def _anchor(f: Finding) -> str:
 
 def _finding(f: Finding) -> list[str]:
     verdict = f"**{f.verdict.value}**"
-    title = f"### {f.source} {f.label}: {mark(f.topic)} ({verdict})"
+    # a heading stays plain text: the table of contents shows it as written
+    title = f"### {f.source} {f.label}: {f.topic} ({verdict})"
     lines = [f'<a id="{_anchor(f)}"></a>', title, ""]
     lines.append(f"- printed (as extracted): {_code(f.printed)}")
     lines.append(f"- read as: {mark(f.reading)}")
@@ -86,7 +87,7 @@ def _finding(f: Finding) -> list[str]:
 
 def _derivation(d) -> list[str]:
     """One derivation: its statement and steps typeset, each step's computation as code."""
-    lines = [f"### {mark(d.title)}{' (critical)' if d.critical else ''}", "", mark(d.statement), ""]
+    lines = [f"### {d.title}{' (critical)' if d.critical else ''}", "", mark(d.statement), ""]
     for s in d.steps:
         lines.append(f"- [{'ok' if s.holds else 'FAILED'}] {mark(s.claim)}")
         if s.shown:
