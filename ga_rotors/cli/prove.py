@@ -1,10 +1,16 @@
 """Prove or refute a geometric-algebra identity exactly, in any signature Cl(p,q,r).
 
-Operators: * geometric, ^ outer, | Hestenes inner (grade |r-s|, zero with a scalar),
-~ reverse, / by a number, ** integer power; ^ and | bind tighter than *, as in the GA
-literature. Functions: grade(x,k) lc rc inner dot scalar comm rev involute conj dual
-even exp. Names e1, e12, ... are basis blades and I the pseudoscalar. The signature
-p,q,r puts the r null vectors first (as clifford.Cl(p,q,r) does).
+Operators: * geometric, ^ outer, | Hestenes inner, & regressive (vee), >> sandwich
+(R >> x is R*x*~R), ~ reverse, / division, ** integer power (a**-1 is the inverse). An
+expression that Python's precedence (clifford, galgebra, kingdon) and the GA convention
+(^ and | before *) read differently is refused with both readings (exit 2): add
+parentheses. Every verdict prints the identity as read, fully parenthesised.
+
+Functions: grade(x,k) lc rc inner dot scalar comm rev involute conj even dual undual
+exp log inverse norm norm2 vee meet join sandwich up down. Names e1, e12, ... are basis
+blades (e0 is the null vector of Cl(p,q,1), as in projective GA), I the pseudoscalar,
+eo and einf the null vectors of the conformal model Cl(p,1). --define NAME=EXPR names an
+expression for the identity to use (repeat it; each may use the earlier ones).
 
 Exit status: 0 proved, 1 refuted (the counterexample is printed), 2 bad input (one
 line naming what is wrong), 3 undecided (the reason is printed). With --catalogue: 0
@@ -17,6 +23,12 @@ Examples:
   ga-rotors prove "B*B == grade(B*B, 0)" --signature 1,3 --bivectors B     # refuted
   ga-rotors prove "-n*a*n == a - 2*(a|n)*n" --units n --vectors a
   ga-rotors prove "a*b == -(b*a)" --vectors a,b --orthogonal a,b
+  ga-rotors prove "c == 0" --signature 1,0,1 --vectors a,c --orthogonal a,c  # refuted
+  ga-rotors prove "a*inverse(a) == 1" --signature 1,3 --vectors a
+  ga-rotors prove "M >> (P & Q) == (M >> P) & (M >> Q)" --signature 3,0,1 --motors M --points P,Q
+  ga-rotors prove "(M >> L)^(M >> L) == 0" --signature 3,0,1 --motors M --lines L
+  ga-rotors prove "T >> up(x) == up(x+t)" --signature 4,1 --euclidean x,t --define T=1+einf*t/2
+  ga-rotors prove "exp(log(R)) == R" --rotors R
   ga-rotors prove "B*~B == grade(B*~B, 0)" --signature 4,1 --blades B:3 --latex
   ga-rotors prove "(X*Y)**6*X == X*(Y*X)**6" --signature 4,1 --evens X,Y --timeout 1  # undecided
   ga-rotors prove --catalogue --write docs/identities.md
@@ -34,11 +46,15 @@ __all__ = ["add_arguments", "run"]
 _NAME_OPTIONS = (
     ("scalars", "real numbers"),
     ("vectors", "vectors"),
+    ("euclidean", "vectors of the base space (e1..e(p-1) of the conformal Cl(p,1))"),
     ("units", "vectors with v*v == 1"),
     ("nulls", "vectors with v*v == 0"),
     ("bivectors", "grade-2 elements"),
+    ("points", "projective GA points: grade n-1 in Cl(p,q,1)"),
+    ("lines", "projective GA lines: (n-2)-blades in Cl(p,q,1)"),
     ("evens", "even-grade elements"),
     ("rotors", "rotors: even versors with R*~R == 1"),
+    ("motors", "motors: the rotors of Cl(p,q,1)"),
     ("multivectors", "general multivectors"),
 )
 
@@ -72,6 +88,13 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         metavar="A,B",
         help="two vectors with A|B == 0 (repeat for more pairs)",
     )
+    parser.add_argument(
+        "--define",
+        action="append",
+        default=[],
+        metavar="NAME=EXPR",
+        help="a name for an expression the identity uses (repeat for more)",
+    )
     parser.add_argument("--draws", type=int, default=16, help="random draws of the pre-check")
     parser.add_argument("--seed", type=int, default=0, help="seed of the draws")
     parser.add_argument(
@@ -79,7 +102,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         type=float,
         default=300.0,
         metavar="SECONDS",
-        help="give up (undecided, exit 3) after this long (default 300)",
+        help="give up (undecided, exit 3) after this long (default 300; inf: no limit)",
     )
     parser.add_argument("--latex", action="store_true", help="print the verdict as LaTeX")
     catalogue = parser.add_argument_group("catalogue")
@@ -186,7 +209,7 @@ def run(args: argparse.Namespace) -> int:
         raise InputError(f"--draws: expected an integer from 1 to {MAX_DRAWS}, got {args.draws}")
     if args.seed < 0:
         raise InputError(f"--seed: expected an integer ≥ 0, got {args.seed}")
-    if not args.timeout > 0:
+    if not args.timeout > 0:  # nan too; inf is no limit
         raise InputError(f"--timeout: expected a positive number of seconds, got {args.timeout}")
 
     try:
@@ -196,6 +219,7 @@ def run(args: argparse.Namespace) -> int:
             draws=args.draws,
             seed=args.seed,
             timeout=args.timeout,
+            define=args.define or None,
             **_declarations(args),
         )
     except ValueError as exc:

@@ -15,7 +15,11 @@ Products and operations, for blades A of grade r and B of grade s:
 * ``A.dot(B)`` the "fat dot" of Dorst, Fontijne & Mann (grade |r - s|, scalars included);
 * ``A.scalar_product(B)`` ⟨AB⟩₀; ``A.commutator(B)`` ½(AB − BA);
 * ``~A`` reverse, ``A.involute()`` grade involution, ``A.conjugate()`` Clifford
-  conjugate, ``A.grade(k)`` grade projection, ``A.dual()`` = A I⁻¹ (only when I² ≠ 0).
+  conjugate, ``A.grade(k)`` grade projection;
+* ``A.dual()``: A I⁻¹ where I is invertible (r = 0), the Poincaré dual (right complement)
+  where it is not (r > 0), as ``clifford``'s ``dual``; ``A.undual()`` its inverse;
+* ``A.vee(B)`` the regressive product, from the complements (no metric), as
+  ``clifford``'s ``vee`` and ``&``.
 
 Examples
 --------
@@ -39,20 +43,7 @@ import numpy as np
 
 from .basis import Basis
 
-__all__ = ["DegenerateDualError", "Element"]
-
-
-class DegenerateDualError(ValueError):
-    """The dual A I⁻¹ asked for in a metric whose pseudoscalar squares to zero.
-
-    Examples
-    --------
-    >>> from ga_rotors.symbolic.prover.basis import Basis
-    >>> Element.blade(Basis(3, 0, 1), 1, 1).dual()
-    Traceback (most recent call last):
-    ...
-    ga_rotors.symbolic.prover.element.DegenerateDualError: dual(x) = x I⁻¹ needs an invertible ...
-    """
+__all__ = ["Element"]
 
 
 def _is_zero(c) -> bool:
@@ -306,27 +297,80 @@ class Element:
         """
         return Element(self.basis, {b: c for b, c in self.terms.items() if b.bit_count() == k})
 
-    def dual(self) -> Element:
-        """A I⁻¹ with I = e1 e2 … en; only where I² ≠ 0 (r = 0).
+    def complement(self, right: bool = True) -> Element:
+        """The right (or left) complement: e_A ↦ s e_Ā with e_A ∧ s e_Ā = I (s e_Ā ∧ e_A = I).
 
-        In a degenerate metric (r > 0) I² = 0 and I has no inverse, so there is no
-        metric dual: :class:`DegenerateDualError`. (Plane-based GA uses instead the
-        metric-free complement, which is a different map.)
+        Metric-free, so defined in every signature; the left complement undoes the right.
+
+        Examples
+        --------
+        >>> from ga_rotors.symbolic.prover.basis import Basis
+        >>> e1 = Element.blade(Basis(3, 0, 1), 0b0010, 1)
+        >>> e1.complement(), e1.complement().complement(right=False)
+        (-e023, e1)
+        """
+        basis = self.basis
+        return Element(
+            basis,
+            {
+                basis.full ^ b: c if basis.complement_sign(b, right) > 0 else -c
+                for b, c in self.terms.items()
+            },
+        )
+
+    def dual(self) -> Element:
+        """A I⁻¹ when I² ≠ 0 (r = 0); the Poincaré dual (right complement) when r > 0.
+
+        In a degenerate metric I² = 0 and A I⁻¹ does not exist; plane-based GA (and
+        ``clifford``'s ``dual`` in such a layout) uses the metric-free right complement
+        instead, for which e_A ∧ dual(e_A) = I on every basis blade.
 
         Examples
         --------
         >>> from ga_rotors.symbolic.prover.basis import Basis
         >>> Element.blade(Basis(3), 0b001, 1).dual()    # e1 I⁻¹ = −e1 e123
         -e23
+        >>> Element.blade(Basis(3, 0, 1), 0b0001, 1).dual()   # e0 ↦ e123 in PGA
+        e123
         """
         basis = self.basis
         square = basis.pseudoscalar_square
         if not square:
-            raise DegenerateDualError(
-                f"dual(x) = x I⁻¹ needs an invertible pseudoscalar; I² = 0 in {basis.label()}"
-            )
+            return self.complement(right=True)
         # I⁻¹ = I / I² and I² = ±1, so I⁻¹ = I² · I.
         return self * Element(basis, {basis.full: square})
+
+    def undual(self) -> Element:
+        """The inverse of :meth:`dual`: A I when r = 0, the left complement when r > 0.
+
+        Examples
+        --------
+        >>> from ga_rotors.symbolic.prover.basis import Basis
+        >>> x = Element(Basis(3, 0, 1), {0b0001: 2, 0b0110: 3})
+        >>> x.dual().undual().terms == x.terms, Element(Basis(1, 3), {1: 1}).dual().undual()
+        (True, e1)
+        """
+        basis = self.basis
+        if not basis.pseudoscalar_square:
+            return self.complement(right=False)
+        return self * Element(basis, {basis.full: 1})
+
+    def vee(self, other) -> Element:
+        """The regressive product A ∨ B = undual-by-complement(Ā ∧ B̄), metric-free.
+
+        Defined as ``clifford`` defines ``vee`` (and ``&``): the left complement of the
+        outer product of the right complements, in every signature.
+
+        Examples
+        --------
+        >>> from ga_rotors.symbolic.prover.basis import Basis
+        >>> b = Basis(3)
+        >>> e12, e23 = Element.blade(b, 0b011, 1), Element.blade(b, 0b110, 1)
+        >>> e12.vee(e23)          # the xy and yz planes meet in the y axis
+        e2
+        """
+        other = self._lift(other)
+        return (self.complement() ^ other.complement()).complement(right=False)
 
     # -- display -----------------------------------------------------------------------
     def _parts(self, show: Callable[[object], str]) -> list[tuple[str, str]]:

@@ -1,20 +1,23 @@
 """``prove(lhs, rhs, assumptions)``: an exact verdict on a geometric-algebra identity.
 
-How a verdict is reached:
+How a verdict is reached, in each case of the construction (the pieces of a null cone,
+the generic and radical cases of an orthogonality hub, see :mod:`.symbols`):
 
 1. **Numeric pre-check.** The symbols are drawn at random rational parameters (many
    draws at once, numpy arrays as coefficients) and both sides are compared in floating
    point. A draw where they differ is only a *suspect*.
 2. **Exact check of a suspect.** At that draw's rational parameters both sides are
-   recomputed exactly (normalisers c = 1/√λ and exp's cos/sin kept exact in SymPy).
-   If the difference is not zero the verdict is *refuted*, with the counterexample.
+   recomputed exactly (normalisers c = 1/√λ, exp's cos/sin, reciprocals, roots and logs
+   kept exact in SymPy). If the difference is not zero the verdict is *refuted*, with
+   the counterexample.
 3. **Exact proof.** Otherwise every coefficient of lhs − rhs is computed as a
-   polynomial over ℚ in the free parameters and reduced modulo the assumptions
-   (c² λ = 1 for each normaliser, C² − δ S² = 1 for each exp); *proved* means every
-   reduced coefficient is the zero polynomial. No floating point takes part.
+   polynomial over ℚ in the free parameters and reduced modulo the relations
+   (c² λ = 1 for each normaliser, C² − δ S² = 1 for each exp, ι λ = 1 for each inverse,
+   ρ² = μ for each norm); *proved* means every reduced coefficient is the zero
+   polynomial, in every case. No floating point takes part.
 4. A nonzero reduced difference with no counterexample found at further exact random
    points is *undecided*, with the reason (for instance an identity that needs more
-   of exp than C² − δ S² = 1, such as exp(B)² = exp(2B)).
+   of exp than C² − δ S² = 1 and the addition theorem for commuting arguments).
 
 Examples
 --------
@@ -26,29 +29,55 @@ Examples
 'refuted'
 >>> prove("R*v*~R == grade(R*v*~R, 1)", signature=(3, 0, 1), rotors="R", vectors="v").status
 'proved'
+>>> print(prove("T >> up(x) == up(x + t)", signature=(4, 1), euclidean="x,t",
+...             define={"T": "1 + einf*t/2"}).report())
+proved in Cl(4,1): T >> up(x) == up(x + t)
+  read as: T >> up(x) == up(x + t)
+  where: T = 1 + ((einf * t) / 2)
+  ...
 """
 
 from __future__ import annotations
 
 import gc
+import math
 import signal
 import threading
 import time
-from itertools import product
+from collections.abc import Mapping
 
 import numpy as np
 import sympy
 
-from .assumptions import Assumptions
+from .assumptions import AssumptionError, Assumptions, check_name
 from .basis import Basis, cached_basis
-from .domains import Draws, InvalidPoint, Point, Polynomials, reduce_modulo
+from .domains import (
+    Draws,
+    InvalidPoint,
+    NotInvertible,
+    NotReal,
+    Point,
+    Polynomials,
+    exact_values,
+    reduce_modulo,
+    to_sympy,
+)
 from .element import Element
-from .evaluate import evaluate
-from .grammar import Call, Node, Unary, parse_identity
-from .symbols import Unsupported, build_values, null_cases, parameter_names
+from .evaluate import EvaluationError, Evaluator, exp_groups, symbol_keys
+from .grammar import (
+    MAX_DEFINITIONS,
+    Node,
+    ParseError,
+    names_in,
+    parse_expression,
+    parse_identity,
+    shorten,
+    unparse,
+)
+from .symbols import Unsupported, build_values, construction_cases, parameter_names
 from .verdict import Counterexample, Verdict
 
-__all__ = ["elements", "parse_signature", "prove"]
+__all__ = ["MAX_DRAWS", "elements", "parse_definitions", "parse_signature", "prove"]
 
 _DRAWS = 16
 _EXTRA_POINTS = 6
@@ -57,6 +86,8 @@ _EXTRA_POINTS = 6
 #: allocate terabytes).
 MAX_DRAWS = 1_000_000
 _DIGITS = 50
+#: a time limit this long (or infinite) is no limit (the interval timer cannot hold more).
+_NO_LIMIT = 1e8
 
 
 def parse_signature(signature) -> Basis:
@@ -73,16 +104,70 @@ def parse_signature(signature) -> Basis:
     """
     items = signature.split(",") if isinstance(signature, str) else signature
     try:
-        numbers = [int(str(x).strip()) for x in items]
+        numbers = [int(str(x).strip()) for x in items] if len(str(signature)) < 40 else []
     except (TypeError, ValueError):
         numbers = []
     if len(numbers) not in (2, 3) or min(numbers) < 0:
         raise ValueError(
-            f"signature: expected p,q or p,q,r (non-negative integers), got {signature!r}"
+            "signature: expected p,q or p,q,r (non-negative integers), got "
+            f"{shorten(repr(signature), 40)}"
         )
     if sum(numbers) == 0 or sum(numbers) > 6:
         raise ValueError(f"signature: n = p + q + r must be 1..6, got {sum(numbers)}")
     return cached_basis(*numbers)
+
+
+def parse_definitions(define) -> list[tuple[str, Node]]:
+    """User definitions, ``{"T": "1 + einf*t/2"}`` or ``["T=1 + einf*t/2", ...]``, parsed.
+
+    Each may use the declared symbols and the definitions before it.
+
+    Examples
+    --------
+    >>> [(name, unparse(node)) for name, node in parse_definitions(["T = 1 + e1*t/2"])]
+    [('T', '1 + ((e1 * t) / 2)')]
+    >>> parse_definitions({"T": "S*S", "S": "e1"})
+    Traceback (most recent call last):
+    ...
+    ValueError: define T: uses S, which is defined after it (or is T itself)
+    """
+    if define is None:
+        return []
+    if isinstance(define, Mapping):
+        items = list(define.items())
+    else:
+        if isinstance(define, str):
+            define = [define]
+        items = []
+        for item in define:
+            if not isinstance(item, str) or "=" not in item:
+                raise ValueError(f"define: expected NAME=EXPRESSION, got {shorten(repr(item), 40)}")
+            name, _, text = item.partition("=")
+            items.append((name.strip(), text))
+    if len(items) > MAX_DEFINITIONS:
+        raise ValueError(f"define: {len(items)} definitions; at most {MAX_DEFINITIONS}")
+    out: list[tuple[str, Node]] = []
+    names = [name for name, _ in items]
+    for i, (name, text) in enumerate(items):
+        if not isinstance(name, str):
+            raise ValueError(f"define: expected a name, got {shorten(repr(name), 40)}")
+        check_name(name, "define")
+        if name in names[:i]:
+            raise ValueError(f"define {name}: defined twice")
+        if not isinstance(text, str):
+            raise ValueError(f"define {name}: expected an expression, got {type(text).__name__}")
+        try:
+            node = parse_expression(text)
+        except ParseError as exc:
+            raise ParseError(f"define {name}: {exc}") from None
+        later = sorted(names_in(node) & set(names[i:]))
+        if later:
+            raise ValueError(
+                f"define {name}: uses {', '.join(later)}, which is defined after it "
+                f"(or is {name} itself)"
+            )
+        out.append((name, node))
+    return out
 
 
 def elements(signature=(3, 0), assumptions: Assumptions | None = None, **kinds):
@@ -115,76 +200,56 @@ class _OutOfTime(BaseException):
     (SymPy has such blocks) must not swallow the time limit."""
 
 
-def _exp_nodes(*nodes: Node) -> list[Node]:
-    found: list[Node] = []
-
-    def walk(node):
-        if isinstance(node, Call):
-            for a in node.args:
-                walk(a)
-            if node.name == "exp":
-                arg = node.args[0]
-                if isinstance(arg, Unary) and arg.op == "-":  # exp(−X) shares exp(X)'s C, S
-                    node = Call("exp", (arg.operand,))
-                if node not in found:
-                    found.append(node)
-        for attr in ("operand", "left", "right"):
-            if hasattr(node, attr):
-                walk(getattr(node, attr))
-
-    for n in nodes:
-        walk(n)
-    return found
-
-
 def _size(x: Element, draws: int) -> np.ndarray:
     """max |coefficient| of x, draw by draw."""
     columns = [np.abs(np.broadcast_to(c, (draws,))) for c in x.terms.values()]
     return np.max(columns, axis=0) if columns else np.zeros(draws)
 
 
-def _ring_names(free, norms, exps) -> tuple[list[str], dict[Node, tuple[str, str]]]:
-    exp_names = {node: (f"C_{k}", f"S_{k}") for k, node in enumerate(exps, 1)}
-    return free + norms + [x for pair in exp_names.values() for x in pair], exp_names
+class _Problem:
+    """One identity with its assumptions, definitions and symbol names: evaluated in any
+    domain and case."""
+
+    def __init__(self, left, right, assumptions, basis, definitions):
+        self.left, self.right = left, right
+        self.assumptions, self.basis = assumptions, basis
+        self.definitions = definitions
+        nodes = [left, right, *(node for _, node in definitions)]
+        self.groups = exp_groups(*nodes)
+        self.keys = symbol_keys(*nodes)
+        self.free, self.norms = parameter_names(assumptions, basis)
+        self.symbol_names = [name for names in self.keys.values() for name in names]
+
+    def sides(self, domain, case) -> tuple[dict, Element, Element]:
+        env = build_values(self.assumptions, self.basis, domain, case)
+        ev = Evaluator(env, self.basis, domain, self.groups)
+        for name, node in self.definitions:
+            ev.define(name, node)
+        return env, ev(self.left), ev(self.right)
+
+    def polynomials(self) -> Polynomials:
+        return Polynomials(self.free + self.norms + self.symbol_names, self.keys)
+
+    def point(self, draws: Draws, j: int) -> Point:
+        values = {name: xs[j] for name, xs in draws.exact.items()}
+        signs = {name: s[j] for name, s in draws.signs.items()}
+        return Point(values, signs, self.norms + self.symbol_names, self.keys)
 
 
-def _to_sympy(f, domain: Polynomials, point_values: dict[str, sympy.Expr]) -> sympy.Expr:
-    return f.as_expr().subs(
-        {sympy.Symbol(name): v for name, v in point_values.items()}, simultaneous=True
-    )
-
-
-def _exact_check(lhs, rhs, assumptions, basis, case, draws: Draws, j: int, free, norms, exps):
+def _exact_check(problem: _Problem, case, draws: Draws, j: int) -> Counterexample | None:
     """The exact counterexample at draw j, or None when the sides agree there."""
-    values = {name: xs[j] for name, xs in draws.exact.items()}
-    signs = {name: s[j] for name, s in draws.signs.items()}
-    names, exp_names = _ring_names([], norms, exps)
-    dom = Point(values, signs, names, exp_names)
+    dom = problem.point(draws, j)
     try:
-        env = build_values(assumptions, basis, dom, case)
-        memo: dict = {}
-        left = evaluate(lhs, env, basis, dom, memo)
-        right = evaluate(rhs, env, basis, dom, memo)
+        env, left, right = problem.sides(dom, case)
+        subst = exact_values(dom)
     except InvalidPoint:
         return None
-    # exact values of the normalisers and of exp's C, S at this point
-    subst: dict[str, sympy.Expr] = {}
-    for c, lam in dom.norms:
-        subst[c] = int(signs.get(c, 1)) / sympy.sqrt(sympy.Rational(str(lam.LC)))
-    for c, s, delta in dom.exps:
-        d = sympy.nsimplify(_to_sympy(delta, dom, subst))
-        theta = sympy.sqrt(sympy.Abs(d))
-        if d == 0:
-            subst[c], subst[s] = sympy.Integer(1), sympy.Integer(1)
-        elif d < 0:
-            subst[c], subst[s] = sympy.cos(theta), sympy.sin(theta) / theta
-        else:
-            subst[c], subst[s] = sympy.cosh(theta), sympy.sinh(theta) / theta
-    digits = _DIGITS if dom.exps else None
+    numeric = any(r.kind != "normaliser" for r in dom.relations)
+    digits = _DIGITS if numeric else None
     difference = left - right
     nonzero = False
     for coeff in difference.terms.values():
-        expr = sympy.expand(_to_sympy(reduce_modulo(coeff, dom), dom, subst))
+        expr = sympy.expand(to_sympy(reduce_modulo(coeff, dom), subst))
         if digits is None:
             nonzero = expr != 0
         else:
@@ -193,22 +258,85 @@ def _exact_check(lhs, rhs, assumptions, basis, case, draws: Draws, j: int, free,
             break
     if not nonzero:
         return None
+    basis = problem.basis
 
     def show(x: Element) -> dict[str, sympy.Expr]:
         out = {}
         for blade in basis.blades:
             if blade in x.terms:
-                v = sympy.expand(_to_sympy(x.terms[blade], dom, subst))
+                v = sympy.expand(to_sympy(x.terms[blade], subst))
                 if v != 0:
                     out[basis.name(blade)] = v
         return out
 
     return Counterexample(
-        values={name: show(x) for name, x in env.items()},
+        values={name: show(env[name]) for name in problem.assumptions.kinds},
         lhs=show(left),
         rhs=show(right),
         digits=digits,
     )
+
+
+def _check_timeout(timeout):
+    if timeout is None:
+        return None
+    if isinstance(timeout, bool) or not isinstance(timeout, int | float) or math.isnan(timeout):
+        raise ValueError(f"timeout: expected a positive number of seconds, got {timeout!r}")
+    if timeout <= 0:
+        raise ValueError(f"timeout: expected a positive number of seconds, got {timeout!r}")
+    return None if timeout >= _NO_LIMIT else float(timeout)
+
+
+def _notes(problem: _Problem, dom: Polynomials, cases, any_valid) -> list[str]:
+    notes = []
+    if len(cases) > 1:
+        notes.append(f"proved in each of the {len(cases)} cases of the construction")
+    kinds = {r.kind for r in dom.relations}
+    inverses = [r for r in dom.relations if r.kind == "reciprocal" and r.names[0].startswith("i_")]
+    where = []
+    if inverses:
+        where.append("the inverses in it exist")
+    if "root" in kinds:
+        where.append("the norms in it are real")
+    if "log" in kinds:
+        where.append("the rotors in it have a real log")
+    if where:
+        notes.append("holds wherever " + " and ".join(where))
+    if not any_valid:
+        notes.append(
+            "no random draw satisfied the assumptions over the reals; "
+            "the identity may hold vacuously"
+        )
+    assumptions, basis = problem.assumptions, problem.basis
+    zero = [
+        f"{name} (grade {k})"
+        for name, k in {**assumptions.kvectors, **assumptions.blades}.items()
+        if k > basis.n
+    ]
+    if zero:  # a grade above n declared by mistake would make any identity hold
+        one = len(zero) == 1
+        notes.append(
+            f"{', '.join(zero)} {'is' if one else 'are'} 0 in {basis.label()} (no "
+            f"grade above n = {basis.n}): the identity holds vacuously for "
+            f"{'it' if one else 'them'}"
+        )
+    return notes
+
+
+def _relations_text(problem: _Problem, dom: Polynomials) -> str:
+    what = {"rotor": "N Ñ, N = exp∧(B)", "motor": "N Ñ, N = exp∧(B)", "unit": "w·w"}
+    out = []
+    for r in dom.relations:
+        name = r.names[0]
+        if r.kind == "normaliser":
+            out.append(f"{name}²·λ = 1 (λ = {what[problem.assumptions.kinds[name[2:]]]})")
+        elif r.kind == "exp":
+            out.append(f"{name}² − δ·{r.names[1]}² = 1")
+        elif r.kind == "reciprocal":
+            out.append(f"{name}·λ = 1")
+        elif r.kind == "root":
+            out.append(f"{name}² = μ")
+    return f" modulo {', '.join(dict.fromkeys(out))}" if out else ""
 
 
 def prove(
@@ -217,6 +345,7 @@ def prove(
     assumptions: Assumptions | None = None,
     *,
     signature=(3, 0),
+    define=None,
     draws: int = _DRAWS,
     seed: int = 0,
     timeout: float | None = None,
@@ -235,14 +364,18 @@ def prove(
         ``blades={"B": 2}``, ``orthogonal=[("a", "b")]``...), see :class:`Assumptions`.
     signature : tuple or str
         (p, q) or (p, q, r): p vectors square to +1, q to −1, r to 0 (null first).
+    define : dict or list of str, optional
+        Names for expressions, ``{"T": "1 + einf*t/2"}`` or ``["T=1 + einf*t/2"]``; each
+        may use the symbols and the definitions before it (``--define`` on the command
+        line).
     draws : int
         Random draws of the numeric pre-check.
     seed : int
         Seed of the draws (verdicts do not depend on it; counterexamples may).
     timeout : float, optional
         Give up after this many seconds with an *undecided* verdict (main thread only:
-        it uses SIGALRM). A long identity in a large algebra can grow polynomials of
-        millions of terms; this bounds the wait.
+        it uses SIGALRM; ``inf`` is no limit). A long identity in a large algebra can grow
+        polynomials of millions of terms; this bounds the wait.
 
     Returns
     -------
@@ -251,8 +384,9 @@ def prove(
     Raises
     ------
     ValueError
-        Bad input: a syntax error (column named), an undeclared symbol, a malformed
-        declaration, an operation the metric does not allow (dual when I² = 0).
+        Bad input: a syntax error (column named), precedence that Python and the GA
+        convention read differently, an undeclared symbol, a malformed declaration or
+        definition, an operation that cannot be formed (the inverse of a null vector).
 
     Examples
     --------
@@ -260,6 +394,8 @@ def prove(
     'proved'
     >>> print(prove("n*a*n == a", signature=(3, 0), units="n", vectors="a").status)
     refuted
+    >>> prove("a*inverse(a) == 1", vectors="a").status, prove("R/R == 1", rotors="R").status
+    ('proved', 'proved')
     """
     start = time.perf_counter()
     text = lhs if rhs is None else f"{lhs} == {rhs}"
@@ -269,15 +405,18 @@ def prove(
     elif kinds:
         raise ValueError("give the symbols either as an Assumptions or as keywords, not both")
     basis = parse_signature(signature)
-    if not isinstance(draws, int) or not 1 <= draws <= MAX_DRAWS:
-        raise ValueError(f"draws: expected an integer from 1 to {MAX_DRAWS}, got {draws!r}")
-    free, norms = parameter_names(assumptions, basis)
-    exps = _exp_nodes(left, right)
-    nulls = [n for n, k in assumptions.kinds.items() if k == "null"]
-    cases = [
-        dict(zip(nulls, combo, strict=True))
-        for combo in product(*(range(null_cases(basis)) for _ in nulls))
-    ]
+    if isinstance(draws, bool) or not isinstance(draws, int) or not 1 <= draws <= MAX_DRAWS:
+        raise ValueError(
+            f"draws: expected an integer from 1 to {MAX_DRAWS}, got {shorten(repr(draws), 30)}"
+        )
+    timeout = _check_timeout(timeout)
+    definitions = parse_definitions(define)
+    for name, _ in definitions:
+        if name in assumptions.kinds:
+            raise AssumptionError(f"define {name}: {name!r} is already declared as a symbol")
+    problem = _Problem(left, right, assumptions, basis, definitions)
+    reading = f"{unparse(left)} == {unparse(right)}"
+    where = [f"{name} = {unparse(node)}" for name, node in definitions]
 
     def verdict(status, detail, counterexample=None, notes=()):
         return Verdict(
@@ -289,82 +428,51 @@ def prove(
             detail,
             counterexample,
             list(notes),
+            reading=reading,
+            definitions=where,
         )
-
-    if timeout is not None and (not isinstance(timeout, int | float) or timeout <= 0):
-        raise ValueError(f"timeout: expected a positive number of seconds, got {timeout!r}")
 
     def decide() -> Verdict:
         try:
+            cases = construction_cases(assumptions, basis)
             # 1-2: numeric pre-check, exact check of the suspects
             any_valid = False
             for case in cases:
                 sample = Draws(draws, seed)
                 with np.errstate(all="ignore"):
-                    env = build_values(assumptions, basis, sample, case)
-                    memo: dict = {}
-                    a = evaluate(left, env, basis, sample, memo)
-                    b = evaluate(right, env, basis, sample, memo)
+                    build_values(assumptions, basis, sample, case)
+                    any_valid |= bool(sample.valid.any())
+                    _, a, b = problem.sides(sample, case)
                 err, scale = _size(a - b, draws), 1.0 + _size(a, draws) + _size(b, draws)
                 valid = sample.valid & np.isfinite(err) & np.isfinite(scale)
-                any_valid |= bool(valid.any())
                 order = np.argsort(-err / scale)
                 suspects = [j for j in order if valid[j] and err[j] > 1e-9 * scale[j]]
                 for j in suspects[:3]:
-                    ce = _exact_check(
-                        left, right, assumptions, basis, case, sample, int(j), free, norms, exps
-                    )
+                    ce = _exact_check(problem, case, sample, int(j))
                     if ce is not None:
                         return verdict("refuted", "counterexample", ce)
 
             # 3: exact proof
             terms = 0
             for case in cases:
-                names, exp_names = _ring_names(free, norms, exps)
-                dom = Polynomials(names, exp_names)
-                env = build_values(assumptions, basis, dom, case)
-                memo = {}
-                difference = evaluate(left, env, basis, dom, memo) - evaluate(
-                    right, env, basis, dom, memo
-                )
+                dom = problem.polynomials()
+                _, a, b = problem.sides(dom, case)
+                difference = a - b
                 terms += sum(len(c) for c in difference.terms.values())
-                residue = {b: reduce_modulo(c, dom) for b, c in difference.terms.items()}
-                residue = {b: c for b, c in residue.items() if c}
+                residue = {k: reduce_modulo(c, dom) for k, c in difference.terms.items()}
+                residue = {k: c for k, c in residue.items() if c}
                 if residue:
                     break
             else:
-                what = {"rotor": "N Ñ, N = exp∧(B)", "unit": "w·w"}
-                relations = [
-                    f"{c}²·λ = 1 (λ = {what[assumptions.kinds[c[2:]]]})" for c, _ in dom.norms
-                ] + [f"{c}² − δ·{s}² = 1" for c, s, _ in dom.exps]
-                how = f" modulo {', '.join(relations)}" if relations else ""
-                notes = []
-                if len(cases) > 1:
-                    notes.append(f"proved on each of the {len(cases)} pieces of the null cone")
-                if not any_valid:
-                    notes.append(
-                        "no random draw satisfied the assumptions over the reals; "
-                        "the identity may hold vacuously"
-                    )
-                zero = [
-                    f"{name} (grade {k})"
-                    for name, k in {**assumptions.kvectors, **assumptions.blades}.items()
-                    if k > basis.n
-                ]
-                if zero:  # a grade above n declared by mistake would make any identity hold
-                    one = len(zero) == 1
-                    notes.append(
-                        f"{', '.join(zero)} {'is' if one else 'are'} 0 in {basis.label()} (no "
-                        f"grade above n = {basis.n}): the identity holds vacuously for "
-                        f"{'it' if one else 'them'}"
-                    )
+                how = _relations_text(problem, dom)
                 detail = (
-                    f"lhs − rhs = 0: {terms} polynomial terms over ℚ in {len(free)} parameters "
-                    f"reduce to 0{how}"
+                    f"lhs − rhs = 0: {terms} polynomial terms over ℚ in {len(problem.free)} "
+                    f"parameters reduce to 0{how}"
                     if terms
-                    else f"lhs − rhs expands to 0 in {len(free)} parameters (nothing to reduce)"
+                    else f"lhs − rhs expands to 0 in {len(problem.free)} parameters "
+                    "(nothing to reduce)"
                 )
-                return verdict("proved", detail, notes=notes)
+                return verdict("proved", detail, notes=_notes(problem, dom, cases, any_valid))
 
             # 4: a nonzero residue: look for an exact counterexample at more points
             for attempt in range(_EXTRA_POINTS):
@@ -372,9 +480,7 @@ def prove(
                 with np.errstate(all="ignore"):
                     build_values(assumptions, basis, sample, case)
                 for j in np.flatnonzero(sample.valid)[:2]:
-                    ce = _exact_check(
-                        left, right, assumptions, basis, case, sample, int(j), free, norms, exps
-                    )
+                    ce = _exact_check(problem, case, sample, int(j))
                     if ce is not None:
                         return verdict("refuted", "counterexample", ce)
             some = next(iter(residue.values()))
@@ -382,15 +488,18 @@ def prove(
                 "the difference reduces to a nonzero polynomial but no exact counterexample "
                 f"was found at {draws + 2 * _EXTRA_POINTS} random points"
             )
-            if exps:
+            kinds_used = {r.kind for r in dom.relations}
+            if "exp" in kinds_used or "log" in kinds_used:
                 reason = (
-                    "the difference does not reduce to 0 using only C² − δS² = 1 for each exp "
-                    "(the prover does not use addition theorems such as exp(B)² = exp(2B)), and "
-                    "no counterexample was found"
+                    "the difference does not reduce to 0 using C² − δS² = 1 for each exp and "
+                    "the addition theorem for arguments that are multiples of one another or "
+                    "commuting parts of a sum, and no counterexample was found"
                 )
             return verdict("undecided", reason + f" (a residual coefficient has {len(some)} terms)")
         except Unsupported as exc:
             return verdict("undecided", f"not supported: {exc}")
+        except (NotInvertible, NotReal) as exc:  # pragma: no cover - evaluate names them
+            raise EvaluationError(str(exc)) from None
 
     if timeout is None or threading.current_thread() is not threading.main_thread():
         return decide()

@@ -87,7 +87,9 @@ class Verdict:
     """The outcome of :func:`prove`: proved, refuted (with a counterexample) or undecided.
 
     ``bool(verdict)`` is True only when proved; ``exit_code`` is what ``ga-rotors prove``
-    returns (0 proved, 1 refuted, 3 undecided).
+    returns (0 proved, 1 refuted, 3 undecided). ``reading`` is the identity fully
+    parenthesised, as the prover read it, and ``definitions`` the user's definitions
+    (``T = ...``), read the same way.
 
     Examples
     --------
@@ -107,6 +109,8 @@ class Verdict:
     detail: str
     counterexample: Counterexample | None = None
     notes: list[str] = field(default_factory=list)
+    reading: str = ""
+    definitions: list[str] = field(default_factory=list)
 
     def __bool__(self) -> bool:
         return self.status == "proved"
@@ -131,14 +135,17 @@ class Verdict:
         >>> from ga_rotors.symbolic.prover import prove
         >>> print(prove("a*b == b*a", signature=(2, 0), vectors="a,b").report())
         refuted in Cl(2,0): a*b == b*a
+          read as: a * b == b * a
           assuming: vectors a, b
           counterexample (exact):
             a = ...
         """
-        lines = [
-            f"{self.status} in {self.signature}: {self.identity}",
-            f"  assuming: {self.assumptions}",
-        ]
+        lines = [f"{self.status} in {self.signature}: {self.identity}"]
+        if self.reading:
+            lines.append(f"  read as: {self.reading}")
+        if self.definitions:
+            lines.append(f"  where: {'; '.join(self.definitions)}")
+        lines.append(f"  assuming: {self.assumptions}")
         if self.counterexample is not None:
             how = (
                 "exact"
@@ -167,8 +174,12 @@ class Verdict:
         rows = [
             rf"\textbf{{{self.status}}}\text{{ in {self.signature}: }}"
             rf"\texttt{{{_tex_text(self.identity)}}}",
-            rf"\text{{assuming {_tex_text(self.assumptions)}}}",
         ]
+        if self.reading:
+            rows.append(rf"\text{{read as: }}\texttt{{{_tex_text(self.reading)}}}")
+        if self.definitions:
+            rows.append(rf"\text{{where: }}\texttt{{{_tex_text('; '.join(self.definitions))}}}")
+        rows.append(rf"\text{{assuming {_tex_text(self.assumptions)}}}")
         ce = self.counterexample
         if ce is not None:
             rows += [f"{name} = {ce._latex(c)}" for name, c in ce.values.items()]
