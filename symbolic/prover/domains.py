@@ -318,11 +318,16 @@ class Draws:
         self.valid &= ~((beta < 0) & (root < 1e-12) & (a < 0))
         return phi, 1.0 / phi
 
+    def _valid(self, c) -> np.ndarray:
+        """|c| at the draws that satisfy the assumptions (all of them if none does)."""
+        column = np.abs(self._column(c))
+        return column[self.valid] if self.valid.any() else column
+
     def _small(self, c, scale) -> bool:
-        return bool(np.max(np.abs(c)) <= 1e-9 * scale)
+        return bool(np.all(self._valid(c) <= 1e-9 * scale))
 
     def _scale(self, x: Element) -> float:
-        return 1.0 + max((np.max(np.abs(c)) for c in x.terms.values()), default=0.0)
+        return 1.0 + max((np.max(self._valid(c)) for c in x.terms.values()), default=0.0)
 
     def scalar_value(self, x: Element):
         scale = self._scale(x)
