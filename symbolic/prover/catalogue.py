@@ -2,7 +2,8 @@
 
 Sources: Hestenes & Sobczyk, *Clifford Algebra to Geometric Calculus* (1984) [HS];
 Doran & Lasenby, *Geometric Algebra for Physicists* (2003) [DL]; Dorst, Fontijne &
-Mann, *Geometric Algebra for Computer Science* (2007) [DFM]. Every entry states, by
+Mann, *Geometric Algebra for Computer Science* (2007) [DFM]; Dorst & De Keninck, *A
+Guided Tour to the Plane-Based Geometric Algebra PGA* (2022) [DK]. Every entry states, by
 hand and independently of the prover, where it should hold (``holds``); the suite
 proves it in each of those signatures and refutes it, with a counterexample, in the
 others. ``docs/identities.md`` is generated from a run (``ga-rotors prove --catalogue
@@ -64,6 +65,28 @@ def _nondegenerate(b: Basis) -> bool:
     return b.r == 0
 
 
+def _degenerate(b: Basis) -> bool:
+    return b.r > 0
+
+
+def _projective(b: Basis) -> bool:
+    """Projective GA, Cl(p,q,1) with n ≥ 3: points and lines exist."""
+    return b.r == 1 and b.n >= 3
+
+
+def _pga3(b: Basis) -> bool:
+    return b.signature == (3, 0, 1)
+
+
+def _conformal(b: Basis) -> bool:
+    return b.conformal_pair() is not None
+
+
+def _simple_rotors(b: Basis) -> bool:
+    """n ≤ 3: every rotor is a + b with b² a scalar (its log is a simple bivector)."""
+    return b.n <= 3
+
+
 @dataclass(frozen=True)
 class Identity:
     """One catalogue entry.
@@ -81,9 +104,14 @@ class Identity:
     holds : callable
         Basis -> bool: where it should hold (decided by hand, not by the prover).
     applies : callable
-        Basis -> bool: where it can be stated at all (dual needs I² ≠ 0).
+        Basis -> bool: where it can be stated at all (the metric dual needs I² ≠ 0,
+        points and lines a projective Cl(p,q,1), up and down a conformal Cl(p,1)).
     where : str
         ``holds`` in words.
+    notes : tuple of str
+        Remarks.
+    define : dict
+        User definitions the identity uses (``prove(..., define=...)``).
 
     Examples
     --------
@@ -100,6 +128,7 @@ class Identity:
     applies: Callable[[Basis], bool] = _all
     where: str = "every signature"
     notes: tuple[str, ...] = field(default=())
+    define: dict = field(default_factory=dict)
 
     def assumptions(self) -> Assumptions:
         """The entry's declarations as an :class:`~.assumptions.Assumptions`.
@@ -110,6 +139,19 @@ class Identity:
         'vectors a, b'
         """
         return Assumptions(**self.kinds)
+
+    def describe(self) -> str:
+        """The declarations and definitions, as the catalogue page lists them.
+
+        Examples
+        --------
+        >>> [e.describe() for e in CATALOGUE if e.key == "cga-translator"]
+        ['euclidean x, t; T = 1 + einf*t/2']
+        """
+        text = self.assumptions().describe()
+        for name, expression in self.define.items():
+            text += f"; {name} = {expression}"
+        return text
 
     def expected(self, basis: Basis) -> bool:
         """Whether the identity should hold in this algebra.
@@ -331,6 +373,95 @@ CATALOGUE: tuple[Identity, ...] = (
         applies=_nondegenerate,
         where="I² = −1",
     ),
+    # -- inverse, division, norms ---------------------------------------------------------------
+    Identity("inverse-vector", "a*inverse(a) == 1", {"vectors": "a"}, "DL 2"),
+    Identity("inverse-rotor", "inverse(R) == ~R", {"rotors": "R"}, "DL 4"),
+    Identity("division", "(a*b)/b == a", V2, "DL 2"),
+    Identity("inverse-power", "a**-2 == inverse(a*a)", {"vectors": "a"}, "DL 2"),
+    Identity("inverse-blade", "B*inverse(B) == 1", {"blades": {"B": 2}}, "DFM 3"),
+    Identity("norm-rotor", "norm(R) == 1", {"rotors": "R"}, "DL 4"),
+    Identity("norm2-product", "norm2(a*b) == norm2(a)*norm2(b)", V2, "DFM 7"),
+    # -- duality and the regressive product in every metric ------------------------------------
+    Identity("undual-dual", "undual(dual(X)) == X", {"multivectors": "X"}, "DFM 3, DK"),
+    Identity(
+        "vee-complement",
+        "X & Y == undual(dual(X)^dual(Y))",
+        X2,
+        "DK",
+        holds=_degenerate,
+        where="r > 0 (the dual is the complement)",
+    ),
+    Identity("vee-assoc", "(X & Y) & Z == X & (Y & Z)", X3, "DFM 5, DK"),
+    # -- projective GA: motors, points, lines ---------------------------------------------------
+    Identity(
+        "motor-compose",
+        "(M*N) >> X == M >> (N >> X)",
+        {"motors": "M,N", "multivectors": "X"},
+        "DK",
+        applies=_projective,
+    ),
+    Identity(
+        "motor-meet",
+        "M >> (a^b) == (M >> a)^(M >> b)",
+        {"motors": "M", "vectors": "a,b"},
+        "DK",
+        applies=_projective,
+    ),
+    Identity(
+        "motor-join",
+        "M >> (P & Q) == (M >> P) & (M >> Q)",
+        {"motors": "M", "points": "P,Q"},
+        "DK",
+        applies=_projective,
+    ),
+    Identity(
+        "motor-point",
+        "M >> P == grade(M >> P, 3)",
+        {"motors": "M", "points": "P"},
+        "DK",
+        applies=_pga3,
+    ),
+    Identity(
+        "motor-line",
+        "(M >> L)^(M >> L) == 0",
+        {"motors": "M", "lines": "L"},
+        "DK",
+        applies=_projective,
+    ),
+    Identity("join-anti", "P & Q == -(Q & P)", {"points": "P,Q"}, "DK", applies=_projective),
+    Identity("join-is-line", "(P & Q)^(P & Q) == 0", {"points": "P,Q"}, "DK", applies=_projective),
+    # -- the conformal model ----------------------------------------------------------------------
+    Identity(
+        "up-null", "up(x)*up(x) == 0", {"euclidean": "x"}, "DFM 13, DL 10", applies=_conformal
+    ),
+    Identity(
+        "up-distance",
+        "up(x)|up(y) == -((x - y)*(x - y))/2",
+        {"euclidean": "x,y"},
+        "DFM 13, DL 10",
+        applies=_conformal,
+    ),
+    Identity("down-up", "down(up(x)) == x", {"euclidean": "x"}, "DL 10", applies=_conformal),
+    Identity(
+        "cga-translator",
+        "T >> up(x) == up(x + t)",
+        {"euclidean": "x,t"},
+        "DFM 13, DL 10",
+        applies=_conformal,
+        define={"T": "1 + einf*t/2"},
+    ),
+    Identity("eo-einf", "eo|einf == -1", {}, "DFM 13", applies=_conformal),
+    # -- exp and log: the addition theorem where it holds -----------------------------------------
+    Identity("exp-double", "exp(B)*exp(B) == exp(2*B)", {"blades": {"B": 2}}, "DL 4"),
+    Identity("exp-half", "exp(B/2)*exp(B/2) == exp(B)", {"blades": {"B": 2}}, "DL 4"),
+    Identity(
+        "exp-commuting-sum",
+        "exp(s*B + t*B) == exp(s*B)*exp(t*B)",
+        {"scalars": "s,t", "blades": {"B": 2}},
+        "DL 4",
+    ),
+    Identity("log-exp", "exp(log(R)) == R", {"rotors": "R"}, "DL 4, DK", applies=_simple_rotors),
+    Identity("log-reverse", "log(~R) == -log(R)", {"rotors": "R"}, "DK", applies=_simple_rotors),
 )
 
 
@@ -386,7 +517,9 @@ def run_catalogue(signatures=QUICK_SIGNATURES, keys=None, progress=None) -> list
             basis = cached_basis(*sig)
             if not entry.applies(basis):
                 continue
-            verdict = prove(entry.identity, signature=sig, **entry.kinds)
+            verdict = prove(
+                entry.identity, signature=sig, define=entry.define or None, **entry.kinds
+            )
             result = Result(entry, basis, verdict)
             out.append(result)
             if progress is not None:
@@ -438,12 +571,15 @@ def markdown(results: list[Result], command: str) -> str:
         "",
         "Each identity is proved (✓) exactly in every signature where it holds and refuted (✗)",
         "with an exact counterexample where it does not; a blank cell is a signature where the",
-        "identity cannot be stated (the dual x I⁻¹ needs I² ≠ 0). Times are one run of",
-        "`prove` on one core, on a shared machine. Signature Cl(p,q,r): p vectors square to",
-        "+1, q to −1, r to 0. Sources: [HS] Hestenes & Sobczyk, *Clifford Algebra to Geometric",
-        "Calculus* (1984), ch. 1; [DL] Doran & Lasenby, *Geometric Algebra for Physicists*",
-        "(2003); [DFM] Dorst, Fontijne & Mann, *Geometric Algebra for Computer Science* (2007);",
-        "numbers after a source are chapters.",
+        "identity cannot be stated (the metric dual x I⁻¹ needs I² ≠ 0; points and lines need",
+        "projective GA, Cl(p,q,1) with n ≥ 3; up, down, eo and einf the conformal Cl(p,1); a",
+        "log that is a simple bivector n ≤ 3). Times are one run of `prove` on one core, on a",
+        "shared machine. Signature Cl(p,q,r): p vectors square to +1, q to −1, r to 0 (in",
+        "Cl(p,q,1) the null vector is e0). Sources: [HS] Hestenes & Sobczyk, *Clifford Algebra",
+        "to Geometric Calculus* (1984), ch. 1; [DL] Doran & Lasenby, *Geometric Algebra for",
+        "Physicists* (2003); [DFM] Dorst, Fontijne & Mann, *Geometric Algebra for Computer",
+        "Science* (2007); [DK] Dorst & De Keninck, *A Guided Tour to the Plane-Based Geometric",
+        "Algebra PGA* (2022); numbers after a source are chapters.",
         "",
         f"{len(by_key)} identities, {len(results)} verdicts, {_ms(total)} in all; "
         + ", ".join(
@@ -477,7 +613,7 @@ def markdown(results: list[Result], command: str) -> str:
                 flag = "" if r.as_expected else " **unexpected**"
                 cells.append(f"{mark[r.verdict.status]} {_ms(r.verdict.seconds)}{flag}")
         ident = entry.identity.replace("|", "\\|")
-        symbols = entry.assumptions().describe().replace("|", "\\|")
+        symbols = entry.describe().replace("|", "\\|")
         lines.append(
             f"| {entry.key} | `{ident}` | {symbols} | {entry.where} | {entry.source} | "
             + " | ".join(cells)
