@@ -34,7 +34,7 @@ orthogonal complement of the ones built before it, in the order and the cases of
 
 Why these cover everything: the unit, blade and linear forms reach every element of
 their kind exactly; Lipschitz's form reaches every rotor with a nonzero scalar part,
-a dense subset of the rotor group for n ≤ 5 in every signature, so a polynomial identity
+a dense subset of the rotor group (checked for n ≤ 6 in every signature), so a polynomial identity
 that holds on it holds on all rotors (R = ⟨R⟩₀ (1 + B + B∧B/2 + …) with B = ⟨R⟩₂/⟨R⟩₀;
 ``tests/test_prove_soundness.py`` checks this on rotors drawn with ``clifford`` as
 products of vectors and exponentials of bivectors). In Cl(3, 0, 1) these are the motors of

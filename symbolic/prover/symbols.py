@@ -14,9 +14,10 @@ it; ``tests/test_prove_soundness.py`` checks it against elements drawn with ``cl
 * unit vectors: c w with c² w² = 1 (w = v, c = ±1 gives any v with v² = 1);
 * blades and lines: the wedge of k free vectors (a k-blade is such a wedge);
 * null vectors: s⟨w n₀ w⟩₁ + z (see :mod:`.assumptions`), one case per piece of the cone;
-* rotors and motors: c(1 + B + B∧B/2! + …) with c² N Ñ = 1, which is every rotor R with
-  ⟨R⟩₀ ≠ 0 (B = ⟨R⟩₂/⟨R⟩₀, c = ⟨R⟩₀), a dense subset of the rotors for n ≤ 5 in every
-  signature; for n = 6, N Ñ is not a scalar and rotors are *undecided*;
+* rotors and motors: c(1 + B + B∧B/2! + …) with c² N Ñ = 1 (N Ñ is a scalar: Lipschitz's
+  exterior exponential is a versor), which is every rotor R with ⟨R⟩₀ ≠ 0 (B = ⟨R⟩₂/⟨R⟩₀,
+  c = ⟨R⟩₀), a dense subset of the rotors: checked on rotors drawn in every signature
+  with n ≤ 6, degenerate ones included;
 * vectors under orthogonality: each inside the orthogonal complement of its earlier
   neighbours, det(G) x − Ωᵀ adj(G) Ω x (Ω the lowered neighbours, G = Ω Ωᵀ), in the
   order and cases of :mod:`.orthogonal`.
@@ -69,6 +70,11 @@ def grade_of(assumptions: Assumptions, name: str, basis: Basis) -> int | None:
             raise ValueError(
                 f"{kind}s: {name!r} is a projective-GA {kind}; declare it in Cl(p,q,1) "
                 f"(e.g. --signature 3,0,1), not {basis.label()}"
+            )
+        if basis.n < 3:
+            raise ValueError(
+                f"{kind}s: {name!r} needs a projective space of dimension 2 or more, "
+                f"Cl(p,q,1) with n >= 3, not {basis.label()}"
             )
         return basis.n - (1 if kind == "point" else 2)
     return assumptions.grade_of(name)
@@ -341,10 +347,9 @@ def build_values(
                 N = N + power.scale(domain.const(1) / factorial(k))
             norm = N * ~N
             if not domain.is_scalar(norm):
-                raise Unsupported(
-                    f"{kind}s in {basis.label()}: the exterior exponential N of a bivector has "
-                    "N Ñ not a scalar for n = 6, so the prover has no construction that "
-                    f"reaches every {kind} ({name})"
+                raise Unsupported(  # pragma: no cover - Lipschitz: N Ñ is a scalar
+                    f"{kind}s in {basis.label()}: N Ñ is not a scalar for the exterior "
+                    f"exponential N, so the prover has no construction of {name}"
                 )
             lam = norm.terms.get(0, domain.const(0))
             values[name] = N.scale(domain.normaliser(f"c_{name}", lam))
