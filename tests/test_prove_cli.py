@@ -41,6 +41,11 @@ def test_examples_cover_every_kind_of_option():
         "--orthogonal",
         "--blades",
         "--latex",
+        "--define",
+        "--euclidean",
+        "--motors",
+        "--points",
+        "--lines",
     ):
         assert option in text
 
@@ -103,3 +108,82 @@ def test_catalogue_long_option_is_accepted(capsys, monkeypatch):
     # the n = 5 signatures on one cheap entry (the full long run is the long-mode test)
     assert main(["prove", "--catalogue", "--long", "--only", "wedge-self"]) == 0
     assert "Cl(4,1)" in capsys.readouterr().out
+
+
+def test_every_verdict_prints_the_identity_as_read(capsys):
+    for argv, status in [
+        (["prove", "(a^b)|c == a*(b|c) - b*(a|c)", "--vectors", "a,b,c"], 0),
+        (["prove", "a*b == b*a", "--vectors", "a,b"], 1),
+        (["prove", "exp(x*e12)*exp(y*e12) == exp((x+y)*e12)", "--scalars", "x,y"], 3),
+    ]:
+        assert main(argv) == status
+        lines = capsys.readouterr().out.splitlines()
+        assert lines[1].startswith("  read as: ")
+    assert main(["prove", "(a^b)|c == 0", "--vectors", "a,b,c"]) == 1
+    assert "read as: (a ^ b) | c == 0" in capsys.readouterr().out
+
+
+def test_definitions_name_expressions_and_are_checked(capsys):
+    argv = ["prove", "T*~T == 1", "--signature", "4,1", "--euclidean", "t"]
+    assert main([*argv, "--define", "T=1 + einf*t/2"]) == 0
+    assert "where: T = 1 + ((einf * t) / 2)" in capsys.readouterr().out
+    defines = ["--define", "T=a", "--define", "S=T*T"]
+    assert main(["prove", "S == T*T", "--vectors", "a", *defines]) == 0
+    capsys.readouterr()
+    for defines, message in [
+        (["T=S", "S=a"], "defined after it"),
+        (["T=T*a"], "defined after it"),
+        (["a=1"], "already declared"),
+        (["e1=1"], "basis blade name"),
+        (["T"], "NAME=EXPRESSION"),
+        (["T=a*b^a"], "define T: expression: the readings differ"),
+    ]:
+        extra = [x for d in defines for x in ("--define", d)]
+        assert main(["prove", "a == a", "--vectors", "a,b", *extra]) == 2, defines
+        assert message in capsys.readouterr().err
+
+
+def test_a_400_digit_integer_is_exact_not_an_overflow(capsys):
+    # issue 30: an OverflowError in the numeric pre-check; the proof is exact
+    big = "9" * 400
+    assert main(["prove", f"a*{big} == {big}*a", "--vectors", "a"]) == 0
+    assert main(["prove", f"a*{big} == a", "--vectors", "a"]) == 1
+    captured = capsys.readouterr()
+    assert "Warning" not in captured.err and captured.err == ""
+
+
+def test_timeout_inf_is_no_limit_and_nan_is_refused(capsys):
+    # issue 30: --timeout inf ended in signal.setitimer's OverflowError
+    assert main(["prove", "a^a == 0", "--vectors", "a", "--timeout", "inf"]) == 0
+    assert main(["prove", "a^a == 0", "--vectors", "a", "--timeout", "1e300"]) == 0
+    assert main(["prove", "a^a == 0", "--vectors", "a", "--timeout", "nan"]) == 2
+    assert "--timeout" in capsys.readouterr().err
+
+
+LONG = "x" * 1900
+
+
+@pytest.mark.parametrize(
+    "argv",
+    [
+        ["prove", f"{LONG} == 0"],
+        ["prove", f"{LONG}(a) == 0"],
+        ["prove", "a == 0", "--vectors", LONG],
+        ["prove", "a == 0", "--vectors", "a", "--signature", LONG],
+        ["prove", "a == 0", "--vectors", "a", "--blades", f"B:{LONG}"],
+        ["prove", "a == 0", "--vectors", "a", "--define", f"T={LONG}"],
+        ["prove", "a == 0", "--vectors", "a", "--define", f"{LONG}=a"],
+        ["prove", "a == 0", "--vectors", "a", "--orthogonal", f"a,{LONG}"],
+        ["prove", "--catalogue", "--only", LONG],
+        ["prove", "--catalogue", "--only", "jacobi", "--write", f"/nonexistent/{LONG}"],
+        ["prove", "(" + "a*" * 300 + "a) == a", "--vectors", "a"],
+        ["prove", "a\x1b[2J == a", "--vectors", "a"],
+    ],
+    ids=range(12),
+)
+def test_an_error_is_one_short_line_without_control_characters(argv, capsys):
+    # issue 30, item 11: echoes are cut, never kilobytes, never raw escapes
+    assert main(argv) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and len(err) < 300, err[:300]
+    assert "\x1b" not in err

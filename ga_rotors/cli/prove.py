@@ -147,16 +147,17 @@ def _catalogue(args: argparse.Namespace) -> int:
         run_catalogue,
         strip_times,
     )
+    from ..symbolic.prover.grammar import shorten
 
     for path in (args.write, args.check):
         if path is not None and not path.resolve().parent.is_dir():
-            raise InputError(f"{path}: expected a path in an existing directory")
+            raise InputError(f"{shorten(str(path))}: expected a path in an existing directory")
     if args.check is not None and not args.check.is_file():
-        raise InputError(f"--check {args.check}: no such file")
+        raise InputError(f"--check {shorten(str(args.check))}: no such file")
     known = {e.key for e in CATALOGUE}
     for key in args.only:
         if key not in known:
-            raise InputError(f"--only {key!r}: no such catalogue key")
+            raise InputError(f"--only {shorten(key)!r}: no such catalogue key")
     signatures = QUICK_SIGNATURES + (LONG_SIGNATURES if args.long else ())
 
     def show(r):

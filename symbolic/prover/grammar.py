@@ -111,6 +111,7 @@ _MAX_DEPTH = 60  # parentheses, calls and unary operators
 _MAX_HEIGHT = 200  # the tree: a chain of 200 operators counts as 200 levels
 _MAX_EXPONENT = 32
 _ECHO = 60  # characters of the input an error message repeats at most
+_MAX_NAME = 40
 _TOKEN = re.compile(
     r"\s*(?:(?P<number>\d+(?:\.\d*)?|\.\d+)|(?P<name>[A-Za-z_][A-Za-z0-9_]*)"
     r"|(?P<op>\*\*|==|>>|[-+*/^|&~(),]))"
@@ -261,6 +262,11 @@ def _tokens(text: str) -> list[tuple[str, str, int]]:
         if not m or m.end() == pos:
             raise ParseError(f"column {pos + 1}: unexpected character {text[pos]!r}")
         kind = m.lastgroup
+        if kind == "name" and len(m.group(kind)) > _MAX_NAME:
+            raise ParseError(
+                f"column {m.start(kind) + 1}: the name {shorten(m.group(kind), 20)!r} is longer "
+                f"than {_MAX_NAME} characters"
+            )
         out.append((kind, m.group(kind), m.start(kind) + 1))
         pos = m.end()
     out.append(("end", "end of input", len(text) + 1))

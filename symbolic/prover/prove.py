@@ -439,13 +439,13 @@ def prove(
             any_valid = False
             for case in cases:
                 sample = Draws(draws, seed)
-                with np.errstate(all="ignore"):
+                with np.errstate(all="ignore"):  # a constant beyond a float is inf here
                     build_values(assumptions, basis, sample, case)
                     any_valid |= bool(sample.valid.any())
                     _, a, b = problem.sides(sample, case)
-                err, scale = _size(a - b, draws), 1.0 + _size(a, draws) + _size(b, draws)
-                valid = sample.valid & np.isfinite(err) & np.isfinite(scale)
-                order = np.argsort(-err / scale)
+                    err, scale = _size(a - b, draws), 1.0 + _size(a, draws) + _size(b, draws)
+                    valid = sample.valid & np.isfinite(err) & np.isfinite(scale)
+                    order = np.argsort(-err / scale)
                 suspects = [j for j in order if valid[j] and err[j] > 1e-9 * scale[j]]
                 for j in suspects[:3]:
                     ce = _exact_check(problem, case, sample, int(j))
