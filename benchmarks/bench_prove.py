@@ -6,7 +6,8 @@ Usage::
 
 For every catalogue identity the peers can state (symbols of a linear kind — scalar,
 vector, bivector, k-vector, even, multivector — or blades built as wedges of vectors;
-no rotor, unit, null or orthogonality assumption, no exp, dual or basis-blade names),
+no rotor, unit, null or orthogonality assumption, no definition, no exp, dual, inverse,
+vee, sandwich or projective and conformal vocabulary, no basis-blade names),
 in each signature, three deciders run interleaved on the same identity:
 
 * ``ga_rotors.symbolic.prover.prove`` (numeric pre-check, exact proof or exact counterexample);
@@ -39,8 +40,10 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
 
+from ga_rotors.symbolic.prover.basis import cached_basis  # noqa: E402
 from ga_rotors.symbolic.prover.catalogue import CATALOGUE  # noqa: E402
 from ga_rotors.symbolic.prover.grammar import (  # noqa: E402
+    RESERVED_NAMES,
     Binary,
     Call,
     Name,
@@ -63,11 +66,15 @@ def _alarm(signum, frame):
     raise Timeout
 
 
+PEER_OPERATORS = {"+", "-", "*", "^", "|"}  # and "/" by a number
+
+
 def statable(entry) -> bool:
-    if set(entry.kinds) - PEER_KINDS:
+    if set(entry.kinds) - PEER_KINDS or entry.define:
         return False
     lhs, rhs = parse_identity(entry.identity)
-    if any(n == "I" or (n[0] == "e" and n[1:].isdigit()) for n in names_in(lhs) | names_in(rhs)):
+    names = names_in(lhs) | names_in(rhs)
+    if any(n in RESERVED_NAMES or (n[0] == "e" and n[1:].isdigit()) for n in names):
         return False
 
     def ok(node):
@@ -76,7 +83,8 @@ def statable(entry) -> bool:
         if isinstance(node, Unary):
             return ok(node.operand)
         if isinstance(node, Binary):
-            return node.op != "**" and ok(node.left) and ok(node.right)
+            by_number = node.op == "/" and isinstance(node.right, Number)
+            return (node.op in PEER_OPERATORS or by_number) and ok(node.left) and ok(node.right)
         return True
 
     return ok(lhs) and ok(rhs)
@@ -310,6 +318,8 @@ def main(argv=None) -> int:
     for text in args.signatures:
         sig = tuple(int(x) for x in text.split(",")) + (0,) * (3 - len(text.split(",")))
         for entry in entries:
+            if not entry.applies(cached_basis(*sig)):
+                continue
             ours, verdict = measure(
                 lambda e=entry, s=sig: prove(e.identity, signature=s, **e.kinds), args.repeats, 1e9
             )
