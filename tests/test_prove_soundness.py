@@ -452,6 +452,11 @@ FALSE = [
     ("R*a*~R == a", (2, 0, 2), {"rotors": "R", "vectors": "a"}),
     ("M*P == P*M", (3, 0, 1), {"motors": "M", "points": "P"}),
     ("M >> L == L", (3, 0, 1), {"motors": "M", "lines": "L"}),
+    # linear kinds
+    ("s*s == s", (3, 0, 0), {"scalars": "s"}),
+    ("T*T == grade(T*T, 0)", (4, 1, 0), {"kvectors": {"T": 3}}),
+    ("E*~E == grade(E*~E, 0)", (3, 0, 1), {"evens": "E"}),
+    ("X*Y == Y*X", (2, 0, 1), {"multivectors": "X,Y"}),
     # blades, points, lines, duality
     ("B*B == 1", (3, 0, 1), {"blades": {"B": 2}}),
     ("lc(a, B) == 0", (2, 1, 0), {"blades": {"B": 2}, "vectors": "a"}),

@@ -219,6 +219,8 @@ class Polynomials:
         beta_value = value_modulo(beta, self)
         a = a if a_value is None else a_value
         beta = beta if beta_value is None else beta_value
+        if beta.is_ground and not beta:  # a null bivector: R = 1 + b, log R = b exactly
+            return self.ring.one, self.ring.one
         shared = self._shared.get(("log", a, beta))
         if shared is not None:
             return shared
