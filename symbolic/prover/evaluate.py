@@ -474,16 +474,20 @@ class Evaluator:
         self.log_pairs[node] = (a, inverse)
         return b.scale(phi)
 
+    def _conformal_argument(self, node: Call) -> Element:
+        """The argument of up or down, once the algebra is known to be conformal."""
+        if self.basis.conformal_pair() is None:
+            raise EvaluationError(
+                f"{node.name}({_text(node.args[0])}): the conformal model is Cl(p,1) with "
+                f"p >= 2 (e.g. --signature 4,1), not {self.basis.label()}"
+            )
+        return self(node.args[0])
+
     def _up(self, node: Call) -> Element:
         basis, domain = self.basis, self.domain
         arg = node.args[0]
-        x = self(arg)
+        x = self._conformal_argument(node)
         one = domain.const(1)
-        if basis.conformal_pair() is None:
-            raise EvaluationError(
-                f"up({_text(arg)}): the conformal model is Cl(p,1) with p >= 2 (e.g. "
-                f"--signature 4,1), not {basis.label()}"
-            )
         if not domain.lies_in(x, set(basis.euclidean_vectors())):
             raise EvaluationError(
                 f"up({_text(arg)}): the argument must be a Euclidean vector (e1 … "
@@ -495,12 +499,7 @@ class Evaluator:
     def _down(self, node: Call) -> Element:
         basis, domain = self.basis, self.domain
         arg = node.args[0]
-        x = self(arg)
-        if basis.conformal_pair() is None:
-            raise EvaluationError(
-                f"down({_text(arg)}): the conformal model is Cl(p,1) with p >= 2 (e.g. "
-                f"--signature 4,1), not {basis.label()}"
-            )
+        x = self._conformal_argument(node)
         vectors = {1 << i for i in range(basis.n)}
         if not domain.lies_in(x, vectors):
             raise EvaluationError(f"down({_text(arg)}): the argument must be a vector")
