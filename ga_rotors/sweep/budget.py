@@ -63,7 +63,14 @@ DEFAULT = SweepBudget()
 
 @dataclass(frozen=True)
 class SweepEstimate(Estimate):
-    """An :class:`~ga_rotors.scene.budget.Estimate` with the store's chunks and files."""
+    """An :class:`~ga_rotors.scene.budget.Estimate` with the store's chunks and files.
+
+    Examples
+    --------
+    >>> e = SweepEstimate(steps=10**6, samples=100, bytes=2**20, disk=2**21, chunks=4, files=30)
+    >>> e.chunks, e.files
+    (4, 30)
+    """
 
     chunks: int = 0
     files: int = 0

@@ -120,7 +120,16 @@ def block_shape(shape: tuple[int, ...], most: int) -> tuple[int, ...]:
 @dataclass(frozen=True)
 class Draw:
     """A randomly drawn key: ``normal`` (a = mean, b = std) or ``uniform`` (a = low,
-    b = high)."""
+    b = high).
+
+    Examples
+    --------
+    >>> d = Draw("body.mass", "uniform", 1.0, 3.0)
+    >>> d.centre, d.from_uniform(np.array([0.25, 1.0])).tolist()
+    (2.0, [1.5, 3.0])
+    >>> Draw("body.mass", "normal", 2.0, 0.1).from_uniform(np.array([0.5])).tolist()
+    [2.0]
+    """
 
     key: str
     distribution: str

@@ -193,6 +193,17 @@ def create(sweep, path, nominal=None) -> None:
     With Dask, the variables the chunks fill in are Dask arrays that ``to_zarr(...,
     compute=False)`` describes without computing; without it, numpy placeholders that
     zarr finds equal to the fill value and stores as no chunk (a pass over the values).
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> from ga_rotors.sweep import load_sweep
+    >>> s = load_sweep('[sweep]\\nscene = "heavy_top"\\nchunk = 2\\n[grid]\\n"body.mass" = [1, 2, 3]')
+    >>> path = pathlib.Path(tempfile.mkdtemp()) / "s.zarr"
+    >>> create(s, path)
+    >>> ds = open_store(path)
+    >>> ds["q"].dims, ds["body_mass"].values.tolist(), done(group(path)).tolist()
+    (('body_mass', 'time', 'quaternion_component'), [1.0, 2.0, 3.0], [False, False])
     """
     path = Path(path)
     lazy = have_dask()
@@ -227,7 +238,20 @@ def group(path, mode: str = "r+"):
 def write_chunk(root, sweep, c: int, outputs: dict, path) -> None:
     """Write chunk ``c``'s ``outputs`` (name -> array, the chunk's samples first, flat)
     into its region of each variable of the group ``root`` (the store ``path``), then its
-    flag."""
+    flag.
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> from ga_rotors.sweep import load_sweep
+    >>> s = load_sweep('[sweep]\\nscene = "heavy_top"\\nchunk = 2\\n[grid]\\n"body.mass" = [1, 2, 3]')
+    >>> path = pathlib.Path(tempfile.mkdtemp()) / "s.zarr"
+    >>> create(s, path)
+    >>> q = np.tile([1.0, 0.0, 0.0, 0.0], (2, 1, 1))  # the chunk's two samples, one time
+    >>> write_chunk(group(path), s, 0, {"q": q, "w": np.zeros((2, 1, 3))}, path)
+    >>> done(group(path)).tolist(), open_store(path)["q"][:, 0, 0].values.tolist()
+    ([True, False], [1.0, 1.0, nan])
+    """
     region = sweep.chunk_region(c)[2]
     extents = tuple(s.stop - s.start for s in region.values())
     where = tuple(region.values())
@@ -242,12 +266,26 @@ def write_chunk(root, sweep, c: int, outputs: dict, path) -> None:
 
 
 def done(root) -> np.ndarray:
-    """Which chunks of the store are written (its flags, unwritten ones 0)."""
+    """Which chunks of the store are written (its flags, unwritten ones 0).
+
+    Examples
+    --------
+    >>> done({"chunk_done": np.array([1, 0, 1], dtype=np.int8)}).tolist()
+    [True, False, True]
+    """
     return root["chunk_done"][:] == 1
 
 
 def open_store(path):
-    """The store at ``path`` as a lazy Dataset, checked to be a sweep store."""
+    """The store at ``path`` as a lazy Dataset, checked to be a sweep store.
+
+    Examples
+    --------
+    >>> open_store("no_such.zarr")  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    ga_rotors.errors.InputError: no_such.zarr: not a sweep store (...)
+    """
     xr = require("xarray", "results")
     try:
         ds = xr.open_zarr(path, consolidated=True)
