@@ -201,12 +201,15 @@ def run(args: argparse.Namespace) -> int:
     from pathlib import Path
 
     from ..errors import GimbalLockWarning, IntegrationStoppedWarning, StepLimitWarning
+    from ..files import checked_path
     from ..scene import load_scene, stream_scene
     from ..scene.budget import check
     from ..scene.formats import require_formats
     from ..warmup import scene_tasks, warm
 
     start = time.perf_counter()
+    if args.out is not None:
+        checked_path(args.out, "--out")  # an empty name, before anything is compiled
     scene = load_scene(args.scene)
     if args.format is not None:
         scene = scene.replace({"output.figure_format": args.format})
