@@ -35,7 +35,6 @@ import numpy as np
 
 from . import paths as _paths
 from .errors import InputError
-from .files import atomic_write
 
 __all__ = ["Trajectory"]
 
@@ -60,7 +59,7 @@ class Trajectory:
     ('t', 'w')
     >>> tr.w.shape
     (2, 3)
-    >>> print(tr.to_csv().splitlines()[0])
+    >>> print(tr.to_csv().splitlines()[1])
     t [s],w_1 [rad/s],w_2 [rad/s],w_3 [rad/s]
     """
 
@@ -284,17 +283,30 @@ class Trajectory:
     def to_csv(self, path=None) -> str | Path:
         """Write every array as CSV columns, the unit in each header, atomically.
 
-        Headers read ``q_w [1]``, ``w_1 [rad/s]``...; values are ``%.17g`` (every
-        float64 round-trips exactly), formatted a block of rows at a time; cells past the
-        end of a shorter array are empty. Without ``path``, return the text. This is
-        :func:`ga_rotors.results.write_csv` (it needs nothing beyond numpy).
+        The first line names the frame of the body-frame columns (``# body_frame: ...``),
+        the second holds the headers (``q_w [1]``, ``w_1 [rad/s]``...); each value is the
+        shortest text that reads back as the same float64; cells past the end of a
+        shorter array are empty. Without ``path``, return the text. This is
+        :func:`ga_rotors.results.write_csv` (read it back with
+        ``pandas.read_csv(path, comment="#")``).
+
+        Examples
+        --------
+        >>> tr = Trajectory({"t": np.array([0.0, 0.1])}, meta={"integrator": "rk4"})
+        >>> print(tr.to_csv().replace("0.0", "0"), end="")
+        # body_frame: the body axes the inertia was given in
+        t [s]
+        0
+        0.1
         """
         from .results.table import write_csv
 
         return write_csv(self, path)
 
     def to_npz(self, path) -> Path:
-        """Write every array (and the component labels) to a ``.npz`` file, atomically.
+        """Write every array, the component labels and the run's attributes (its
+        ``attributes.json`` member) to a ``.npz`` file, atomically
+        (:func:`ga_rotors.results.npz.write_npz`).
 
         Examples
         --------
@@ -302,14 +314,8 @@ class Trajectory:
         >>> tr = Trajectory({"t": np.arange(3.0)})
         >>> p = tr.to_npz(pathlib.Path(tempfile.mkdtemp()) / "run.npz")
         >>> sorted(np.load(p).files)
-        ['t']
+        ['attributes.json', 't']
         """
-        payload = dict(self._arrays)
-        for name, labels in self.components.items():
-            if name in payload:
-                payload[f"{name}__components"] = np.array(labels)
+        from .results.npz import write_npz
 
-        def write(fh):
-            np.savez(fh, **payload)
-
-        return atomic_write(path, write)
+        return write_npz(self, path)

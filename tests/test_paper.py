@@ -38,11 +38,12 @@ def test_data_and_summary_are_written(tmp_path, capsys):
          "disk_0.001deg.csv"]
     )  # fmt: skip
     text = (tmp_path / "new" / "paper_0.001deg.csv").read_text()
-    header = text.splitlines()[0].split(",")
+    assert text.startswith("# body_frame: ")
+    header = text.splitlines()[1].split(",")
     assert header[:4] == ["t [s]", "w_1 [rad/s]", "w_2 [rad/s]", "w_3 [rad/s]"]
     assert "error_euler [rad]" in header
     assert "nan" not in text.lower()
-    data = np.loadtxt(tmp_path / "new" / "disk_15deg.csv", delimiter=",", skiprows=1)
+    data = np.loadtxt(tmp_path / "new" / "disk_15deg.csv", delimiter=",", skiprows=2)
     assert data.shape == (10001, len(header))
     # docs/gyroscope.md shows this table; its rotor, quaternion and |R| columns (set by
     # RK4's error, not by rounding) must be what the command prints. The rounding-level

@@ -1,21 +1,35 @@
-"""Results in the field's formats: xarray Datasets, netCDF and zarr files, CSV with units.
+"""Results in the field's formats: CF xarray Datasets, netCDF and zarr files, NPZ, CSV.
 
 * :func:`to_dataset` — a :class:`~ga_rotors.trajectory.Trajectory` as an
-  :class:`xarray.Dataset` (dimension ``time``; units, descriptions and how it was made);
+  :class:`xarray.Dataset` following the CF conventions (an indexed ``time`` coordinate;
+  units and long names; how it was made, the body frame included, as attributes);
 * :func:`write` / :func:`read` — a ``.nc`` or ``.zarr`` file, written atomically and read
   back as the same Dataset;
+* :func:`write_npz` — an NPZ archive of the arrays, their labels and attributes;
 * :func:`write_csv` — CSV for spreadsheets, with units in the headers.
 
 xarray, h5netcdf and zarr come with ``pip install "ga-rotors[results]"``; a function that
 needs a missing one says so in one line (:class:`ga_rotors.optional.MissingExtraError`).
-CSV needs nothing beyond numpy.
+NPZ and CSV need nothing beyond numpy (CSV is written by polars or pyarrow when one is
+installed).
 """
 
 from __future__ import annotations
 
-from .dataset import provenance, to_dataset
+from .dataset import to_dataset
+from .npz import write_npz
+from .provenance import body_frame, provenance
 from .store import read, write
 from .table import write_csv
 from .variables import describe
 
-__all__ = ["describe", "provenance", "read", "to_dataset", "write", "write_csv"]
+__all__ = [
+    "body_frame",
+    "describe",
+    "provenance",
+    "read",
+    "to_dataset",
+    "write",
+    "write_csv",
+    "write_npz",
+]

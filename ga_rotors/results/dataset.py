@@ -1,11 +1,19 @@
-"""A trajectory as an xarray Dataset: dimension ``time``, units, and how it was made.
+"""A trajectory as an xarray Dataset that follows the CF conventions.
 
-Every variable carries ``units`` and ``description`` attributes; multi-column arrays get
-a component dimension with the labels as coordinates (``quaternion_component`` = w, x, y,
-z, ...). The Dataset's attributes say how the data were made: the resolved scene as TOML
-(when given), integrator, order, step, steps between samples, declared torques, package
-versions, and for a scene with an exact solution the largest rounding-error bound of that
+The samples run along the dimension ``time``, whose index coordinate holds their times in
+seconds (``standard_name = "time"``, ``axis = "T"``): ``ds.sel(time=30.0)`` is the sample
+at t = 30 s. Multi-column arrays get a component dimension with the labels as
+coordinates (``quaternion_component`` = w, x, y, z, ...). Every variable carries
+``units`` and ``long_name`` (:mod:`~ga_rotors.results.variables`); the Dataset's
+attributes say how the data were made (:func:`~ga_rotors.results.provenance.provenance`:
+``Conventions``, the body frame, integrator, step, the resolved scene, package versions)
+and, for a scene with an exact solution, the largest rounding-error bound of that
 reference over the sampled times (how far the "truth" itself may be off).
+
+The time coordinate's units are ``s``, not CF's ``seconds since <date>``: a simulation
+has no calendar date, and a reference date would make xarray decode the times into
+dates. cf_xarray finds the axis by its ``axis`` and ``standard_name``; pint-xarray reads
+every ``units``.
 
 A path that stopped early (its state stopped being finite) is padded with NaN after its
 last valid sample, and its ``valid_samples`` attribute says how many rows are real.
@@ -13,72 +21,32 @@ last valid sample, and its ``valid_samples`` attribute says how many rows are re
 
 from __future__ import annotations
 
-import functools
-import importlib.metadata
-import json
-
 import numpy as np
 
 from ..optional import require
-from .variables import COMPONENT_DIMS, describe
+from .provenance import provenance
+from .variables import COMPONENT_DIMS, STANDARD, describe
 
-__all__ = ["EXACT_BOUND_TIMES", "exact_bound_at", "provenance", "time_rows", "to_dataset"]
+__all__ = ["EXACT_BOUND_TIMES", "exact_bound_at", "time_rows", "to_dataset", "variable_attrs"]
 
 #: At most this many sample times (evenly spread, the last included) are evaluated to find
 #: the exact reference's largest error bound; the bounds grow smoothly with time.
 EXACT_BOUND_TIMES = 1000
 
-_PACKAGES = ("ga-rotors", "numpy", "numba", "scipy", "xarray")
 
-
-def provenance(meta: dict, scene=None) -> dict:
-    """Dataset attributes for a run's ``meta`` and optional scene: plain str/int/float values.
-
-    netCDF attributes hold strings and numbers only, so the scene is its TOML text, lists
-    of names are joined with ", ", and the per-path status is JSON.
+def variable_attrs(name: str) -> dict:
+    """The CF attributes of the trajectory array ``name``: units, long name and, where
+    CF's standard-name table has one, its standard name (and axis).
 
     Examples
     --------
-    >>> a = provenance({"integrator": "rk4", "step": 0.001, "torques": ["gravity"]})
-    >>> a["integrator"], a["step"], a["torques"], a["version_numpy"] == np.__version__
-    ('rk4', 0.001, 'gravity', True)
+    >>> variable_attrs("t")
+    {'units': 's', 'long_name': 'simulation time', 'standard_name': 'time', 'axis': 'T'}
+    >>> variable_attrs("L")
+    {'units': 'kg m^2/s', 'long_name': 'body-frame angular momentum Iw'}
     """
-    attrs: dict = {"title": "ga_rotors results", "conventions_doc": "docs/conventions.md"}
-    for key in ("integrator", "order", "step", "steps", "sample_every", "problem", "primary"):
-        if meta.get(key) is not None:
-            value = meta[key]
-            attrs[key] = value if isinstance(value, int | float | str) else str(value)
-    if meta.get("moments") is not None:
-        attrs["principal_moments"] = [float(m) for m in meta["moments"]]
-        attrs["principal_moments_units"] = "kg m2"
-    if "torques" in meta:
-        attrs["torques"] = ", ".join(meta["torques"])
-    if "paths" in meta:
-        attrs["paths_json"] = json.dumps(meta["paths"], sort_keys=True, default=str)
-    if meta.get("scene") is not None:
-        attrs["scene"] = str(meta["scene"])
-    if meta.get("scene_toml") is not None:  # a scene run records its resolved scene
-        attrs["scene_toml"] = str(meta["scene_toml"])
-        attrs["exact_solution"] = meta.get("exact") or "none"
-    if scene is not None:
-        attrs["scene"] = scene.name
-        attrs["scene_toml"] = scene.to_toml()
-        attrs["exact_solution"] = scene.exact or "none"
-    attrs.update(_versions())
-    return attrs
-
-
-@functools.cache
-def _versions() -> dict:
-    """version_<package> of each installed package of :data:`_PACKAGES`, read once a
-    process: parsing their metadata took 3-9 ms, paid by every results file and sweep."""
-    versions = {}
-    for package in _PACKAGES:
-        try:
-            versions[f"version_{package.replace('-', '_')}"] = importlib.metadata.version(package)
-        except importlib.metadata.PackageNotFoundError:
-            pass
-    return versions
+    unit, long_name = describe(name)
+    return {"units": unit, "long_name": long_name, **STANDARD.get(name, {})}
 
 
 def _exact_bound(scene, t: np.ndarray) -> float | None:
@@ -132,7 +100,7 @@ def time_rows(trajectory) -> dict[str, np.ndarray]:
 
 
 def to_dataset(trajectory, scene=None):
-    """The trajectory as an :class:`xarray.Dataset` with units and provenance.
+    """The trajectory as a CF :class:`xarray.Dataset` with units and provenance.
 
     Parameters
     ----------
@@ -145,20 +113,21 @@ def to_dataset(trajectory, scene=None):
     >>> from ga_rotors.scene import load_scene, run_scene
     >>> scene = load_scene("heavy_top").replace({"time.duration": 0.01})
     >>> ds = to_dataset(run_scene(scene), scene)
-    >>> ds["q"].dims, ds["q"].attrs["units"], ds["t"].attrs["units"]
-    (('time', 'quaternion_component'), '1', 's')
-    >>> ds.attrs["integrator"], ds.attrs["exact_solution"], ds.attrs["exact_error_bound"] < 1e-12
-    ('rk4', 'heavy_top', True)
+    >>> ds["q"].dims, ds["q"].attrs["units"], ds["time"].attrs["axis"]
+    (('time', 'quaternion_component'), '1', 'T')
+    >>> float(ds["w"].sel(time=0.005, body_axis="3"))
+    60.0
+    >>> ds.attrs["Conventions"], ds.attrs["integrator"], ds.attrs["exact_error_bound"] < 1e-12
+    ('CF-1.10', 'rk4', True)
     """
     xr = require("xarray", "results")
     t = trajectory.t
-    coords = {"t": ("time", t, dict(zip(("units", "description"), describe("t"), strict=True)))}
+    coords: dict = {"time": ("time", t, variable_attrs("t"))}
     variables = {}
     for name, a in time_rows(trajectory).items():
         if name == "t":
             continue
-        unit, description = describe(name)
-        attrs = {"units": unit, "description": description}
+        attrs = variable_attrs(name)
         if trajectory[name].shape[0] < t.shape[0]:
             attrs["valid_samples"] = int(trajectory[name].shape[0])
         dims: tuple[str, ...] = ("time",)

@@ -18,12 +18,17 @@ import tempfile
 from pathlib import Path
 
 from ..errors import InputError, first_line
+from ..files import checked_path, shown_path
 from ..optional import require
 
-__all__ = ["FORMATS", "ZARR_FORMAT", "format_of", "read", "write"]
+__all__ = ["CHUNK_ROWS", "FORMATS", "ZARR_FORMAT", "chunk_encoding", "format_of", "read", "write"]
 
 #: file suffix -> format name.
 FORMATS = {".nc": "netcdf", ".zarr": "zarr"}
+
+#: Rows per chunk along ``time`` of a zarr store, and of a streamed netCDF file, at most:
+#: 16,384 rows of a 4-component array are 512 kB, what a streamed run holds per array.
+CHUNK_ROWS = 16_384
 
 #: Zarr stores are written in format 2: its string coordinates (component labels) have a
 #: specification every zarr reader knows, which format 3's do not have yet.
@@ -45,7 +50,7 @@ def format_of(path) -> str:
     suffix = Path(path).suffix.lower()
     if suffix not in FORMATS:
         choices = " or ".join(f"a {s} ({f})" for s, f in FORMATS.items())
-        raise InputError(f"path: {path}: expected {choices} name")
+        raise InputError(f"path: {shown_path(path)}: expected {choices} name")
     return FORMATS[suffix]
 
 
@@ -66,7 +71,7 @@ def _replace_dir(staging: Path, target: Path) -> None:
         os.rename(staging, target)
         return
     if not target.is_dir():
-        raise InputError(f"path: {target} exists and is not a zarr store (a directory)")
+        raise InputError(f"path: {shown_path(target)} exists and is not a zarr store (a directory)")
     old = Path(tempfile.mkdtemp(dir=target.parent, prefix=f".{target.name}.previous-"))
     os.rename(target, old / "store")
     os.rename(staging, target)
@@ -75,6 +80,10 @@ def _replace_dir(staging: Path, target: Path) -> None:
 
 def write(data, path, scene=None) -> Path:
     """Write a trajectory or Dataset to ``path`` (``.nc`` or ``.zarr``), atomically.
+
+    A netCDF file is written contiguous (no chunks: a 61-row run takes a few kB); a zarr
+    store in chunks of at most :data:`CHUNK_ROWS` rows (:func:`chunk_encoding`). The
+    Dataset's own encodings (those of a file it was read from) are not carried over.
 
     Parameters
     ----------
@@ -90,38 +99,73 @@ def write(data, path, scene=None) -> Path:
     >>> from ga_rotors.trajectory import Trajectory
     >>> tr = Trajectory({"t": np.array([0.0, 1.0]), "energy": np.array([2.0, 2.0])})
     >>> p = write(tr, pathlib.Path(tempfile.mkdtemp()) / "run.nc")
-    >>> read(p)["energy"].attrs["units"]
-    'J'
+    >>> read(p)["energy"].attrs["units"], p.stat().st_size < 20_000
+    ('J', True)
     """
     from .dataset import to_dataset
 
+    path = checked_path(path, "path")
     fmt = format_of(path)
     ds = data if hasattr(data, "data_vars") else to_dataset(data, scene)
-    path = Path(path)
+    ds = ds.drop_encoding()
     parent = path.parent if str(path.parent) else Path(".")
     if not parent.is_dir():
-        raise InputError(f"path: directory {parent} does not exist")
+        raise InputError(f"path: directory {shown_path(parent)} does not exist")
     if fmt == "netcdf":
         engine = _netcdf_engine()
         return _staged(path, lambda p: ds.to_netcdf(p, engine=engine))
     require("zarr", "results")
+    encoding = chunk_encoding(ds, "zarr", ds.sizes.get("time", 0))
     return _staged(
-        path, lambda p: ds.to_zarr(p, mode="w", zarr_format=ZARR_FORMAT, consolidated=True)
+        path,
+        lambda p: ds.to_zarr(
+            p, mode="w", zarr_format=ZARR_FORMAT, consolidated=True, encoding=encoding
+        ),
     )
 
 
+def chunk_encoding(ds, fmt: str, rows: int) -> dict:
+    """The encoding that chunks each ``time`` variable of ``ds`` along ``time`` in pieces of
+    ``rows`` rows, at most :data:`CHUNK_ROWS` (and at least one): for ``fmt`` "netcdf"
+    (``chunksizes``) or "zarr" (``chunks``).
+
+    Examples
+    --------
+    >>> import numpy as np, xarray as xr
+    >>> ds = xr.Dataset({"w": (("time", "axis"), np.zeros((61, 3)))})
+    >>> chunk_encoding(ds, "zarr", 61), chunk_encoding(ds, "netcdf", 10**7)
+    ({'w': {'chunks': (61, 3)}}, {'w': {'chunksizes': (16384, 3)}})
+    """
+    key = "chunksizes" if fmt == "netcdf" else "chunks"
+    rows = min(max(int(rows), 1), CHUNK_ROWS)
+    return {
+        name: {key: (rows, *var.shape[1:])}
+        for name, var in ds.variables.items()
+        if var.dims[:1] == ("time",)
+    }
+
+
 def _staged(path: Path, writer) -> Path:
-    """``writer(p)`` into a staging directory beside ``path``, then moved onto ``path``."""
+    """``writer(p)`` into a staging directory beside ``path``, then moved onto ``path``
+    (what the system refuses, a name too long or a full disk, is one line naming it)."""
     parent = path.parent if str(path.parent) else Path(".")
-    staging = Path(tempfile.mkdtemp(dir=parent, prefix=f".{path.name}.staging-"))
+    try:
+        staging = Path(tempfile.mkdtemp(dir=parent, prefix=f".{path.name[:200]}.staging-"))
+    except OSError as exc:
+        raise InputError(f"path: cannot write {shown_path(path)}: {exc.strerror or exc}") from None
     try:
         writer(staging / "new")
-        if (staging / "new").is_dir():
-            _replace_dir(staging / "new", path)
-        else:
-            if path.is_dir():
-                raise InputError(f"path: {path} is a directory; expected a file name")
-            os.replace(staging / "new", path)
+        try:
+            if (staging / "new").is_dir():
+                _replace_dir(staging / "new", path)
+            elif path.is_dir():
+                raise InputError(f"path: {shown_path(path)} is a directory; expected a file name")
+            else:
+                os.replace(staging / "new", path)
+        except OSError as exc:
+            raise InputError(
+                f"path: cannot write {shown_path(path)}: {exc.strerror or exc}"
+            ) from None
     finally:
         shutil.rmtree(staging, ignore_errors=True)
     return path
@@ -158,15 +202,19 @@ def read(path, lazy: bool = False, max_memory_gib: float = READ_MEMORY_GIB):
     2.0
     """
     xr = require("xarray", "results")
+    path = checked_path(path, "path")
     fmt = format_of(path)
-    path = Path(path)
     ok = isinstance(max_memory_gib, int | float) and not isinstance(max_memory_gib, bool)
     if not (ok and max_memory_gib > 0):
         raise InputError(
             f"expected a positive number, got {max_memory_gib!r}", key="max_memory_gib"
         )
-    if not path.exists():
-        raise InputError(f"path: {path}: no such file or store")
+    try:
+        found = path.exists()
+    except OSError as exc:  # a name too long, a loop of links
+        raise _unreadable(path, fmt, exc) from None
+    if not found:
+        raise InputError(f"path: {shown_path(path)}: no such file or store")
     try:
         if fmt == "netcdf":
             ds = xr.open_dataset(path, engine=_netcdf_engine())
@@ -180,7 +228,8 @@ def read(path, lazy: bool = False, max_memory_gib: float = READ_MEMORY_GIB):
     with ds:
         if ds.nbytes > max_memory_gib * 2**30:
             raise InputError(
-                f"path: {path}: {ds.nbytes / 2**30:.3g} GiB of data, more than max_memory_gib = "
+                f"path: {shown_path(path)}: {ds.nbytes / 2**30:.3g} GiB of data, more than "
+                f"max_memory_gib = "
                 f"{max_memory_gib:g} GiB at once; read(path, lazy=True) reads values as they "
                 "are used"
             )
@@ -191,4 +240,8 @@ def read(path, lazy: bool = False, max_memory_gib: float = READ_MEMORY_GIB):
 
 
 def _unreadable(path: Path, fmt: str, exc: Exception) -> InputError:
-    return InputError(f"path: {path}: not a readable {fmt} results file ({first_line(exc)})")
+    # the system's reason without the path it repeats; a library's first line, cut short
+    detail = exc.strerror if isinstance(exc, OSError) and exc.strerror else first_line(exc)
+    return InputError(
+        f"path: {shown_path(path)}: not a readable {fmt} results file ({detail[:200]})"
+    )

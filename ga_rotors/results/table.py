@@ -1,29 +1,70 @@
 """CSV for spreadsheets: one column per component, the unit in every header.
 
-Headers read ``name_component [unit]`` (``t [s]``, ``w_1 [rad/s]``, ``q_w [1]``); values
-are written as ``%.17g`` writes them (every float64 round-trips exactly), a block of rows
-at a time by one compiled pass (:mod:`ga_rotors.results.decimal`: no Python object per
-value), and written block by block, so memory beyond the arrays themselves stays at one
-block. A path that stopped early leaves its cells empty after its last sample, never NaN.
+A results CSV file has one comment line naming the frame of the body-frame columns, the
+header, then one row per sample::
+
+    # body_frame: the body axes the inertia was given in
+    t [s],w_1 [rad/s],w_2 [rad/s],w_3 [rad/s],q_w [1],...
+    0,0.3,0.1,15.7,1,...
+
+Headers read ``name_component [unit]``. Each value is the shortest text that reads back
+as the same float64 (``0.1``, not ``0.10000000000000001``; ``nan``, ``inf`` and ``-0``
+included), written by a CSV library: polars when it is installed, else pyarrow, else
+numpy (:data:`ENGINES`; each writes its own spelling, ``1.0`` or ``1``, ``NaN`` or
+``nan``, and every one reads back bit for bit). A path that stopped early leaves its
+cells empty after its last sample, never NaN. Read it with::
+
+    pandas.read_csv(path, comment="#")
+    polars.read_csv(path, comment_prefix="#")
+    numpy.genfromtxt(path, delimiter=",", skip_header=2)   # empty cells become nan
 """
 
 from __future__ import annotations
 
+import csv
+import importlib
+import io
 from pathlib import Path
 
 import numpy as np
 
 from ..errors import InputError
 from ..files import atomic_write
+from .provenance import body_frame
 from .variables import describe
 
-__all__ = ["BLOCK_ROWS", "csv_buffer_size", "csv_header", "csv_rows", "write_csv"]
+__all__ = ["ENGINES", "CsvRows", "csv_engine", "csv_header", "frame_line", "write_csv"]
 
-#: Rows formatted per compiled call: about 600 KB of text for a heavy top's 16 columns,
-#: which stays in the processor's cache while it is formatted and then copied into the
-#: file (with 16,384 rows, 4.8 MB, the copy into the page cache cost 3-5x more: 0.45-0.73
-#: against 0.15 s CPU for the 577 MB of a 1e7-step heavy top, under load).
-BLOCK_ROWS = 2048
+#: CSV writers, in the order they are chosen: the first whose module is installed.
+ENGINES = ("polars", "pyarrow", "numpy")
+
+
+def csv_engine(engine: str | None = None) -> str:
+    """The CSV writer to use: ``engine`` if given, else the first of :data:`ENGINES` that
+    is installed (numpy always is).
+
+    Examples
+    --------
+    >>> csv_engine("numpy")
+    'numpy'
+    >>> csv_engine() in ENGINES
+    True
+    >>> csv_engine("pandas")
+    Traceback (most recent call last):
+    ...
+    ga_rotors.errors.InputError: engine: expected one of polars, pyarrow, numpy, got 'pandas'
+    """
+    if engine is not None:
+        if engine not in ENGINES:
+            raise InputError(f"expected one of {', '.join(ENGINES)}, got {engine!r}", key="engine")
+        return engine
+    for name in ENGINES:
+        try:
+            importlib.import_module(name)
+            return name
+        except ImportError:
+            continue
+    return "numpy"
 
 
 def csv_header(trajectory) -> list[str]:
@@ -31,7 +72,6 @@ def csv_header(trajectory) -> list[str]:
 
     Examples
     --------
-    >>> import numpy as np
     >>> from ga_rotors.trajectory import Trajectory
     >>> tr = Trajectory({"t": np.zeros(2), "w": np.zeros((2, 3))}, {"w": ("1", "2", "3")})
     >>> csv_header(tr)
@@ -51,91 +91,123 @@ def csv_header(trajectory) -> list[str]:
     return out
 
 
-def _blocks(trajectory, rows: int, buffer=None, start: int = 0, stop: int | None = None):
-    """The data rows ``start:stop`` as UTF-8 text, ``rows`` at a time
-    (:func:`~.decimal.format_rows`; into ``buffer`` when given)."""
-    from .decimal import format_rows
-
-    # the columns of :meth:`Trajectory.columns`: each array's side by side, in its order,
-    # so each array goes into a block in one copy (a piece of a long run is formatted a
-    # block at a time, and per-column copies were a tenth of its CSV's cost)
-    arrays, width = [], 0
-    for name in trajectory.names:
-        a = trajectory[name]
-        arrays.append((width, a if a.ndim == 2 else a[:, None]))
-        width += arrays[-1][1].shape[1]
-    lengths = np.concatenate([np.full(a.shape[1], a.shape[0]) for _, a in arrays])
-    n = len(trajectory) if stop is None else stop
-    for lo in range(start, n, rows):
-        hi = min(n, lo + rows)
-        block = np.empty((hi - lo, width))
-        for j, a in arrays:
-            part = a[lo:hi]
-            block[: part.shape[0], j : j + a.shape[1]] = part
-            block[part.shape[0] :, j : j + a.shape[1]] = 0.0  # a stopped path: cells left empty
-        yield format_rows(block, lengths, lo, out=buffer)
-
-
-def csv_rows(trajectory, block_rows: int = BLOCK_ROWS, *, buffer=None, start=0, stop=None):
-    """The data rows of ``trajectory`` as UTF-8 text, a block of ``block_rows`` at a time
-    (no header: :func:`csv_header`); the rows of consecutive pieces of a run, joined, are
-    the rows of the run whole.
-
-    With ``buffer`` (a uint8 array of :func:`csv_buffer_size` bytes) each block is written
-    into it and given as a memoryview, valid until the next block is asked for: for a
-    writer that writes each block at once (:class:`~.streams.CsvStream`). ``start`` and
-    ``stop``: only those rows (the text of consecutive row ranges, joined, is the text of
-    all of them).
+def frame_line(meta: dict) -> str:
+    """The CSV file's first line: a comment naming the frame of the body-frame columns
+    (:func:`~ga_rotors.results.provenance.body_frame`), on one line whatever it holds.
 
     Examples
     --------
-    >>> import numpy as np
-    >>> from ga_rotors.trajectory import Trajectory
-    >>> list(csv_rows(Trajectory({"t": np.array([0.0, 0.25])})))
-    [b'0\\n0.25\\n']
-    >>> list(csv_rows(Trajectory({"t": np.array([0.0, 0.25, 0.5])}), start=1, stop=2))
-    [b'0.25\\n']
+    >>> frame_line({"integrator": "rk4"})
+    '# body_frame: the body axes the inertia was given in\\n'
     """
-    yield from _blocks(trajectory, block_rows, buffer, start, stop)
+    text = " ".join(body_frame(meta).split())  # no line break can end the comment early
+    return f"# body_frame: {text}\n"
 
 
-def csv_buffer_size(trajectory, block_rows: int = BLOCK_ROWS) -> int:
-    """Bytes a block of ``block_rows`` rows of ``trajectory``'s columns may take as text.
+def _header_lines(trajectory) -> bytes:
+    line = io.StringIO()
+    csv.writer(line, lineterminator="\n").writerow(csv_header(trajectory))
+    return (frame_line(trajectory.meta) + line.getvalue()).encode("utf-8")
+
+
+class CsvRows:
+    """The rows of a trajectory's consecutive pieces, written to an open binary file.
+
+    The first :meth:`write` writes the comment and header lines first; the rows of all the
+    pieces are the rows of the whole trajectory (a path that stopped part-way through a
+    piece leaves its remaining cells empty).
 
     Examples
     --------
-    >>> import numpy as np
     >>> from ga_rotors.trajectory import Trajectory
-    >>> csv_buffer_size(Trajectory({"t": np.zeros(2), "w": np.zeros((2, 3))}), 10)
-    1050
+    >>> out = io.BytesIO()
+    >>> rows = CsvRows(out, "numpy")
+    >>> rows.write(Trajectory({"t": np.array([0.0, 0.1]), "energy": np.array([0.5, 1 / 3])}))
+    >>> rows.write(Trajectory({"t": np.array([0.2]), "energy": np.array([])}))
+    >>> print(out.getvalue().decode(), end="")
+    # body_frame: not recorded
+    t [s],energy [J]
+    0.0,0.5
+    0.1,0.3333333333333333
+    0.2,
     """
-    from .decimal import MAX_CHARS
 
-    return block_rows * (len(trajectory.columns()) * MAX_CHARS + 1)
+    def __init__(self, fh, engine: str | None = None):
+        self.fh = fh
+        self.engine = csv_engine(engine)
+        self._started = False
+
+    def write(self, piece) -> None:
+        """Append the rows of ``piece`` (the comment and header lines first, once)."""
+        if not self._started:
+            self.fh.write(_header_lines(piece))
+            self._started = True
+        n = len(piece)
+        if n == 0:
+            return
+        columns = []  # (values, rows that hold a value)
+        for _, name, component in piece.columns():
+            a = piece[name]
+            columns.append((a if component is None else a[:, component], a.shape[0]))
+        _WRITERS[self.engine](self.fh, columns, n)
 
 
-def write_csv(trajectory, path=None, *, block_rows: int = BLOCK_ROWS) -> str | Path:
+def _polars(fh, columns, n) -> None:
+    import polars as pl
+
+    series = [
+        pl.Series(f"c{j}", values, dtype=pl.Float64).extend_constant(None, n - rows)
+        for j, (values, rows) in enumerate(columns)
+    ]
+    pl.DataFrame(series).write_csv(fh, include_header=False)
+
+
+def _pyarrow(fh, columns, n) -> None:
+    import pyarrow as pa
+    import pyarrow.csv as pacsv
+
+    arrays = []
+    for values, rows in columns:
+        if rows == n:
+            arrays.append(pa.array(values, pa.float64()))
+        else:  # one masked array: a chunked one whose first chunk is empty wrote garbage
+            padded = np.zeros(n)
+            padded[:rows] = values
+            arrays.append(pa.array(padded, pa.float64(), mask=np.arange(n) >= rows))
+    table = pa.table(arrays, names=[f"c{j}" for j in range(len(arrays))])
+    pacsv.write_csv(table, fh, pacsv.WriteOptions(include_header=False))
+
+
+def _numpy(fh, columns, n) -> None:
+    # numpy's float-to-text conversion is Python's repr: the shortest round-trip text
+    cells = np.full((n, len(columns)), "", dtype=object)
+    for j, (values, rows) in enumerate(columns):
+        cells[:rows, j] = np.asarray(values, dtype=np.float64).astype(str)
+    fh.write("".join(",".join(row) + "\n" for row in cells.tolist()).encode())
+
+
+_WRITERS = {"polars": _polars, "pyarrow": _pyarrow, "numpy": _numpy}
+
+
+def write_csv(trajectory, path=None, *, engine: str | None = None) -> str | Path:
     """Write the trajectory as CSV with units in the headers, atomically.
 
-    Without ``path``, return the text.
+    Without ``path``, return the text. ``engine``: the CSV writer (default: the first
+    installed of :data:`ENGINES`).
 
     Examples
     --------
-    >>> import numpy as np
     >>> from ga_rotors.trajectory import Trajectory
-    >>> tr = Trajectory({"t": np.array([0.0, 0.5]), "energy": np.array([1.0, 1.0 / 3])})
-    >>> print(write_csv(tr), end="")
+    >>> tr = Trajectory({"t": np.array([0.0, 0.5]), "energy": np.array([1.0, 1.0 / 3])},
+    ...                 meta={"integrator": "rk4"})
+    >>> print(write_csv(tr, engine="pyarrow"), end="")
+    # body_frame: the body axes the inertia was given in
     t [s],energy [J]
     0,1
-    0.5,0.33333333333333331
+    0.5,0.3333333333333333
     """
-    header = ",".join(csv_header(trajectory)) + "\n"
     if path is None:
-        return header + b"".join(_blocks(trajectory, block_rows)).decode()
-
-    def write(fh):
-        fh.write(header.encode())
-        for text in csv_rows(trajectory, block_rows):
-            fh.write(text)
-
-    return atomic_write(path, write)
+        out = io.BytesIO()
+        CsvRows(out, engine).write(trajectory)
+        return out.getvalue().decode("utf-8")
+    return atomic_write(path, lambda fh: CsvRows(fh, engine).write(trajectory))

@@ -1,18 +1,25 @@
-"""What each array of a trajectory is: its unit, its description and its component axis.
+"""What each array of a trajectory is: its unit, its long name and its component axis.
 
 One table for every results format (xarray attributes, CSV headers), so a unit is
-written once. Names are those of :class:`ga_rotors.trajectory.Trajectory`.
+written once. Names are those of :class:`ga_rotors.trajectory.Trajectory`. Units are
+written so that both UDUNITS (what CF files use) and pint (``pint-xarray``'s default
+registry) read them: ``kg m^2/s``, not ``kg m2 s-1``, which pint does not parse.
+
+CF's standard-name table has a name for time, and for a ship's or an aircraft's roll,
+pitch and yaw rates about its own fore, starboard and down axes; it has none for a rigid
+body's angular velocity vector, its quaternion, its ZYZ angles or its angular momentum,
+so those carry a ``long_name`` and ``units`` only (:data:`STANDARD`).
 """
 
 from __future__ import annotations
 
 from ..errors import InputError
 
-__all__ = ["COMPONENT_DIMS", "VARIABLES", "describe"]
+__all__ = ["COMPONENT_DIMS", "STANDARD", "VARIABLES", "describe"]
 
-#: array name -> (unit, description). Units follow SI; "1" is dimensionless.
+#: array name -> (unit, long name). Units follow SI; "1" is dimensionless.
 VARIABLES: dict[str, tuple[str, str]] = {
-    "t": ("s", "sample time"),
+    "t": ("s", "simulation time"),
     "w": ("rad/s", "body angular velocity of the primary path"),
     "q": ("1", "orientation quaternion (w, x, y, z), body to space, of the quaternion path"),
     "rotor_blades": (
@@ -24,12 +31,16 @@ VARIABLES: dict[str, tuple[str, str]] = {
     "energy": ("J", "kinetic energy 1/2 w.Iw of the primary path"),
     "potential_energy": ("J", "gravitational energy -m g.r_space about the pivot"),
     "total_energy": ("J", "kinetic plus gravitational energy"),
-    "L": ("kg m2/s", "body-frame angular momentum Iw"),
-    "L_space": ("kg m2/s", "space-frame angular momentum q (Iw) q*"),
+    "L": ("kg m^2/s", "body-frame angular momentum Iw"),
+    "L_space": ("kg m^2/s", "space-frame angular momentum q (Iw) q*"),
     "omega_space": ("rad/s", "space-frame angular velocity q w q*"),
     "angles": ("rad", "ZYZ Euler angles (psi, theta, phi) of the primary path's orientation"),
     "omega_error": ("rad/s", "|w - w_exact| of the primary path"),
 }
+
+#: array name -> its CF attributes beyond units and long name (CF's standard-name table
+#: has an entry for time; see the module's notes for the rest).
+STANDARD: dict[str, dict[str, str]] = {"t": {"standard_name": "time", "axis": "T"}}
 
 #: component labels -> name of the dimension they index.
 COMPONENT_DIMS: dict[tuple[str, ...], str] = {
@@ -42,7 +53,7 @@ COMPONENT_DIMS: dict[tuple[str, ...], str] = {
 
 
 def describe(name: str) -> tuple[str, str]:
-    """(unit, description) of the trajectory array ``name``.
+    """(unit, long name) of the trajectory array ``name``.
 
     Examples
     --------

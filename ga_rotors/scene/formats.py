@@ -54,8 +54,9 @@ class DataFormat:
         >>> out = FORMATS["csv"].open(path)
         >>> out.append(Trajectory({"t": np.array([0.0, 1.0])}))
         >>> out.close({})
-        >>> path.read_text().splitlines()
-        ['t [s]', '0', '1']
+        >>> lines = path.read_text().splitlines()
+        >>> lines[1], [float(x) for x in lines[2:]]
+        ('t [s]', [0.0, 1.0])
         """
         if self.stream is not None:
             return self.stream(path, scene)
@@ -123,8 +124,7 @@ def _stream(name: str):
     def open_stream(path, scene):
         from ..results import streams
 
-        cls = getattr(streams, name)
-        return cls(path, scene) if name in ("NetcdfStream", "ZarrStream") else cls(path)
+        return getattr(streams, name)(path, scene)
 
     return open_stream
 

@@ -32,16 +32,12 @@ from pathlib import Path
 import numpy as np
 
 from ..trajectory import Trajectory
-from .budget import CHUNK_STEPS, SUMMARY_DELAY, SUMMARY_LAG
+from .budget import CHUNK_STEPS
 from .formats import FORMATS
 from .loading import load_scene
 from .model import Scene
 
 __all__ = ["stream_scene", "write_outputs"]
-
-#: Bytes of a finished data file whose writeback is started at a time (about 15 ms of
-#: this machine's disk queue): the run stops asking between slices once it is done.
-WRITEBACK_SLICE = 32 * 2**20
 
 
 def _declared(scene: Scene) -> bool:
@@ -61,66 +57,21 @@ def _names(scene: Scene, summary: bool) -> list[str]:
 
 def _write(scene: Scene, pieces, stage: Path | None, summarise: bool):
     """Feed ``pieces`` to the writers in ``stage`` (None: no files), the thinned copy and
-    (``summarise``) the summary; write the figure, summary and scene files; return the
-    Report (with ``summarise`` off, only whether the run completed).
-
-    A piece is consumed in two more threads while the next one is integrated: one writes
-    it to the data files and thins it (figure), the other measures it (summary; with
-    ``summarise`` off there is nothing to measure and no such thread). The compiled
-    loops, the CSV formatting and numpy's array loops release the GIL, so on two cores
-    they overlap. Each consumer takes the pieces one at a time, in order; the files'
-    thread has finished with a piece before the next is handed over, the summary's may
-    fall :data:`~ga_rotors.scene.budget.SUMMARY_LAG` pieces behind, and the figure is
-    drawn (here) while it catches up. Every consumer has finished before this returns or
-    raises: nothing writes into the staging folder after a failure or an interrupt.
+    (``summarise``) the summary, one piece at a time as it is integrated; write the
+    figure, summary and scene files; return the Report (with ``summarise`` off, only
+    whether the run completed). A failure or an interrupt stops the writers (their files
+    go away with the staging folder).
     """
-    import threading
-    from collections import deque
-    from concurrent.futures import ThreadPoolExecutor
-
     out = scene.data["output"]
     sink = _Sink(scene, stage, summarise)
     try:
-        with (
-            ThreadPoolExecutor(max_workers=1, thread_name_prefix="ga_rotors-writer") as files,
-            ThreadPoolExecutor(max_workers=1, thread_name_prefix="ga_rotors-summary") as measures,
-        ):
-            writing, measuring, held, done = None, deque(), deque(), threading.Event()
-            delay = SUMMARY_DELAY if sink.figure and sink.summary is not None else 0
-            try:
-                for piece in pieces:  # integrated here, consumed there
-                    if writing is not None:
-                        writing.result()  # the previous piece is written (or its error raised)
-                    while len(measuring) >= SUMMARY_LAG:
-                        measuring.popleft().result()
-                    sink.meta = piece.meta
-                    writing = files.submit(sink.write, piece)
-                    if sink.summary is not None:
-                        held.append(piece)
-                        if len(held) > delay:
-                            measuring.append(measures.submit(sink.measure, held.popleft()))
-                if writing is not None:
-                    writing.result()
-                # the data files are finished there, the last pieces measured there, while
-                # the figure is drawn here
-                writing = files.submit(sink.close, done)
-                measuring.extend(measures.submit(sink.measure, p) for p in held)
-                held.clear()
-                if stage is not None and sink.thin is not None:
-                    from . import figures
+        _consume(pieces, sink.take)
+        sink.close()
+        if stage is not None and sink.thin is not None:
+            from . import figures
 
-                    figure = figures.render(scene, sink.thin.trajectory(sink.meta))
-                    (stage / f"{scene.name}.{out['figure_format']}").write_bytes(figure)
-                while measuring:
-                    measuring.popleft().result()
-                done.set()
-                writing.result()
-            except BaseException:
-                done.set()
-                for future in (writing, *measuring):
-                    if future is not None:  # not started: dropped; started: its pool waits
-                        future.cancel()
-                raise
+            figure = figures.render(scene, sink.thin.trajectory(sink.meta))
+            (stage / f"{scene.name}.{out['figure_format']}").write_bytes(figure)
     except BaseException:
         sink.abort()
         raise
@@ -138,6 +89,31 @@ def _write(scene: Scene, pieces, stage: Path | None, summarise: bool):
     return rep
 
 
+def _consume(pieces, take) -> None:
+    """``take(piece)`` for each piece in order, on a thread of its own: each piece is
+    written, thinned and measured there while the next one is integrated here (the
+    compiled loops release the GIL, so on two cores the two overlap). At most the piece
+    being taken and the one being integrated are alive; ``take`` has finished with every
+    piece when this returns or raises.
+
+    Why a thread: the 10⁷-step heavy top of ``benchmarks/bench_stream.py`` (netCDF,
+    figure and summary) took 2.38 s of CPU in one thread, 1.0 s of it integrating and
+    1.0 s writing, thinning and measuring (the summary's exact Lagrange top at every
+    sample is most of it), and 0.3 s drawing: one after the other, about 2.3x the bare
+    integration. Taken on a second core, the wall time is the larger of the two halves
+    plus the figure."""
+    from concurrent.futures import ThreadPoolExecutor
+
+    with ThreadPoolExecutor(max_workers=1, thread_name_prefix="ga_rotors-run") as pool:
+        taking = None
+        for piece in pieces:
+            if taking is not None:
+                taking.result()  # the previous piece is taken (or its error raised here)
+            taking = pool.submit(take, piece)
+        if taking is not None:
+            taking.result()
+
+
 class _Sink:
     """Where the pieces of a run go: its data files, its summary, its figure's copy."""
 
@@ -146,62 +122,44 @@ class _Sink:
 
         out, name = scene.data["output"], scene.name
         self.scene, self.meta = scene, None
-        self.writers, self.paths = [], []
+        self.writers = []
         if stage is not None:
             for fmt in out["data"]:
-                path = stage / f"{name}{FORMATS[fmt].suffix}"
-                self.writers.append(FORMATS[fmt].open(path, scene))
-                self.paths.append(path)
+                self.writers.append(
+                    FORMATS[fmt].open(stage / f"{name}{FORMATS[fmt].suffix}", scene)
+                )
         self.summary = RunSummary(scene) if summarise else None
         self.figure = stage is not None and bool(out["plots"])
         self.thin = self.balance = None
 
-    def write(self, piece: Trajectory) -> None:
-        """Append ``piece`` to the data files and the figure's thinned copy (the summary,
-        a long run's largest cost, has a thread to itself)."""
+    def take(self, piece: Trajectory) -> None:
+        """Append ``piece`` to the data files and the figure's thinned copy, and add it to
+        the summary."""
+        self.meta = piece.meta
         for writer in self.writers:
             writer.append(piece)
         self._thin(piece)
-
-    def measure(self, piece: Trajectory) -> None:
-        """Add ``piece`` to the summary."""
         if self.summary is not None:
             self.summary.add(piece)
 
     def _thin(self, piece: Trajectory) -> None:
+        from ..results.streams import sample_count
         from .figures import energy_balance_drawn
         from .thinning import ThinnedCopy
 
         if self.thin is None and self.figure:
             meta = piece.meta
-            every = meta["sample_every"]
-            count = meta["steps"] // every + 1 + (1 if meta["steps"] % every else 0)
             t_end = float(piece.t[0]) + meta["steps"] * meta["step"]
-            self.thin = ThinnedCopy(float(piece.t[0]), t_end, count)
+            self.thin = ThinnedCopy(float(piece.t[0]), t_end, sample_count(meta))
             if not self.thin.keep_all and energy_balance_drawn(self.scene):
                 self.balance = _Balance(self.scene)
         if self.thin is not None:
             self.thin.add(piece if self.balance is None else self.balance.add(piece))
 
-    def close(self, done=None) -> None:
-        """Finish the data files, then start writing those that went through the page
-        cache to disk, a slice at a time until ``done`` (a ``threading.Event``) is set,
-        when the run has nothing else to do: on ext4 the moves into place would otherwise
-        start it and wait (:func:`ga_rotors.files.start_writeback`); what is left then is
-        left to them (or, on other file systems, to the system). A file written straight
-        to the disk (its writer's ``direct``: the CSV, where the file system allows it)
-        is already there."""
-        from ..files import start_writeback
-
+    def close(self) -> None:
+        """Finish the data files (with the run's final ``meta``)."""
         for writer in self.writers:
             writer.close(self.meta)
-        for writer, path in zip(self.writers, self.paths, strict=True):
-            if getattr(writer, "direct", False) or not path.is_file():
-                continue  # on the disk already; a store (a folder) is many small files
-            for start in range(0, path.stat().st_size, WRITEBACK_SLICE):
-                if done is not None and done.is_set():
-                    return
-                start_writeback(path, start, WRITEBACK_SLICE)
 
     def abort(self) -> None:
         for writer in self.writers:

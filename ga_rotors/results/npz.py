@@ -1,0 +1,181 @@
+"""NPZ archives: every array of a trajectory as a ``.npy`` member, and what made them.
+
+An archive holds one ``<name>.npy`` member per array (``t``, ``w``, ``q``, ...), the
+component labels of each multi-column array as ``<name>__components.npy``, and an
+``attributes.json`` member: the run's attributes (:func:`~.provenance.provenance`: the
+body frame, integrator, step, scene, versions) and each array's units and long name.
+``numpy.load`` reads the arrays by name; ``json.loads(numpy.load(path)["attributes.json"])``
+reads the attributes (numpy hands out a member that is not ``.npy`` as its bytes).
+
+:func:`write_npz` writes a whole trajectory; :class:`NpzStream` the same archive from a
+run's pieces, each array's rows kept in a file of its own until :meth:`NpzStream.close`
+copies them into the archive.
+"""
+
+from __future__ import annotations
+
+import json
+import shutil
+import tempfile
+import zipfile
+from pathlib import Path
+
+import numpy as np
+
+from ..errors import InputError
+from ..files import atomic_write
+from .provenance import provenance
+
+__all__ = ["ATTRIBUTES", "NpzStream", "attributes_json", "write_npz"]
+
+#: The archive member holding the attributes.
+ATTRIBUTES = "attributes.json"
+
+#: Bytes copied at a time from a rows file into the archive.
+COPY_BUFFER = 4 << 20
+
+
+def attributes_json(trajectory, scene=None) -> str:
+    """The ``attributes.json`` member of ``trajectory``'s archive: the run's attributes
+    and each array's units and long name.
+
+    Examples
+    --------
+    >>> from ga_rotors.trajectory import Trajectory
+    >>> tr = Trajectory({"t": np.zeros(2), "energy": np.ones(2)}, meta={"integrator": "rk4"})
+    >>> data = json.loads(attributes_json(tr))
+    >>> data["attributes"]["body_frame"], data["variables"]["energy"]["units"]
+    ('the body axes the inertia was given in', 'J')
+    """
+    from .dataset import variable_attrs
+
+    variables = {}
+    for name in trajectory.names:
+        try:
+            variables[name] = variable_attrs(name)
+        except InputError:  # an array a user added: no unit is known
+            variables[name] = {}
+    body = {"attributes": provenance(trajectory.meta, scene), "variables": variables}
+    return json.dumps(body, indent=1, sort_keys=True, default=str)
+
+
+def _components(trajectory) -> dict[str, np.ndarray]:
+    return {
+        f"{name}__components": np.array(labels)
+        for name, labels in trajectory.components.items()
+        if name in trajectory
+    }
+
+
+def _write_members(zf: zipfile.ZipFile, arrays, components: dict, attributes: str) -> None:
+    """Write ``arrays`` ((name, writer) pairs: ``writer(member)`` writes the ``.npy``),
+    the component labels and the attributes into ``zf``."""
+    for name, write in arrays:
+        with zf.open(f"{name}.npy", "w", force_zip64=True) as member:
+            write(member)
+    for name, labels in components.items():
+        with zf.open(f"{name}.npy", "w") as member:
+            np.lib.format.write_array(member, labels, allow_pickle=False)
+    zf.writestr(ATTRIBUTES, attributes)
+
+
+def write_npz(trajectory, path, scene=None) -> Path:
+    """Write every array of ``trajectory``, its component labels and its attributes to a
+    ``.npz`` archive at ``path``, atomically (uncompressed, as ``numpy.savez``).
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> from ga_rotors.trajectory import Trajectory
+    >>> tr = Trajectory({"t": np.arange(3.0), "w": np.ones((3, 3))}, {"w": ("1", "2", "3")})
+    >>> p = write_npz(tr, pathlib.Path(tempfile.mkdtemp()) / "run.npz")
+    >>> data = np.load(p)
+    >>> data.files, data["w__components"].tolist()
+    (['t', 'w', 'w__components', 'attributes.json'], ['1', '2', '3'])
+    """
+    arrays = [
+        (name, lambda member, a=trajectory[name]: np.lib.format.write_array(member, a))
+        for name in trajectory.names
+    ]
+
+    def write(fh) -> None:
+        with zipfile.ZipFile(fh, "w", zipfile.ZIP_STORED, allowZip64=True) as zf:
+            _write_members(zf, arrays, _components(trajectory), attributes_json(trajectory, scene))
+
+    return atomic_write(path, write)
+
+
+class NpzStream:
+    """The archive :func:`write_npz` writes, from a run's pieces: each array's rows are
+    appended to a file of their own (beside ``path``) as they come, and :meth:`close`
+    copies them into the archive, :data:`COPY_BUFFER` bytes at a time.
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> from ga_rotors.trajectory import Trajectory
+    >>> path = pathlib.Path(tempfile.mkdtemp()) / "run.npz"
+    >>> out = NpzStream(path)
+    >>> for lo in (0, 2):
+    ...     out.append(Trajectory({"t": np.arange(lo, lo + 2.0), "w": np.ones((2, 3))},
+    ...                           {"w": ("1", "2", "3")}))
+    >>> out.close({})
+    >>> data = np.load(path)
+    >>> data["t"].tolist(), data["w"].shape, data["w__components"].tolist()
+    ([0.0, 1.0, 2.0, 3.0], (4, 3), ['1', '2', '3'])
+    """
+
+    def __init__(self, path, scene=None):
+        self.path = Path(path)
+        self.scene = scene
+        self._dir = Path(tempfile.mkdtemp(dir=self.path.parent, prefix=".npz-rows-"))
+        self._rows: dict = {}  # name -> [open rows file, trailing shape, rows]
+        self._first = None  # the first piece: names, components, units
+
+    def append(self, piece) -> None:
+        """Add the rows of ``piece`` to each array's file."""
+        if self._first is None:
+            self._first = piece
+        for name in piece.names:
+            a = np.ascontiguousarray(piece[name], dtype=np.float64)
+            if name not in self._rows:
+                fh = open(self._dir / f"{len(self._rows)}.rows", "wb")
+                self._rows[name] = [fh, a.shape[1:], 0]
+            entry = self._rows[name]
+            entry[0].write(a.data)
+            entry[2] += a.shape[0]
+
+    def close(self, meta: dict) -> None:
+        """Write the archive: each array's ``.npy`` header, then its rows, then the labels
+        and the attributes of the run's final ``meta``."""
+        try:
+            if self._first is None:
+                return
+            arrays = []
+            for name, (fh, trailing, rows) in self._rows.items():
+                fh.close()
+                arrays.append((name, lambda member, f=fh.name, s=(rows, *trailing): _copy(
+                    member, f, s)))  # fmt: skip
+            first = self._first.extended({}, meta=meta)
+            attributes = attributes_json(first, self.scene)
+            with open(self.path, "wb") as out:
+                with zipfile.ZipFile(out, "w", zipfile.ZIP_STORED, allowZip64=True) as zf:
+                    _write_members(zf, arrays, _components(first), attributes)
+        finally:
+            self.abort()
+
+    def abort(self) -> None:
+        """Remove the rows collected so far."""
+        for fh, _, _ in self._rows.values():
+            fh.close()
+        self._rows = {}
+        shutil.rmtree(self._dir, ignore_errors=True)
+
+
+def _copy(member, rows_file: str, shape: tuple) -> None:
+    """Write a ``.npy`` header for float64 rows of ``shape``, then the rows from the file."""
+    header = {"descr": np.lib.format.dtype_to_descr(np.dtype(np.float64)),
+              "fortran_order": False, "shape": shape}  # fmt: skip
+    np.lib.format.write_array_header_1_0(member, header)
+    with open(rows_file, "rb") as rows:
+        shutil.copyfileobj(rows, member, COPY_BUFFER)
