@@ -52,7 +52,7 @@ def test_minimal_scene_resolves_every_default():
         "quantities": [],
         "plots": [],
         "figure_format": "png",
-        "data": [],
+        "data": ["netcdf"],  # the binary default (npz without ga-rotors[results])
         "summary": True,
     }
     assert (s.steps, s.sample_every, s.kind) == (100, 1, "free")

@@ -68,13 +68,27 @@ def test_run_writes_what_the_scene_declares(short, tmp_path, capsys):
 
 
 def test_run_without_declared_files_writes_nothing(short, tmp_path, capsys):
-    text = SHORT.replace('plots = ["omega", "error"]\ndata = ["csv", "npz"]\n', "")
+    text = SHORT.replace('plots = ["omega", "error"]\ndata = ["csv", "npz"]\n', "data = []\n")
     path = tmp_path / "quiet.toml"
     path.write_text(text)
     out = tmp_path / "never"
     assert main(["run", str(path), "--out", str(out)]) == 0
     assert not out.exists()
     assert "no files declared" in capsys.readouterr().out
+
+
+def test_run_without_output_data_writes_the_binary_default(short, tmp_path, capsys):
+    import xarray as xr
+
+    text = SHORT.replace('plots = ["omega", "error"]\ndata = ["csv", "npz"]\n', "")
+    path = tmp_path / "quiet.toml"
+    path.write_text(text)
+    out = tmp_path / "out"
+    assert main(["run", str(path), "--out", str(out), "--no-progress"]) == 0
+    names = sorted(p.name for p in out.iterdir())
+    assert names == ["short.nc", "short.scene.toml", "short.summary.txt"]
+    with xr.open_dataset(out / "short.nc") as ds:
+        assert ds.sizes["time"] == 21 and ds.attrs["Conventions"] == "CF-1.10"
 
 
 @pytest.mark.parametrize("when", ["drawing", "mid-run"])

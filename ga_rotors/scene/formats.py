@@ -15,7 +15,7 @@ from dataclasses import dataclass, field
 
 from ..errors import InputError
 
-__all__ = ["FORMATS", "DataFormat", "register", "require_formats"]
+__all__ = ["FORMATS", "DataFormat", "default_data", "register", "require_formats"]
 
 
 @dataclass(frozen=True)
@@ -61,6 +61,24 @@ class DataFormat:
         if self.stream is not None:
             return self.stream(path, scene)
         return _Whole(self, path)
+
+
+def default_data() -> list[str]:
+    """The data formats of a scene whose ``output.data`` is not given: a binary format, so
+    a long run writes at about the speed of its integration (CSV text costs several times
+    more: ``benchmarks/bench_stream.py``). netCDF, the field's format with the run's units,
+    frame and settings (CF), where the ``results`` extra is installed; NPZ, which needs
+    numpy only, where it is not.
+
+    Examples
+    --------
+    >>> default_data() in (["netcdf"], ["npz"])
+    True
+    """
+    import importlib.util
+
+    installed = all(importlib.util.find_spec(module) for module, _ in FORMATS["netcdf"].needs)
+    return ["netcdf"] if installed else ["npz"]
 
 
 def require_formats(scene) -> None:

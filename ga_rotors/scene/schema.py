@@ -17,7 +17,7 @@ from .. import effects as _effects
 from .. import paths as _paths
 from ..paper.figures import FIGURE_FORMATS
 from ..shapes import SHAPES
-from .formats import FORMATS
+from .formats import FORMATS, default_data
 from .reader import Reader, join
 
 __all__ = [
@@ -329,7 +329,7 @@ def _resolve_output(reader: Reader, value) -> dict:
         "figure_format": reader.string(
             t.get("figure_format", "png"), "output.figure_format", FIGURE_FORMATS
         ),
-        "data": reader.names(t.get("data", []), "output.data", FORMATS),
+        "data": reader.names(t.get("data", default_data()), "output.data", FORMATS),
         "summary": reader.boolean(t.get("summary", True), "output.summary"),
     }
 
