@@ -236,9 +236,6 @@ def test_a_file_the_system_refuses_is_one_line_naming_it(tmp_path, capsys, monke
     assert list(tmp_path.iterdir()) == []
 
 
-# Direct writes (O_DIRECT): the same bytes whichever way the file system lets them go.
-
-
 def test_run_with_an_empty_out_is_one_line_before_anything_runs(tmp_path, capsys, monkeypatch):
     from ga_rotors.cli import main
 
