@@ -67,16 +67,24 @@ def _components(trajectory) -> dict[str, np.ndarray]:
     }
 
 
+def _member(name: str) -> zipfile.ZipInfo:
+    """An archive member dated 1980-01-01 (zip's first date), not now: the same run
+    written twice gives the same bytes."""
+    info = zipfile.ZipInfo(name, date_time=(1980, 1, 1, 0, 0, 0))
+    info.external_attr = 0o644 << 16
+    return info
+
+
 def _write_members(zf: zipfile.ZipFile, arrays, components: dict, attributes: str) -> None:
     """Write ``arrays`` ((name, writer) pairs: ``writer(member)`` writes the ``.npy``),
     the component labels and the attributes into ``zf``."""
     for name, write in arrays:
-        with zf.open(f"{name}.npy", "w", force_zip64=True) as member:
+        with zf.open(_member(f"{name}.npy"), "w", force_zip64=True) as member:
             write(member)
     for name, labels in components.items():
-        with zf.open(f"{name}.npy", "w") as member:
+        with zf.open(_member(f"{name}.npy"), "w") as member:
             np.lib.format.write_array(member, labels, allow_pickle=False)
-    zf.writestr(ATTRIBUTES, attributes)
+    zf.writestr(_member(ATTRIBUTES), attributes)
 
 
 def write_npz(trajectory, path, scene=None) -> Path:
