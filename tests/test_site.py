@@ -128,12 +128,15 @@ def test_learning_path_solutions_are_folded_and_checked(site):
     # A student reads the exercise first; the worked solution (code the suite runs, with
     # its output) opens on request.
     pages = sorted(p for p in (ROOT / "docs" / "learn").glob("*.md") if p.name != "index.md")
-    assert len(pages) == 9
+    assert len(pages) == 10
     for page in pages:
         html = (site / "learn" / page.stem / "index.html").read_text(encoding="utf-8")
-        solution = html.split("<summary>Worked solution", 1)[1].split("</details>", 1)[0]
-        assert '<div class="highlight"><pre>' in solution, page.name  # the code, shown
-        assert html.count("<details") == 1, page.name
+        solutions = html.split("<summary>Worked solution")[1:]
+        assert solutions, page.name
+        for solution in solutions:
+            solution = solution.split("</details>", 1)[0]
+            assert '<div class="highlight"><pre>' in solution, page.name  # the code, shown
+        assert html.count("<details") == len(solutions), page.name  # nothing else folded
 
 
 def _page(src_uri: str):

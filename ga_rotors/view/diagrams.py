@@ -1,8 +1,9 @@
 """The pictures of the learning path (docs/learn/), each computed with the package's algebra.
 
 Every picture is drawn from products evaluated in clifford's Cl(3,0) (through
-:func:`ga_rotors.rotor.layout`) or from a run of :func:`ga_rotors.simulation.simulate`, so a
-picture cannot disagree with the code it teaches. :data:`PICTURES` names them;
+:func:`ga_rotors.rotor.layout`) or Cl(3,0,1) (:mod:`ga_rotors.motor`, checked against
+clifford's products), or from a run of :func:`ga_rotors.simulation.simulate`, so a picture
+cannot disagree with the code it teaches. :data:`PICTURES` names them;
 :func:`draw_all` writes them (PNG at 150 dpi by default, SVG or PDF on request)::
 
     python -m ga_rotors.view.diagrams docs/learn/images
@@ -331,6 +332,237 @@ def gyroscope():
     return fig
 
 
+# --------------------------------------------------------------- from rotors to motors (PGA)
+
+
+def _pga():
+    """e0, e1, e2, e3 of clifford's Cl(3,0,1), as ga_rotors.motor names them."""
+    from ..motor import layout
+
+    blades = layout().blades
+    return blades["e0"], blades["e1"], blades["e2"], blades["e3"]
+
+
+def _pga_point(x):
+    from ..motor import point, to_multivector
+
+    return to_multivector(point(np.asarray(x, dtype=float)), "point")
+
+
+def _euclidean(P) -> np.ndarray:
+    from ..motor import from_multivector, point_coordinates
+
+    return point_coordinates(from_multivector(P, "point"))
+
+
+def _mirror(ax, normal, offset, style, label):
+    """The plane n·x = δ (n in the page) seen edge-on: a line on the page."""
+    n = np.asarray(normal, dtype=float)
+    foot, along = n * offset, np.array([-n[1], n[0]]) * 2.4
+    ax.plot([foot[0] - along[0], foot[0] + along[0]], [foot[1] - along[1], foot[1] + along[1]],
+            style, color=_COLOURS["mirror"], lw=1.5, label=label)  # fmt: skip
+
+
+def two_mirrors():
+    """Two reflections in planes of Cl(3,0,1): (a) meeting in a line, (b) parallel.
+
+    The planes are vectors a, b (here ⊥ the page); the point moves by the sandwich of b a.
+    Mirrors meeting at the angle β turn it by 2β about their line; mirrors δ apart slide it
+    by 2δ: the translator b a = 1 − δ e01 = T(2δ e1).
+    """
+    from ..motor import apply, from_multivector, from_quaternion, from_translation
+    from ..quaternion import from_axis_angle
+
+    e0, e1, e2, _ = _pga()
+    beta, delta = np.radians(30), 0.8
+    cases = (
+        (e2, -np.sin(beta) * e1 + np.cos(beta) * e2, [1.7, 0.6, 0.0],
+         from_quaternion(from_axis_angle([0, 0, 1], 2 * beta)), "(a) turn by 2β = 60°"),
+        (e1, e1 - delta * e0, [-1.4, 0.9, 0.0], from_translation([2 * delta, 0, 0]),
+         "(b) slide by 2δ = 1.6"),
+    )  # fmt: skip
+    fig, axes = _figure(2, width=4.4, height=4.2)
+    for ax, (a, b, v, expected, title), label_at in zip(axes, cases, ((0.08, 0.1), (-0.7, 0.3)),
+                                                         strict=True):  # fmt: skip
+        P = _pga_point(v)
+        once = _euclidean(-a * P * a)
+        twice = _euclidean((b * a) * P * ~(b * a))
+        assert np.allclose(from_multivector(b * a), expected)
+        assert np.allclose(twice, apply(expected, v))
+        for plane, style, name in ((a, "-", "first mirror a"), (b, "--", "second mirror b")):
+            n = np.array([plane[(1,)], plane[(2,)]])
+            _mirror(ax, n / np.linalg.norm(n), -plane[(0,)] / np.linalg.norm(n), style, name)
+        for start, end, colour in ((v, once, "#999"), (once, twice, _COLOURS["image"])):
+            ax.annotate("", xy=end[:2], xytext=start[:2], arrowprops=dict(
+                arrowstyle="-|>", color=colour, lw=2, shrinkA=4, shrinkB=4,
+                connectionstyle="arc3,rad=0.25"))  # fmt: skip
+        labelled = ((v, "P", _COLOURS["v"], (0.08, 0.1)), (once, "−aPa", "#777", (0.08, 0.1)),
+                    (twice, "(ba) P (ab)", _COLOURS["image"], label_at))  # fmt: skip
+        for x, name, colour, at in labelled:
+            ax.plot(*x[:2], "o", color=colour, ms=6)
+            ax.text(x[0] + at[0], x[1] + at[1], name, color=colour, fontsize=10)
+        ax.set_xlim(-2.0, 2.2)
+        ax.set_ylim(-1.6, 2.4)
+        ax.set_title(title, fontsize=10, loc="left")
+        ax.legend(loc="lower left", fontsize=8, frameon=False)
+    axes[0].plot(0, 0, "k*", ms=12)
+    axes[0].text(-1.2, 0.2, "their line (⊥ page)", fontsize=9)
+    t = np.linspace(0, beta, 20)
+    axes[0].plot(0.9 * np.cos(t), 0.9 * np.sin(t), color="#555", lw=1)
+    axes[0].text(0.95, 0.15, "β", fontsize=11, color="#555")
+    axes[1].annotate("", xy=(-1.4 + 2 * delta, -0.3), xytext=(-1.4, -0.3),
+                     arrowprops=dict(arrowstyle="<->", color=_COLOURS["image"]))  # fmt: skip
+    axes[1].text(-0.9, -0.6, "2δ", color=_COLOURS["image"], fontsize=11)
+    axes[1].annotate("", xy=(delta, 1.9), xytext=(0.0, 1.9), arrowprops=dict(arrowstyle="<->"))
+    axes[1].text(0.25, 2.0, "δ", fontsize=11)
+    return fig
+
+
+def translation_limit():
+    """Turns by s/d about lines ⊥ the page ever farther away (d → ∞) become the slide by s."""
+    from ..motor import apply, from_screw, from_translation, line
+
+    s, start = 1.5, np.zeros(3)
+    fig, (ax,) = _figure(width=5.6, height=4.4)
+    sigma = np.linspace(0.0, 1.0, 50)
+    for d, colour in zip((0.5, 1.0, 2.0, 8.0), ("#1f77b4", "#2ca02c", "#ff7f0e", "#9467bd"),
+                         strict=True):  # fmt: skip
+        axis = line([0.0, d, 0.0], [0.0, 0.0, 1.0])
+        path = apply(from_screw(axis, sigma * s / d), start)
+        label = f"turn by s/d about the line at d = {d:g}"
+        ax.plot(*path[:, :2].T, color=colour, lw=2, label=label)
+        if d < 2.5:
+            ax.plot(0.0, d, "x", color=colour, ms=9, mew=2)
+    far = from_screw(line([0.0, 1e6, 0.0], [0.0, 0.0, 1.0]), s / 1e6)
+    assert np.allclose(far, from_translation([s, 0.0, 0.0]), atol=1e-6)
+    straight = apply(from_translation(np.outer(sigma, [s, 0.0, 0.0])), start)
+    ax.plot(*straight[:, :2].T, "k--", lw=2, label="d → ∞: T = 1 − ½ s e01, the slide by s")
+    ax.plot(0, 0, "ko", ms=5)
+    ax.text(-0.32, -0.22, "start", fontsize=10)
+    ax.set_xlim(-0.4, 2.0)
+    ax.set_ylim(-0.4, 2.3)
+    ax.set_xlabel("x")
+    ax.set_ylabel("y  (×: where each line pierces the page)")
+    ax.set_title("arc length s = 1.5 on every path", fontsize=10)
+    ax.legend(loc="upper right", fontsize=8, frameon=False)
+    return fig
+
+
+def motor_sandwich():
+    """One motor moves a plane, a line in it and a point on the line: M X M̃ keeps incidence."""
+    from .. import motor
+    from ..quaternion import from_axis_angle
+
+    M = motor.from_pose(from_axis_angle([0.2, 0.3, 1.0], 1.4), [1.1, 0.5, 0.9])
+    p, direction, normal = np.array([0.5, 0.1, 0.2]), np.array([1.0, 0.6, 0.0]), np.eye(3)[2]
+    corners = p + np.array([[-0.6, -0.5, 0], [0.6, -0.5, 0], [0.6, 0.5, 0], [-0.6, 0.5, 0]])
+    moved_p = motor.point_coordinates(motor.sandwich_point(M, motor.point(p)))
+    on_line, moved_u = motor.line_coordinates(motor.sandwich_line(M, motor.line(p, direction)))
+    moved_n, offset = motor.plane_coordinates(motor.sandwich_plane(M, motor.plane(normal, p[2])))
+    # incidence survives the sandwich: the moved point is on the moved line and plane
+    assert np.isclose(moved_n @ moved_p, offset)
+    assert np.allclose(np.cross(moved_p - on_line, moved_u), 0.0, atol=1e-12)
+    assert np.allclose(motor.apply(M, corners) @ moved_n, offset)
+    fig, (ax,) = _figure(width=5.2, height=4.8, projection="3d")
+    u = direction / np.linalg.norm(direction)
+    before = (corners, p, u, "#bbb", "X")
+    after = (motor.apply(M, corners), moved_p, moved_u, None, "M X M̃")
+    for patch, q, w, colour, tag in (before, after):
+        ax.add_collection3d(_polygon3d(patch, colour or "#f2c94c"))
+        ax.plot(*np.array([q - 0.7 * w, q + 0.7 * w]).T, color=colour or _COLOURS["a"], lw=2.5)
+        ax.plot(*q, "o", color=colour or _COLOURS["b"], ms=7)
+        ax.text(q[0], q[1], q[2] + 0.15, tag, color="#333" if colour else _COLOURS["b"])
+    ax.plot([], [], color=_COLOURS["a"], lw=2.5, label="a line in the plane")
+    ax.plot([], [], "o", color=_COLOURS["b"], label="a point on the line")
+    ax.plot([], [], "s", color="#f2c94c", label="a plane (grey: before M)")
+    ax.set_box_aspect((1, 1, 0.8))
+    ax.set(xlim=(-0.3, 2.0), ylim=(-0.6, 1.7), zlim=(0.0, 1.6), xlabel="x", ylabel="y", zlabel="z",
+           xticklabels=[], yticklabels=[], zticklabels=[])  # fmt: skip
+    ax.view_init(elev=24, azim=-60)
+    ax.legend(loc="upper left", fontsize=8, frameon=False)
+    return fig
+
+
+def _polygon3d(corners, colour):
+    from mpl_toolkits.mplot3d.art3d import Poly3DCollection
+
+    return Poly3DCollection([corners], facecolor=colour, edgecolor="#555", alpha=0.35)
+
+
+def chasles_pole():
+    """A planar rigid motion is a turn about one line ⊥ the page (Chasles): exp(s log M)."""
+    from ..motor import apply, exp, from_pose, line_coordinates, log, to_screw
+    from ..quaternion import from_axis_angle
+
+    M = from_pose(from_axis_angle([0.0, 0.0, 1.0], np.radians(100)), [2.4, 0.9, 0.0])
+    axis, angle, pitch = to_screw(M)
+    pole, u = line_coordinates(axis)
+    assert np.isclose(pitch, 0.0, atol=1e-12) and np.allclose(np.abs(u), [0, 0, 1])
+    body = np.array([[0.2, -0.3, 0], [1.4, -0.3, 0], [1.4, 0.1, 0], [0.6, 0.1, 0], [0.6, 0.6, 0],
+                     [0.2, 0.6, 0], [0.2, -0.3, 0]])  # fmt: skip
+    s = np.linspace(0.0, 1.0, 41)
+    along = exp(s[:, None] * log(M))
+    fig, (ax,) = _figure(width=5.2, height=4.8)
+    for k, colour, name in ((0, _COLOURS["v"], "start"), (-1, _COLOURS["image"], "M (end)")):
+        ax.fill(*apply(along[k], body)[:, :2].T, color=colour, alpha=0.5, label=name)
+    for k in (10, 20, 30):
+        ax.plot(*apply(along[k], body)[:, :2].T, color="#aaa", lw=1)
+    for corner in body[[0, 1, 4]]:
+        track = apply(along, corner)[:, :2]
+        assert np.allclose(
+            np.linalg.norm(track - pole[:2], axis=1), np.linalg.norm(corner[:2] - pole[:2])
+        )  # circles about the pole
+        ax.plot(*track.T, ":", color="#555", lw=1)
+        ax.plot([pole[0], corner[0]], [pole[1], corner[1]], color="#ddd", lw=0.8, zorder=0)
+    ax.plot(*pole[:2], "k*", ms=14, label="the screw axis (⊥ page)")
+    ax.set_title(f"turn by {np.degrees(angle):.0f}° about the axis, pitch 0", fontsize=10)
+    ax.set_xlim(-0.6, 2.9)
+    ax.set_ylim(-0.9, 2.7)
+    ax.legend(loc="upper left", fontsize=8, frameon=False)
+    return fig
+
+
+def rolling_wheel():
+    """A wheel rolling along x: every point moves as if turning about the contact line.
+
+    The velocities are the commutator ½(B P − P B) of the space velocity line B with each
+    point P (computed in clifford), checked against v + ω × x from
+    :func:`ga_rotors.motor.velocities`.
+    """
+    from .. import motor
+
+    r, speed = 1.0, 1.0
+    M = motor.from_translation([0.0, 0.0, r])  # the centre at height r
+    body = motor.velocity_line([0.0, speed / r, 0.0], [speed, 0.0, 0.0])
+    B = motor.sandwich_line(M, body)  # seen from space
+    contact, _ = motor.line_coordinates(B)
+    w, v = motor.velocities(B)
+    B_mv = motor.to_multivector(np.r_[0.0, B, 0.0])
+    fig, (ax,) = _figure(width=5.6, height=4.0)
+    t = np.linspace(0, 2 * np.pi, 100)
+    ax.plot(r * np.sin(t), r + r * np.cos(t), color="#555", lw=2)
+    ax.axhline(0.0, color="#8b5a2b", lw=2)
+    scale = 0.45
+    for angle in np.radians(np.arange(0, 360, 45)):
+        x = np.array([r * np.sin(angle), 0.0, r + r * np.cos(angle)])
+        P = _pga_point(x)
+        c = motor.from_multivector(0.5 * (B_mv * P - P * B_mv), "point")  # an ideal point
+        velocity = np.array([-c[2], c[1], -c[0]])
+        assert abs(c[3]) < 1e-12 and np.allclose(velocity, v + np.cross(w, x))
+        ax.plot([contact[0], x[0]], [contact[2], x[2]], color="#ddd", lw=0.8, zorder=0)
+        if np.linalg.norm(velocity) > 1e-9:
+            _arrow(ax, scale * velocity[[0, 2]], _COLOURS["b"], "", origin=x[[0, 2]])
+    _arrow(ax, scale * (v + np.cross(w, [0, 0, r]))[[0, 2]], _COLOURS["b"], "", origin=(0, r))
+    ax.plot(contact[0], contact[2], "k*", ms=14, label="the velocity line (⊥ page): the contact")
+    ax.plot([], [], color=_COLOURS["b"], lw=2, label="velocity ½(BP − PB) of each point")
+    ax.set_xlim(-1.7, 2.3)
+    ax.set_ylim(-0.4, 2.7)
+    ax.set_xlabel("x")
+    ax.set_ylabel("z")
+    ax.legend(loc="upper right", fontsize=8, frameon=False)
+    return fig
+
+
 #: name -> function drawing it (a matplotlib Figure), in the learning path's order.
 PICTURES = {
     "geometric_product": geometric_product,
@@ -342,6 +574,11 @@ PICTURES = {
     "sandwich": sandwich,
     "rotor_kinematics": rotor_kinematics,
     "gyroscope": gyroscope,
+    "two_mirrors": two_mirrors,
+    "translation_limit": translation_limit,
+    "motor_sandwich": motor_sandwich,
+    "chasles_pole": chasles_pole,
+    "rolling_wheel": rolling_wheel,
 }
 
 
