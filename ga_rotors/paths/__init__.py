@@ -1,4 +1,4 @@
-"""Orientation paths: the ways one motion's orientation is integrated.
+r"""Orientation paths: the ways one motion's orientation is integrated.
 
 Each path is a module holding the compiled kernels that bind the template slots
 ``o_rate``, ``o_axpy``, ``o_rk4``, ``o_quat``, ``o_load``, ``o_store``, ``o_watch`` (and,
@@ -6,9 +6,11 @@ on the unit sphere, ``o_normalize``/``o_from_quat``); see
 :mod:`ga_rotors.integrators.slots`. The same integrator template runs on every path it
 supports, so the paths differ only in their kinematics.
 
-* ``rotor`` (primary): Ṙ = ½ R Ω in Cl(3,0), kernels generated from clifford's layout;
-* ``quaternion``: q̇ = ½ q ⊗ (0, ω);
-* ``euler``: the paper's z–y′–z″ angles, singular at sin θ = 0 (watched and reported).
+* ``rotor`` (primary): :math:`\dot R = \tfrac12 R \Omega` in Cl(3,0), kernels generated
+  from clifford's layout;
+* ``quaternion``: :math:`\dot q = \tfrac12 q \otimes (0, \omega)`;
+* ``euler``: the paper's z–y′–z″ angles, singular at :math:`\sin\theta = 0` (watched and
+  reported).
 """
 
 from __future__ import annotations

@@ -1,21 +1,25 @@
-"""The Euler-angle path: the paper's z–y′–z″ angles (ψ, θ, φ) integrated from body ω.
+r"""The Euler-angle path: the paper's z–y′–z″ angles :math:`(\psi, \theta, \phi)` integrated
+from body :math:`\omega`.
 
-State: (ψ, θ, φ) in radians, advanced with the rates of
-:func:`ga_rotors._kernels.zyz_rates`, which divide by sin θ. Near sin θ = 0 the rates
-grow like 1/sin θ and a fixed step stops resolving them; at sin θ = 0 exactly they are
-undefined. The path keeps going (that is the paper's method, and showing what it does is
-the point) but watches every step and reports:
+State: :math:`(\psi, \theta, \phi)` in radians, advanced with the rates of
+:func:`ga_rotors._kernels.zyz_rates`, which divide by :math:`\sin\theta`. Near
+:math:`\sin\theta = 0` the rates grow like :math:`1/\sin\theta` and a fixed step stops
+resolving them; at :math:`\sin\theta = 0` exactly they are undefined. The path keeps
+going (that is the paper's method, and showing what it does is the point) but watches every
+step and reports:
 
-* ``unresolved_steps``: steps that start where h·|ψ̇| > :data:`UNRESOLVED_TURN`, i.e. the
-  step would turn ψ by more than 0.1 rad while ψ̇ ∝ 1/sin θ changes on the time scale
-  1/|ψ̇|, so RK4's error expansion no longer applies;
+* ``unresolved_steps``: steps that start where :math:`h \lvert \dot\psi \rvert` exceeds
+  :data:`UNRESOLVED_TURN`, i.e. the step would turn :math:`\psi` by more than 0.1 rad
+  while :math:`\dot\psi \propto 1/\sin\theta` changes on the time scale
+  :math:`1/\lvert \dot\psi \rvert`, so RK4's error expansion no longer applies;
 * ``first_unresolved``: the time of the first such step;
-* ``min_abs_sin_theta``: the smallest |sin θ| seen at a step start;
-* ``pole_crossings``: how often sin θ changed sign between steps (the discrete path
-  stepped across θ = 0 or π, which the exact motion never does: θ ≥ 0 there);
-* ``max_turn``: the largest h·|ψ̇|.
+* ``min_abs_sin_theta``: the smallest :math:`\lvert \sin\theta \rvert` seen at a step start;
+* ``pole_crossings``: how often :math:`\sin\theta` changed sign between steps (the
+  discrete path stepped across :math:`\theta = 0` or :math:`\pi`, which the exact motion
+  never does: :math:`\theta \ge 0` there);
+* ``max_turn``: the largest :math:`h \lvert \dot\psi \rvert`.
 
-If the state stops being finite (sin θ = 0 hit exactly), the loop stops and returns the
+If the state stops being finite (:math:`\sin\theta = 0` hit exactly), the loop stops and returns the
 finite samples it has; the report says when.
 """
 
@@ -58,7 +62,8 @@ _INITIAL_STATS = (0.0, np.inf, np.inf, 0.0, 0.0, 0.0)
 
 @jit
 def rate(x, w):
-    """(ψ̇, θ̇, φ̇) from the angles and body ω (:func:`ga_rotors._kernels.zyz_rates`).
+    r""":math:`(\dot\psi, \dot\theta, \dot\phi)` from the angles and body :math:`\omega`
+    (:func:`ga_rotors._kernels.zyz_rates`).
 
     Examples
     --------
@@ -70,7 +75,8 @@ def rate(x, w):
 
 @jit
 def to_quat(x):
-    """q = q_z(ψ) ⊗ q_y(θ) ⊗ q_z(φ), the convention that defines the angles.
+    r""":math:`q = q_z(\psi) \otimes q_y(\theta) \otimes q_z(\phi)`, the convention that
+    defines the angles.
 
     Examples
     --------
@@ -82,12 +88,14 @@ def to_quat(x):
 
 @jit
 def watch(t, x, w, h, stats):
-    """Record how close the step starts to sin θ = 0 and whether h resolves the rates.
+    r"""Record how close the step starts to :math:`\sin\theta = 0` and whether :math:`h`
+    resolves the rates.
 
     Examples
     --------
-    A step of 10 ms at θ = 0.01 rad with ω = (1, 0, 10) turns ψ by h|ψ̇| ≈ 1 rad, more
-    than :data:`UNRESOLVED_TURN`:
+    A step of 10 ms at :math:`\theta = 0.01` rad with :math:`\omega = (1, 0, 10)` turns
+    :math:`\psi` by :math:`h \lvert \dot\psi \rvert \approx 1` rad, more than
+    :data:`UNRESOLVED_TURN`:
 
     >>> stats = initial_stats()
     >>> watch(0.0, (0.0, 0.01, 0.0), (1.0, 0.0, 10.0), 1e-2, stats)
@@ -130,7 +138,7 @@ def report(stats: np.ndarray) -> dict:
 
 
 def initial_state(angles: np.ndarray) -> np.ndarray:
-    """The path's state: the ZYZ angles (ψ, θ, φ) themselves.
+    r"""The path's state: the ZYZ angles :math:`(\psi, \theta, \phi)` themselves.
 
     Examples
     --------
@@ -141,11 +149,12 @@ def initial_state(angles: np.ndarray) -> np.ndarray:
 
 
 def quaternions(states: np.ndarray) -> np.ndarray:
-    """Unit quaternions (..., 4) of ZYZ angle arrays (..., 3).
+    r"""Unit quaternions (..., 4) of ZYZ angle arrays (..., 3).
 
     Examples
     --------
-    θ = 90° alone is a quarter turn about y: q = (cos 45°, 0, sin 45°, 0).
+    :math:`\theta = 90^\circ` alone is a quarter turn about y:
+    :math:`q = (\cos 45^\circ, 0, \sin 45^\circ, 0)`.
 
     >>> quaternions([0.0, np.pi / 2, 0.0])
     array([0.70710678, 0.        , 0.70710678, 0.        ])

@@ -1,6 +1,7 @@
-"""The quaternion path: q̇ = ½ q ⊗ (0, ω), the paper's inverse kinematics by quaternions.
+r"""The quaternion path: :math:`\dot q = \tfrac12 q \otimes (0, \omega)`, the paper's inverse
+kinematics by quaternions.
 
-State: the unit quaternion (w, x, y, z) of body -> space. Binds the template slots
+State: the unit quaternion :math:`(w, x, y, z)` of body -> space. Binds the template slots
 ``o_*`` (see :mod:`ga_rotors.integrators.slots`).
 """
 
@@ -25,7 +26,7 @@ NSTATS = 0
 
 @jit
 def rate(x, w):
-    """q̇ = ½ q ⊗ (0, ω).
+    r""":math:`\dot q = \tfrac12 q \otimes (0, \omega)`.
 
     Examples
     --------

@@ -1,8 +1,9 @@
-"""The rotor path: Ṙ = ½ R Ω in Cl(3,0), Ω = −I ω, the primary orientation path.
+r"""The rotor path: :math:`\dot R = \tfrac12 R \Omega` in Cl(3,0), :math:`\Omega = -I\omega`,
+the primary orientation path.
 
-State: the rotor's coefficients on clifford's even blades (1, e12, e13, e23). The
-arithmetic is :mod:`ga_rotors._rotor_kernels`, generated from clifford's multiplication
-table. Binds the template slots ``o_*`` (see :mod:`ga_rotors.integrators.slots`).
+State: the rotor's coefficients on clifford's even blades :math:`(1, e_{12}, e_{13}, e_{23})`.
+The arithmetic is :mod:`ga_rotors._rotor_kernels`, generated from clifford's
+multiplication table. Binds the template slots ``o_*`` (see :mod:`ga_rotors.integrators.slots`).
 """
 
 from __future__ import annotations
@@ -29,12 +30,13 @@ COMPONENTS = ("1", "e12", "e13", "e23")
 
 @jit
 def rate(x, w):
-    """Ṙ = ½ R Ω.
+    r""":math:`\dot R = \tfrac12 R \Omega`.
 
     Examples
     --------
-    At R = 1, ω = (0, 0, 2): Ω = −2 e12 and Ṙ = −e12, on the blades (1, e12, e13, e23).
-    (The quaternion path's q̇ there is k: k <-> −e12.)
+    At :math:`R = 1`, :math:`\omega = (0, 0, 2)`: :math:`\Omega = -2 e_{12}` and
+    :math:`\dot R = -e_{12}`, on the blades :math:`(1, e_{12}, e_{13}, e_{23})`. (The
+    quaternion path's :math:`\dot q` there is :math:`k`, and :math:`k \leftrightarrow -e_{12}`.)
 
     >>> rate((1.0, 0.0, 0.0, 0.0), (0.0, 0.0, 2.0))
     (0.0, -1.0, 0.0, -0.0)
@@ -44,7 +46,8 @@ def rate(x, w):
 
 @jit
 def normalize(x):
-    """R / |R|: R ~R = |R|² on the even subalgebra, the Euclidean norm of the coefficients.
+    r""":math:`R / \lvert R \rvert`: :math:`R \tilde R = \lvert R \rvert^2` on the even
+    subalgebra, the Euclidean norm of the coefficients.
 
     Examples
     --------
@@ -56,11 +59,11 @@ def normalize(x):
 
 @jit
 def to_quat(x):
-    """The unit quaternion of the rotor.
+    r"""The unit quaternion of the rotor.
 
     Examples
     --------
-    R = w − x e23 + y e13 − z e12, read back:
+    :math:`R = w - x e_{23} + y e_{13} - z e_{12}`, read back:
 
     >>> to_quat((0.5, -0.5, 0.5, -0.5))
     (0.5, 0.5, 0.5, 0.5)
@@ -70,11 +73,11 @@ def to_quat(x):
 
 @jit
 def from_quat(q):
-    """The rotor of a unit quaternion.
+    r"""The rotor of a unit quaternion.
 
     Examples
     --------
-    k (a half turn about z) is −e12:
+    :math:`k` (a half turn about z) is :math:`-e_{12}`:
 
     >>> from_quat((0.0, 0.0, 0.0, 1.0))
     (0.0, -1.0, 0.0, -0.0)
@@ -105,11 +108,12 @@ def _signed_permutation(kernel) -> np.ndarray:
 
 
 def initial_state(q0: np.ndarray) -> np.ndarray:
-    """The rotor coefficients of the unit quaternion ``q0``.
+    r"""The rotor coefficients of the unit quaternion ``q0``.
 
     Examples
     --------
-    q = (w, x, y, z) is R = w − x e23 + y e13 − z e12: on the blades (1, e12, e13, e23),
+    :math:`q = (w, x, y, z)` is :math:`R = w - x e_{23} + y e_{13} - z e_{12}`: on the blades
+    :math:`(1, e_{12}, e_{13}, e_{23})`,
 
     >>> initial_state([0.5, 0.5, 0.5, 0.5])
     array([ 0.5, -0.5,  0.5, -0.5])
