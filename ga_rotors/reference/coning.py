@@ -1,9 +1,15 @@
-"""A prescribed body angular velocity with an exact orientation: coning.
+r"""A prescribed body angular velocity with an exact orientation: coning.
 
-q(t) = q₀ ⊗ q_z(a t) ⊗ q_x(b t) (a spin a about a body z axis that itself turns about x at
-rate b) has body angular velocity ω(t) = q_x(bt)* (0, 0, a) q_x(bt) + (b, 0, 0) =
-(b, a sin bt, a cos bt): ω changes direction all the time, so methods that freeze ω over a
-step (Lie–Euler, MuJoCo's exponential map) show their order, and Magnus methods can be
+The orientation :math:`q(t) = q_0 \otimes q_z(at) \otimes q_x(bt)` (a spin :math:`a`
+about a body :math:`z` axis that itself turns about :math:`x` at rate :math:`b`) has the
+body angular velocity
+
+.. math::
+
+    \omega(t) = q_x(bt)^* \,(0, 0, a)\, q_x(bt) + (b, 0, 0) = (b,\ a \sin bt,\ a \cos bt):
+
+:math:`\omega` changes direction all the time, so methods that freeze :math:`\omega` over
+a step (Lie–Euler, MuJoCo's exponential map) show their order, and Magnus methods can be
 measured against the exact answer.
 """
 
@@ -21,7 +27,7 @@ __all__ = ["Coning", "coning_rate"]
 
 @jit
 def coning_rate(t, p):
-    """Body ω(t) = (b, a sin bt, a cos bt) with p = (a, b).
+    r"""Body :math:`\omega(t) = (b,\ a \sin bt,\ a \cos bt)` with :math:`p = (a, b)`.
 
     Examples
     --------

@@ -1,29 +1,49 @@
-"""A symmetric top under isotropic viscous damping τ = −c ω, exactly (ω(t) always; the
-orientation too when the body is a sphere).
+r"""A symmetric top under isotropic viscous damping :math:`\tau = -c\,\omega`, exactly
+(:math:`\omega(t)` always; the orientation too when the body is a sphere).
 
-Derivation. Let k be the symmetry axis (moments I⊥, I⊥, I_k) and (a, b, k) a cyclic order
-of the axes. Euler's equations with τ = −c ω read::
+Derivation. Let :math:`k` be the symmetry axis (moments :math:`I_\perp, I_\perp, I_k`) and
+:math:`(a, b, k)` a cyclic order of the axes. Euler's equations with
+:math:`\tau = -c\,\omega` read
 
-    I_k ω̇_k = −c ω_k
-    I⊥ ω̇_a = (I⊥ − I_k) ω_b ω_k − c ω_a
-    I⊥ ω̇_b = (I_k − I⊥) ω_k ω_a − c ω_b
+.. math::
 
-The first gives ω_k(t) = ω_k(0) e^(−ct/I_k): the gyroscopic term has no component along k.
-With z = ω_a + i ω_b the other two are one complex equation, ż = −(iΩ(t) + c/I⊥) z with
-Ω = (I⊥ − I_k) ω_k / I⊥, so::
+    \begin{aligned}
+    I_k \dot\omega_k &= -c\,\omega_k, \\
+    I_\perp \dot\omega_a &= (I_\perp - I_k)\, \omega_b \omega_k - c\,\omega_a, \\
+    I_\perp \dot\omega_b &= (I_k - I_\perp)\, \omega_k \omega_a - c\,\omega_b.
+    \end{aligned}
 
-    z(t) = z(0) e^(−ct/I⊥) e^(−iΦ(t)),
-    Φ(t) = ∫₀ᵗ Ω = (I⊥ − I_k)/I⊥ · ω_k(0) · I_k (1 − e^(−ct/I_k))/c
+The first gives :math:`\omega_k(t) = \omega_k(0)\, e^{-ct/I_k}`: the gyroscopic term has no
+component along :math:`k`. With :math:`z = \omega_a + i\,\omega_b` the other two are one
+complex equation, :math:`\dot z = -\bigl(i\,\Omega(t) + c/I_\perp\bigr)\, z` with
+:math:`\Omega = (I_\perp - I_k)\, \omega_k / I_\perp`, so
 
-The transverse rate |z| decays as e^(−ct/I⊥) while its phase turns by Φ, which tends to
-the finite limit (I⊥ − I_k) ω_k(0) I_k/(I⊥ c): damping stops the body-frame precession
-after a finite angle. |L|² = I⊥²|z|² + I_k² ω_k² is the sum of two exponentials, so |L|
-decays as a single exponential e^(−ct/I) only for a sphere (I⊥ = I_k = I), where
-additionally ω̇ = −(c/I) ω keeps ω's direction û fixed in the body *and* in space and the
-orientation is q(t) = q₀ ⊗ Exp(θ(t) û), θ(t) = |ω₀| I (1 − e^(−ct/I))/c.
+.. math::
 
-The factor (1 − e^(−x))/c is evaluated as −expm1(−x)/c (no cancellation for small ct), and
-at c = 0 as its limit t, so the torque-free symmetric top's body rates are the special case.
+    \begin{aligned}
+    z(t) &= z(0)\, e^{-ct/I_\perp} e^{-i\Phi(t)}, \\
+    \Phi(t) &= \int_0^t \Omega = \frac{I_\perp - I_k}{I_\perp}\, \omega_k(0)\,
+      \frac{I_k \bigl(1 - e^{-ct/I_k}\bigr)}{c}.
+    \end{aligned}
+
+The transverse rate :math:`\lvert z \rvert` decays as :math:`e^{-ct/I_\perp}` while its
+phase turns by :math:`\Phi`, which tends to the finite limit
+:math:`(I_\perp - I_k)\, \omega_k(0)\, I_k / (I_\perp c)`: damping stops the body-frame
+precession after a finite angle.
+:math:`\lvert L \rvert^2 = I_\perp^2 \lvert z \rvert^2 + I_k^2 \omega_k^2` is the sum of two
+exponentials, so :math:`\lvert L \rvert` decays as a single exponential :math:`e^{-ct/I}`
+only for a sphere (:math:`I_\perp = I_k = I`), where additionally
+:math:`\dot\omega = -(c/I)\, \omega` keeps :math:`\omega`'s direction :math:`\hat u` fixed
+in the body *and* in space and the orientation is
+
+.. math::
+
+    q(t) = q_0 \otimes \operatorname{Exp}\bigl(\theta(t)\, \hat u\bigr), \qquad
+    \theta(t) = \lvert \omega_0 \rvert\, \frac{I \bigl(1 - e^{-ct/I}\bigr)}{c}.
+
+The factor :math:`(1 - e^{-x})/c` is evaluated as :math:`-\operatorname{expm1}(-x)/c` (no
+cancellation for small :math:`ct`), and at :math:`c = 0` as its limit :math:`t`, so the
+torque-free symmetric top's body rates are the special case.
 """
 
 from __future__ import annotations
@@ -48,15 +68,16 @@ def _decayed_time(c: float, inertia: float, t: np.ndarray) -> np.ndarray:
 
 
 class DampedSymmetricTop:
-    """Exact body rates of a symmetric top with τ = −c ω; orientation for a sphere.
+    r"""Exact body rates of a symmetric top with :math:`\tau = -c\,\omega`; orientation for a
+    sphere.
 
     Parameters
     ----------
     body : RigidBody or array_like (3,)
         Principal moments with two exactly equal (the third axis is the symmetry axis). A
         RigidBody's ``principal_rotation`` is honoured: orientation and angular velocity,
-        given and returned, are those of the user's body frame (the torque −c ω is the
-        same in every frame).
+        given and returned, are those of the user's body frame (the torque
+        :math:`-c\,\omega` is the same in every frame).
     c : float
         Damping coefficient (N·m·s), ≥ 0.
     orientation : array_like (4,)
@@ -66,7 +87,7 @@ class DampedSymmetricTop:
 
     Examples
     --------
-    A sphere: ω keeps its direction and decays as e^(−ct/I).
+    A sphere: :math:`\omega` keeps its direction and decays as :math:`e^{-ct/I}`.
 
     >>> top = DampedSymmetricTop((2.0, 2.0, 2.0), 0.5, [1.0, 0, 0, 0], [0.0, 0.0, 4.0])
     >>> w = top.angular_velocity([0.0, 4.0])
@@ -114,7 +135,7 @@ class DampedSymmetricTop:
         return out
 
     def momentum_norm(self, t) -> np.ndarray:
-        """|L(t)| (kg·m²/s)."""
+        r""":math:`\lvert L(t) \rvert` (kg·m²/s)."""
         return np.linalg.norm(self._angular_velocity(t) * np.asarray(self.moments), axis=-1)
 
     def at(self, t) -> tuple[np.ndarray, np.ndarray]:

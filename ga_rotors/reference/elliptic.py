@@ -1,34 +1,41 @@
-"""Jacobi elliptic functions and the integrals the exact references need, parameter and
+r"""Jacobi elliptic functions and the integrals the exact references need, parameter and
 complementary parameter given separately.
 
-Near a separatrix the parameter m is within a few ulps of 1, and m₁ = 1 − m carries all the
-information: scipy's ``ellipj(u, m)`` receives m rounded to float, so 1 − m has lost most of
-its digits before the function starts (m₁ = 1e-12 is known to about 1e-4 relative). Every
-function here takes both m and m₁, each computed by the caller without cancellation, and
-uses m₁ wherever 1 − m would appear.
+Near a separatrix the parameter :math:`m` is within a few ulps of 1, and
+:math:`m_1 = 1 - m` carries all the information: scipy's ``ellipj(u, m)`` receives
+:math:`m` rounded to float, so :math:`1 - m` has lost most of its digits before the
+function starts (:math:`m_1 = 10^{-12}` is known to about :math:`10^{-4}` relative). Every
+function here takes both :math:`m` and :math:`m_1`, each computed by the caller without
+cancellation, and uses :math:`m_1` wherever :math:`1 - m` would appear.
 
-* :func:`jacobi` — sn, cn, dn by the descending Gauss transformation on m₁, argument
-  reduced modulo 2K (:func:`sncndn_many`: many arguments in lockstep).
-* :func:`incomplete_first` — F(φ | m) via Carlson's R_F, for any real φ.
-* :func:`jacobi_argument` — the inverse of :func:`jacobi`: u ∈ [−2K, 2K] from (sn u, cn u),
-  without passing through the amplitude φ (well conditioned next to u = ±K, where
-  F(φ | m) amplifies the rounding of φ by 1/dn ~ 1/√m₁).
-* :func:`pi_integral` — ∫₀ᵘ dτ / (1 − n sn²τ), the elliptic integral of the third kind in
-  Jacobi's argument, via Carlson's R_J (DLMF 19.25.14), quasi-periodic continuation with
-  the complete integral.
-* :class:`JacobiArgument` — arguments u reduced once, for :func:`jacobi` and any number of
-  :func:`pi_integral` characteristics at the same u and m (an exact reference evaluates
-  all three at every sample: the reduction and the Gauss transformation are done once).
+* :func:`jacobi` — :math:`\operatorname{sn}, \operatorname{cn}, \operatorname{dn}` by the
+  descending Gauss transformation on :math:`m_1`, argument reduced modulo :math:`2K`
+  (:func:`sncndn_many`: many arguments in lockstep).
+* :func:`incomplete_first` — :math:`F(\phi \mid m)` via Carlson's :math:`R_F`, for any
+  real :math:`\phi`.
+* :func:`jacobi_argument` — the inverse of :func:`jacobi`: :math:`u \in [-2K, 2K]` from
+  :math:`(\operatorname{sn} u, \operatorname{cn} u)`, without passing through the
+  amplitude :math:`\phi` (well conditioned next to :math:`u = \pm K`, where
+  :math:`F(\phi \mid m)` amplifies the rounding of :math:`\phi` by
+  :math:`1/\operatorname{dn} \sim 1/\sqrt{m_1}`).
+* :func:`pi_integral` — :math:`\int_0^u \mathrm{d}\tau / (1 - n \operatorname{sn}^2\tau)`,
+  the elliptic integral of the third kind in Jacobi's argument, via Carlson's :math:`R_J`
+  (DLMF 19.25.14), quasi-periodic continuation with the complete integral.
+* :class:`JacobiArgument` — arguments :math:`u` reduced once, for :func:`jacobi` and any
+  number of :func:`pi_integral` characteristics at the same :math:`u` and :math:`m` (an
+  exact reference evaluates all three at every sample: the reduction and the Gauss
+  transformation are done once).
 
 The per-argument formulas are compiled scalar functions (:func:`reduce_argument`,
 :func:`sncndn_reduced`, :func:`pi_reduced`, :func:`carlson_rj`), which the functions above
 loop over and which a reference's own compiled pass calls directly
 (:mod:`ga_rotors.reference.heavy_top` evaluates its whole state per sample that way): one
-implementation of each. R_J is Carlson's duplication algorithm, compiled here rather than
+implementation of each. :math:`R_J` is Carlson's duplication algorithm, compiled here rather than
 scipy's ``elliprj`` (a ufunc, called per array), its series taken to the 7th degree so
 that it stops a duplication step earlier: at most 3.1 ulps against mpmath where the
 references call it, scipy's 4.2, and :func:`carlson_rj_pairs` serves the heavy top's two
-characteristics at the same (x, y, z) with one duplication, many arguments in lockstep.
+characteristics at the same :math:`(x, y, z)` with one duplication, many arguments in
+lockstep.
 """
 
 from __future__ import annotations
@@ -51,12 +58,14 @@ __all__ = [
     "pi_integral",
 ]
 
-#: Smallest 1 − m at which :func:`jacobi` (and what is built on it) keeps its accuracy:
-#: the descending Gauss transformation squares a ratio of size ~1/m₁, which overflows
-#: below √(smallest normal float) ≈ 1.5e-154. Measured on the asymmetric top next to its
-#: middle axis: orientations 1.4e-8 rad wrong at 1 − m = 2.9e-156 and 0.6 rad at 2.9e-246
-#: under a stated bound of 1e-11; right to 1e-13 at 2.9e-150. K(m) itself
-#: (:func:`complete_first`) stays right down to the smallest normal float.
+#: Smallest :math:`1 - m` at which :func:`jacobi` (and what is built on it) keeps its
+#: accuracy: the descending Gauss transformation squares a ratio of size
+#: :math:`\sim 1/m_1`, which overflows below :math:`\sqrt{\text{smallest normal float}}
+#: \approx 1.5 \cdot 10^{-154}`. Measured on the asymmetric top next to its middle axis:
+#: orientations 1.4e-8 rad wrong at :math:`1 - m = 2.9 \cdot 10^{-156}` and 0.6 rad at
+#: :math:`2.9 \cdot 10^{-246}` under a stated bound of 1e-11; right to 1e-13 at
+#: :math:`2.9 \cdot 10^{-150}`. :math:`K(m)` itself (:func:`complete_first`) stays right
+#: down to the smallest normal float.
 MIN_M1 = math.sqrt(sys.float_info.min)
 
 #: Below this |u|, sn u = u and cn u = dn u = 1 to rounding (the next term is ~u³).
@@ -66,7 +75,8 @@ _EPS = np.finfo(float).eps
 
 
 def complete_first(m: float, m1: float) -> float:
-    """K(m) from the complementary parameter m₁ = 1 − m (exact as m₁ → 0).
+    r""":math:`K(m)` from the complementary parameter :math:`m_1 = 1 - m` (exact as
+    :math:`m_1 \to 0`).
 
     Examples
     --------
@@ -98,15 +108,19 @@ def _gauss_coefficients(m1: float):
 
 @jit
 def sncndn_reduced(r, m, m1, means, roots, c):
-    """sn, cn, dn for one r ∈ [−K, K] by the descending Gauss transformation on m₁
-    (``means``, ``roots``, ``c`` from the transformation's setup for m₁).
+    r""":math:`\operatorname{sn}, \operatorname{cn}, \operatorname{dn}` for one
+    :math:`r \in [-K, K]` by the descending Gauss transformation on :math:`m_1` (``means``,
+    ``roots``, ``c`` from the transformation's setup for :math:`m_1`).
 
-    The recurrence runs on the complementary parameter and on the ratio cn/sn
-    (Numerical Recipes' ``sncndn``), never through arcsin: the textbook AGM form
-    φ_{n−1} = ½(φ_n + asin((c_n/a_n) sin φ_n)) evaluates arcsin next to 1 when m ≈ 1 and
-    loses digits in proportion to 1/cn (1e-13 absolute at m₁ = 1e-14, measured).
-    dn is taken as √(m₁ + m cn²), a sum of non-negative terms (dn ≥ √m₁ > 0), so its
-    absolute error stays at the ulp level.
+    The recurrence runs on the complementary parameter and on the ratio
+    :math:`\operatorname{cn}/\operatorname{sn}` (Numerical Recipes' ``sncndn``), never
+    through arcsin: the textbook AGM form
+    :math:`\phi_{n-1} = \tfrac12\bigl(\phi_n + \arcsin((c_n/a_n) \sin\phi_n)\bigr)`
+    evaluates arcsin next to 1 when :math:`m \approx 1` and loses digits in proportion to
+    :math:`1/\operatorname{cn}` (1e-13 absolute at :math:`m_1 = 10^{-14}`, measured).
+    :math:`\operatorname{dn}` is taken as :math:`\sqrt{m_1 + m \operatorname{cn}^2}`, a sum
+    of non-negative terms (:math:`\operatorname{dn} \ge \sqrt{m_1} > 0`), so its absolute
+    error stays at the ulp level.
     """
     # Next to 0 the ratio cn/sn ~ 1/r below would overflow when squared (r = 5e-167 gave
     # NaN); there sn = r (1 − (1 + m) r²/6 + …) = r and cn = dn = 1 to rounding.
@@ -140,10 +154,10 @@ _LANES = 64
 
 @jit
 def sncndn_many(r, m, m1, means, roots, c, sn_out, cn_out, dn_out):
-    """:func:`sncndn_reduced` of every r (a 1-d array) into the three arrays, bit for bit,
-    :data:`_LANES` at a time: the sine and cosine one by one, the Gauss transformation's
-    recurrence a level at a time for all of them (loops that vectorise), the choice among
-    its cases (r next to 0, sin(rc) = 0) last."""
+    r""":func:`sncndn_reduced` of every :math:`r` (a 1-d array) into the three arrays, bit
+    for bit, :data:`_LANES` at a time: the sine and cosine one by one, the Gauss
+    transformation's recurrence a level at a time for all of them (loops that vectorise),
+    the choice among its cases (:math:`r` next to 0, :math:`\sin(rc) = 0`) last."""
     w = np.zeros(5 * _LANES)  # rows: cn/sn ratio, cc, d, sin(rc), cos(rc)
     n = r.shape[0]
     for start in range(0, n, _LANES):
@@ -177,14 +191,17 @@ def sncndn_many(r, m, m1, means, roots, c, sn_out, cn_out, dn_out):
 
 @jit
 def reduce_argument(u, k):
-    """u = 2jK + r with r ∈ [−K, K]: (j, r) for one argument (j a whole float)."""
+    r""":math:`u = 2jK + r` with :math:`r \in [-K, K]`: :math:`(j, r)` for one argument
+    (:math:`j` a whole float)."""
     j = np.rint(u / (2.0 * k))
     return j, u - 2.0 * k * j
 
 
 @jit
 def half_period_sign(j):
-    """(−1)^j for a whole float j: sn(u + 2K) = −sn u, cn(u + 2K) = −cn u."""
+    r""":math:`(-1)^j` for a whole float :math:`j`:
+    :math:`\operatorname{sn}(u + 2K) = -\operatorname{sn} u`,
+    :math:`\operatorname{cn}(u + 2K) = -\operatorname{cn} u`."""
     return 1.0 - 2.0 * (j - 2.0 * math.floor(0.5 * j))
 
 
@@ -371,12 +388,12 @@ def _lanes_advance(w):
 
 @jit
 def carlson_rj_pairs(x, y, z, p1, p2, out1, out2):
-    """Carlson's R_J(x, y, z, p₁) and R_J(x, y, z, p₂) of every row of the 1-d arrays
-    (x, y, z ≥ 0, at most one zero; p₁, p₂ > 0) into ``out1``, ``out2``: each what
-    :func:`carlson_rj` gives for its arguments alone, bit for bit, with one duplication
-    of x, y, z for both p. :data:`_LANES` rows go in lockstep: each p of each row stops
-    at its own step, but a block runs the steps of its slowest, so that its loops over
-    the rows vectorise."""
+    r"""Carlson's :math:`R_J(x, y, z, p_1)` and :math:`R_J(x, y, z, p_2)` of every row of
+    the 1-d arrays (:math:`x, y, z \ge 0`, at most one zero; :math:`p_1, p_2 > 0`) into
+    ``out1``, ``out2``: each what :func:`carlson_rj` gives for its arguments alone, bit for
+    bit, with one duplication of :math:`x, y, z` for both :math:`p`. :data:`_LANES` rows go
+    in lockstep: each :math:`p` of each row stops at its own step, but a block runs the
+    steps of its slowest, so that its loops over the rows vectorise."""
     w = np.zeros(_ROWS * _LANES)
     n = x.shape[0]
     for start in range(0, n, _LANES):
@@ -402,8 +419,9 @@ def carlson_rj_pairs(x, y, z, p1, p2, out1, out2):
 
 @jit
 def carlson_rj(x, y, z, p):
-    """Carlson's symmetric elliptic integral of the third kind R_J(x, y, z, p), x, y, z ≥ 0
-    with at most one zero, p > 0, by duplication (Carlson 1995; DLMF 19.36.ii)."""
+    r"""Carlson's symmetric elliptic integral of the third kind :math:`R_J(x, y, z, p)`,
+    :math:`x, y, z \ge 0` with at most one zero, :math:`p > 0`, by duplication (Carlson
+    1995; DLMF 19.36.ii)."""
     state = _rj_start(x, y, z, p)
     u, v, w = x, y, z
     while state[5]:
@@ -422,8 +440,10 @@ def _pi_terms(r, j, s, c, n, n1):
 
 @jit
 def pi_reduced(r, j, s, c, d, n, n1, complete):
-    """Π(n; am u | m) for u = 2jK + r from sn, cn, dn of r (:func:`pi_integral`'s formula);
-    ``complete`` is Π(n | m), used only when j ≠ 0."""
+    r""":math:`\Pi(n; \operatorname{am} u \mid m)` for :math:`u = 2jK + r` from
+    :math:`\operatorname{sn}, \operatorname{cn}, \operatorname{dn}` of :math:`r`
+    (:func:`pi_integral`'s formula); ``complete`` is :math:`\Pi(n \mid m)`, used only when
+    :math:`j \ne 0`."""
     p, factor = _pi_terms(r, j, s, c, n, n1)
     part = r + factor * carlson_rj(c * c, d * d, 1.0, p)
     return part if j == 0.0 else 2.0 * j * complete + part
@@ -431,9 +451,10 @@ def pi_reduced(r, j, s, c, d, n, n1, complete):
 
 @jit
 def pi_pairs(r, j, s, c, d, n_a, n1_a, complete_a, n_b, n1_b, complete_b, out_a, out_b):
-    """:func:`pi_reduced` of every row (1-d arrays r, j, sn, cn, dn of r) for two
-    characteristics at once, bit for bit, with one duplication of R_J's shared arguments
-    (:func:`carlson_rj_pairs`)."""
+    r""":func:`pi_reduced` of every row (1-d arrays :math:`r`, :math:`j`, and
+    :math:`\operatorname{sn}, \operatorname{cn}, \operatorname{dn}` of :math:`r`) for two
+    characteristics at once, bit for bit, with one duplication of :math:`R_J`'s shared
+    arguments (:func:`carlson_rj_pairs`)."""
     rows = r.shape[0]
     x, y, z, p_a, p_b = (
         np.empty(rows),
@@ -471,9 +492,10 @@ def _pi_loop(r, j, sn, cn, dn, n, n1, complete, out):
 
 
 class GaussTransform:
-    """What sn, cn, dn and Π at any argument need for one parameter m (with m₁ = 1 − m):
-    K(m) and the descending Gauss transformation's means; ``args`` is the tuple compiled
-    code takes after r (:func:`sncndn_reduced`).
+    r"""What :math:`\operatorname{sn}, \operatorname{cn}, \operatorname{dn}` and :math:`\Pi`
+    at any argument need for one parameter :math:`m` (with :math:`m_1 = 1 - m`):
+    :math:`K(m)` and the descending Gauss transformation's means; ``args`` is the tuple
+    compiled code takes after :math:`r` (:func:`sncndn_reduced`).
 
     Examples
     --------
@@ -489,21 +511,24 @@ class GaussTransform:
         self.args = (float(m), float(m1), means, roots, float(c))
 
     def complete_pi(self, n: float, n1: float) -> float:
-        """Π(n | m) = K + (n/3) R_J(0, m₁, 1, 1 − n)."""
+        r""":math:`\Pi(n \mid m) = K + \tfrac{n}{3} R_J(0, m_1, 1, 1 - n)`."""
         return self.k + (n / 3.0) * carlson_rj(0.0, self.m1, 1.0, n1)
 
 
 def jacobi(u, m: float, m1: float):
-    """Jacobi elliptic functions sn(u|m), cn(u|m), dn(u|m) with m₁ = 1 − m given exactly.
+    r"""Jacobi elliptic functions :math:`\operatorname{sn}(u \mid m)`,
+    :math:`\operatorname{cn}(u \mid m)`, :math:`\operatorname{dn}(u \mid m)` with
+    :math:`m_1 = 1 - m` given exactly.
 
     Parameters
     ----------
     u : array_like
         Argument(s).
     m, m1 : float
-        Parameter and complementary parameter, 0 ≤ m ≤ 1, m + m₁ = 1 up to rounding of
-        each (the caller computes both without cancellation). m₁ = 0 gives the
-        separatrix limit sn = tanh, cn = dn = sech.
+        Parameter and complementary parameter, :math:`0 \le m \le 1`, :math:`m + m_1 = 1` up
+        to rounding of each (the caller computes both without cancellation). :math:`m_1 = 0`
+        gives the separatrix limit :math:`\operatorname{sn} = \tanh`,
+        :math:`\operatorname{cn} = \operatorname{dn} = \operatorname{sech}`.
 
     Examples
     --------
@@ -518,12 +543,15 @@ def jacobi(u, m: float, m1: float):
 
 
 class JacobiArgument:
-    """Jacobi arguments u reduced once: u = 2jK + r, r ∈ [−K, K], with sn, cn, dn of r.
+    r"""Jacobi arguments :math:`u` reduced once: :math:`u = 2jK + r`, :math:`r \in [-K, K]`,
+    with :math:`\operatorname{sn}, \operatorname{cn}, \operatorname{dn}` of :math:`r`.
 
     :func:`jacobi` and :func:`pi_integral` both start from this reduction and from the
-    descending Gauss transformation of r; a caller that needs sn, cn, dn and Π for one or
-    more characteristics at the same arguments (the heavy top's state: Π for n₊ and n₋)
-    builds one and asks it for each, with the same results as the separate functions.
+    descending Gauss transformation of :math:`r`; a caller that needs
+    :math:`\operatorname{sn}, \operatorname{cn}, \operatorname{dn}` and :math:`\Pi` for one
+    or more characteristics at the same arguments (the heavy top's state: :math:`\Pi` for
+    :math:`n_+` and :math:`n_-`) builds one and asks it for each, with the same results as
+    the separate functions.
 
     Parameters
     ----------
@@ -559,7 +587,8 @@ class JacobiArgument:
         return a.reshape(self.u.shape)
 
     def jacobi(self):
-        """sn(u|m), cn(u|m), dn(u|m) (:func:`jacobi`)."""
+        r""":math:`\operatorname{sn}(u \mid m)`, :math:`\operatorname{cn}(u \mid m)`,
+        :math:`\operatorname{dn}(u \mid m)` (:func:`jacobi`)."""
         if self.reduced is None:
             sech = 1.0 / np.cosh(self.u)
             return np.tanh(self.u), sech, sech.copy()
@@ -568,7 +597,8 @@ class JacobiArgument:
         return self._shaped(sign * sn), self._shaped(sign * cn), self._shaped(dn.copy())
 
     def pi_integral(self, n: float, n1: float | None = None):
-        """Π(n; am u | m) (:func:`pi_integral`, which see for ``n`` and ``n1``)."""
+        r""":math:`\Pi(n; \operatorname{am} u \mid m)` (:func:`pi_integral`, which see for
+        ``n`` and ``n1``)."""
         if not n < 1.0:
             raise ValueError(f"n: expected n < 1, got {n!r}")
         if n1 is None:
@@ -585,7 +615,8 @@ class JacobiArgument:
 
 
 def incomplete_first(phi, m: float, m1: float):
-    """F(φ | m) = ∫₀^φ dθ / √(1 − m sin²θ) for any real φ, via Carlson's R_F.
+    r""":math:`F(\phi \mid m) = \int_0^\phi \mathrm{d}\theta / \sqrt{1 - m \sin^2\theta}` for
+    any real :math:`\phi`, via Carlson's :math:`R_F`.
 
     Examples
     --------
@@ -605,27 +636,41 @@ def incomplete_first(phi, m: float, m1: float):
 
 
 def jacobi_argument(sn: float, cn: float, m: float, m1: float) -> float:
-    """The Jacobi argument u ∈ [−2K, 2K] with sn(u|m) ∝ ``sn`` and cn(u|m) ∝ ``cn``.
+    r"""The Jacobi argument :math:`u \in [-2K, 2K]` with
+    :math:`\operatorname{sn}(u \mid m) \propto` ``sn`` and
+    :math:`\operatorname{cn}(u \mid m) \propto` ``cn``.
 
     Parameters
     ----------
     sn, cn : float
         The two values, each with a small *relative* error (normalised here to
-        sn² + cn² = 1), not both zero.
+        :math:`\operatorname{sn}^2 + \operatorname{cn}^2 = 1`), not both zero.
     m, m1 : float
         Parameter and complementary parameter, as in :func:`jacobi`.
 
     Notes
     -----
-    With s, c the normalised values and d² = m₁ + m c² (a sum without cancellation),
-    u = s R_F(c², d², 1) when c ≥ 0 and u = ±2K − s R_F(c², d², 1) otherwise (the sign
-    of s), the Carlson form of F(φ | m) read at sin φ = s, cos φ = c. R_F is homogeneous
-    of degree −½ with negative partial derivatives, so |x ∂R_F/∂x| ≤ R_F/2 for each
-    argument: relative errors δ in c² and d² change R_F by at most δ R_F relatively, and
-    u carries a few ulps of |u| + 2K however close to ±K. Going through φ = atan2(s, c)
-    instead rounds φ to an absolute ulp of π/2, which F(φ | m) multiplies by
-    1/dn(u) ≈ 1/√m₁ next to u = ±K (measured: an
-    error of 6e-10 in u at m₁ = 1e-14).
+    With :math:`s, c` the normalised values and :math:`d^2 = m_1 + m c^2` (a sum without
+    cancellation),
+
+    .. math::
+
+        u = \begin{cases}
+        s\, R_F(c^2, d^2, 1), & c \ge 0, \\
+        \pm 2K - s\, R_F(c^2, d^2, 1) \ (\text{the sign of } s), & c < 0,
+        \end{cases}
+
+    the Carlson form of :math:`F(\phi \mid m)` read at :math:`\sin\phi = s`,
+    :math:`\cos\phi = c`. :math:`R_F` is homogeneous of degree :math:`-\tfrac12` with
+    negative partial derivatives, so
+    :math:`\lvert x\, \partial R_F / \partial x \rvert \le R_F / 2` for each argument:
+    relative errors :math:`\delta` in :math:`c^2` and :math:`d^2` change :math:`R_F` by at
+    most :math:`\delta R_F` relatively, and :math:`u` carries a few ulps of
+    :math:`\lvert u \rvert + 2K` however close to :math:`\pm K`. Going through
+    :math:`\phi = \operatorname{atan2}(s, c)` instead rounds :math:`\phi` to an absolute ulp
+    of :math:`\pi/2`, which :math:`F(\phi \mid m)` multiplies by
+    :math:`1/\operatorname{dn}(u) \approx 1/\sqrt{m_1}` next to :math:`u = \pm K`
+    (measured: an error of 6e-10 in :math:`u` at :math:`m_1 = 10^{-14}`).
 
     Examples
     --------
@@ -649,27 +694,36 @@ def jacobi_argument(sn: float, cn: float, m: float, m1: float) -> float:
 
 
 def pi_integral(u, n: float, m: float, m1: float, n1: float | None = None):
-    """Π(n; am u | m) = ∫₀ᵘ dτ / (1 − n sn²(τ|m)), for n < 1.
+    r""":math:`\Pi(n; \operatorname{am} u \mid m) = \int_0^u \mathrm{d}\tau /
+    (1 - n \operatorname{sn}^2(\tau \mid m))`, for :math:`n < 1`.
 
     Parameters
     ----------
     u : array_like
         Jacobi argument(s).
     n : float
-        Characteristic, n < 1 (the integrand has no pole).
+        Characteristic, :math:`n < 1` (the integrand has no pole).
     m, m1 : float
         Parameter and complementary parameter.
     n1 : float, optional
-        1 − n computed by the caller without cancellation (matters when n → 1).
+        :math:`1 - n` computed by the caller without cancellation (matters when
+        :math:`n \to 1`).
 
     Notes
     -----
-    With r = u − 2jK ∈ [−K, K], s = sn r, c = cn r, d = dn r (DLMF 19.25.14, F(am r) = r)::
+    With :math:`r = u - 2jK \in [-K, K]`, :math:`s = \operatorname{sn} r`,
+    :math:`c = \operatorname{cn} r`, :math:`d = \operatorname{dn} r` (DLMF 19.25.14,
+    :math:`F(\operatorname{am} r) = r`):
 
-        Π = 2j Π(n|m) + r + (n/3) s³ R_J(c², d², 1, 1 − n s²),
-        Π(n|m) = K + (n/3) R_J(0, m₁, 1, 1 − n).
+    .. math::
 
-    1 − n s² is formed as n₁ + n c², a sum without cancellation when 0 < n < 1.
+        \begin{aligned}
+        \Pi &= 2j\, \Pi(n \mid m) + r + \tfrac{n}{3} s^3 R_J(c^2, d^2, 1, 1 - n s^2), \\
+        \Pi(n \mid m) &= K + \tfrac{n}{3} R_J(0, m_1, 1, 1 - n).
+        \end{aligned}
+
+    :math:`1 - n s^2` is formed as :math:`n_1 + n c^2`, a sum without cancellation when
+    :math:`0 < n < 1`.
 
     Examples
     --------

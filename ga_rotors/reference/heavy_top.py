@@ -38,21 +38,34 @@ and :math:`1 \mp u = (1 \mp u_1)(1 - n_\pm \operatorname{sn}^2)` with
 closed form.
 
 Precision. The coefficients of the cubic are computed exactly (rational arithmetic on the
-float inputs, the orientation taken as the rotation q/|q|) and rounded once, in two
-expansions: about u₀, f(u₀ + x) = u̇₀² + f′(u₀) x + ½f″(u₀) x² + β x³, and about the upright
-vertical, f(1 − v) = −(b − a)² + (2(α − β) − 2a(b − a)) v + (2β − (α − β) − a²) v² − β v³.
-Each root is taken from the nearer centre, so u₂ − u₁ (steady precession, m → 0) and
-u₃ − u₂ (the separatrix, m → 1: the top rising to within (u₃ − u₂)^½ of the unstable
-upright position) are sums of roots known to a few ulps of their own size: the textbook route
-(roots of f from α, β, a, b in floats) loses half the digits of u₂ − u₁, and even the
-expansion about u₀ alone moved u₃ − u₂ by ~ε/(u₃ − u₂) next to the separatrix (relative
-error 1e-4 in 1 − m at 1e-6, 1.8e-4 rad after one period). The starting phase r₀ is read
-from sn r₀ ∝ √(u₀ − u₁), cn r₀ ∝ √(u₂ − u₀) by
-:func:`ga_rotors.reference.elliptic.jacobi_argument` (through the amplitude, F(φ₀ | m) would
-multiply the rounding of φ₀ by 1/dn(r₀) ≈ 1/√(1 − m) next to u₂: 1.2e-9 rad at 1 − m = 1e-14).
-Every state carries a rounding-error bound (:attr:`State.error`) and
-:meth:`HeavyTop.state` raises :class:`ga_rotors.errors.PrecisionError` above ``max_error``;
-the constructor raises it when 1 − m is not a normal float (u₃ − u₂ within rounding of the
+float inputs, the orientation taken as the rotation :math:`q/\lvert q \rvert`) and rounded
+once, in two expansions, about :math:`u_0` and about the upright vertical:
+
+.. math::
+
+    \begin{aligned}
+    f(u_0 + x) &= \dot u_0^2 + f'(u_0)\, x + \tfrac12 f''(u_0)\, x^2 + \beta x^3, \\
+    f(1 - v) &= -(b - a)^2 + \bigl(2(\alpha - \beta) - 2a(b - a)\bigr) v
+      + \bigl(2\beta - (\alpha - \beta) - a^2\bigr) v^2 - \beta v^3.
+    \end{aligned}
+
+Each root is taken from the nearer centre, so :math:`u_2 - u_1` (steady precession,
+:math:`m \to 0`) and :math:`u_3 - u_2` (the separatrix, :math:`m \to 1`: the top rising to
+within :math:`(u_3 - u_2)^{1/2}` of the unstable upright position) are sums of roots known
+to a few ulps of their own size: the textbook route (roots of :math:`f` from
+:math:`\alpha, \beta, a, b` in floats) loses half the digits of :math:`u_2 - u_1`, and even
+the expansion about :math:`u_0` alone moved :math:`u_3 - u_2` by
+:math:`\sim \varepsilon / (u_3 - u_2)` next to the separatrix (relative error 1e-4 in
+:math:`1 - m` at 1e-6, 1.8e-4 rad after one period). The starting phase :math:`r_0` is
+read from :math:`\operatorname{sn} r_0 \propto \sqrt{u_0 - u_1}`,
+:math:`\operatorname{cn} r_0 \propto \sqrt{u_2 - u_0}` by
+:func:`ga_rotors.reference.elliptic.jacobi_argument` (through the amplitude,
+:math:`F(\phi_0 \mid m)` would multiply the rounding of :math:`\phi_0` by
+:math:`1/\operatorname{dn}(r_0) \approx 1/\sqrt{1 - m}` next to :math:`u_2`: 1.2e-9 rad at
+:math:`1 - m = 10^{-14}`). Every state carries a rounding-error bound
+(:attr:`State.error`) and :meth:`HeavyTop.state` raises
+:class:`ga_rotors.errors.PrecisionError` above ``max_error``; the constructor raises it
+when :math:`1 - m` is not a normal float (:math:`u_3 - u_2` within rounding of the
 separatrix) or the motion reaches a vertical exactly.
 
 Frames. A body given by a rotated tensor (:meth:`ga_rotors.body.RigidBody.from_tensor`) is
