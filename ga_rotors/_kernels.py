@@ -19,7 +19,7 @@ from ._jit import jit
 
 @jit
 def qmul(a, b):
-    """Hamilton product a ⊗ b (ij = k, ijk = -1)."""
+    r"""Hamilton product :math:`a \otimes b` (:math:`ij = k`, :math:`ijk = -1`)."""
     a0, a1, a2, a3 = a
     b0, b1, b2, b3 = b
     return (
@@ -32,13 +32,14 @@ def qmul(a, b):
 
 @jit
 def qconj(a):
-    """Conjugate (w, -x, -y, -z)."""
+    r"""Conjugate :math:`(w, -x, -y, -z)`."""
     return (a[0], -a[1], -a[2], -a[3])
 
 
 @jit
 def qmul_pure(a, v):
-    """a ⊗ (0, v): the product the kinematics q̇ = ½ q ⊗ (0, ω) needs, without the zero terms."""
+    r""":math:`a \otimes (0, v)`: the product the kinematics
+    :math:`\dot q = \tfrac12 q \otimes (0, \omega)` needs, without the zero terms."""
     a0, a1, a2, a3 = a
     v1, v2, v3 = v
     return (
@@ -51,13 +52,15 @@ def qmul_pure(a, v):
 
 @jit
 def hypot3(x, y, z):
-    """|(x, y, z)| without overflow or underflow (1e-300 and 1e300 components stay exact)."""
+    r""":math:`\lvert (x, y, z) \rvert` without overflow or underflow (1e-300 and 1e300
+    components stay exact)."""
     return hypot(hypot(x, y), z)
 
 
 @jit
 def norm2(x, y):
-    """|(x, y)| as :func:`qnorm` takes a norm: the plain square root of the sum of squares
+    r""":math:`\lvert (x, y) \rvert` as :func:`qnorm` takes a norm: the plain square root of
+    the sum of squares
     whenever that sum is a normal number, ``hypot`` only where it under- or overflows
     (within an ulp of ``hypot``, which costs about 12 ns a call here against 2)."""
     s = x * x + y * y
@@ -68,7 +71,7 @@ def norm2(x, y):
 
 @jit
 def qnorm(a):
-    """|a|, exact for components from 1e-300 to 1e300.
+    r""":math:`\lvert a \rvert`, exact for components from 1e-300 to 1e300.
 
     The plain square root is used whenever the sum of squares is a normal number, which
     is every practical case; the scaled path only runs when it under- or overflows.
@@ -81,7 +84,8 @@ def qnorm(a):
 
 @jit
 def qnormalize(a):
-    """a / |a|; all-NaN for a = 0 (the caller's finiteness check reports it).
+    r""":math:`a / \lvert a \rvert`; all-NaN for :math:`a = 0` (the caller's finiteness check
+    reports it).
 
     Zero is tested explicitly because uncompiled Python raises on division by zero where
     compiled code returns nan; kernels must behave the same both ways.
@@ -94,7 +98,7 @@ def qnormalize(a):
 
 @jit
 def cross(u, v):
-    """u × v."""
+    r""":math:`u \times v`."""
     return (
         u[1] * v[2] - u[2] * v[1],
         u[2] * v[0] - u[0] * v[2],
@@ -104,9 +108,10 @@ def cross(u, v):
 
 @jit
 def qrotate(q, v):
-    """q (0, v) q* for unit q, in 15 multiplications instead of two full products.
+    r""":math:`q\, (0, v)\, q^*` for unit :math:`q`, in 15 multiplications instead of two
+    full products.
 
-    With t = 2 q⃗ × v:  q v q* = v + w t + q⃗ × t.
+    With :math:`t = 2\, \vec q \times v`: :math:`q v q^* = v + w t + \vec q \times t`.
     """
     w = q[0]
     u = (q[1], q[2], q[3])
@@ -118,10 +123,11 @@ def qrotate(q, v):
 
 @jit
 def qexp_pure(v):
-    """exp((0, v)) = (cos |v|, sin|v| / |v| · v): the unit quaternion of half-angle |v|.
+    r""":math:`\exp((0, v)) = \bigl(\cos\lvert v \rvert,\ v \sin\lvert v \rvert / \lvert v
+    \rvert\bigr)`: the unit quaternion of half-angle :math:`\lvert v \rvert`.
 
-    Exact for every |v| that is representable: the robust norm keeps 1e-300 from
-    underflowing, so sin(s)/s is only special-cased at exactly zero.
+    Exact for every :math:`\lvert v \rvert` that is representable: the robust norm keeps
+    1e-300 from underflowing, so :math:`\sin(s)/s` is only special-cased at exactly zero.
     """
     s = hypot3(v[0], v[1], v[2])
     if s == 0.0:
@@ -134,11 +140,14 @@ def qexp_pure(v):
 
 @jit
 def qexpm1_pure(v):
-    """exp((0, v)) − 1 = (−2 sin²(|v|/2), sin|v| / |v| · v), every component to a few ulps.
+    r""":math:`\exp((0, v)) - 1 = \bigl(-2 \sin^2(\lvert v \rvert/2),\ v \sin\lvert v \rvert
+    / \lvert v \rvert\bigr)`, every component to a few ulps.
 
-    The scalar part cos|v| − 1 is written −2 sin²(|v|/2), so it keeps its relative
-    precision at small angles where 1 − cos|v| cancels (the expm1 of rotations). Used by
-    :func:`qmul_exp`. Exact at 0 (returns (0, v)); NaN for infinite v, as qexp_pure.
+    The scalar part :math:`\cos\lvert v \rvert - 1` is written
+    :math:`-2 \sin^2(\lvert v \rvert / 2)`, so it keeps its relative precision at small
+    angles where :math:`1 - \cos\lvert v \rvert` cancels (the expm1 of rotations). Used by
+    :func:`qmul_exp`. Exact at 0 (returns :math:`(0, v)`); NaN for infinite :math:`v`, as
+    :func:`qexp_pure`.
     """
     s = hypot3(v[0], v[1], v[2])
     if s == 0.0:
@@ -152,18 +161,24 @@ def qexpm1_pure(v):
 
 @jit
 def qmul_exp(q, v):
-    """q ⊗ exp((0, v)), as q + q ⊗ (exp((0, v)) − 1): a step along a rotation of half-angle |v|.
+    r""":math:`q \otimes \exp((0, v))`, as :math:`q + q \otimes (\exp((0, v)) - 1)`: a step
+    along a rotation of half-angle :math:`\lvert v \rvert`.
 
-    Why not qmul(q, qexp_pure(v)): over a run that turns by nearly the same angle every
-    step (a body spinning steadily, split_sym's symmetric-top flow at its constant |L|),
-    cos|v| rounds to the SAME float every step, so |exp| = 1 + δ with one fixed δ ≤ u/2 and
-    |q| drifts linearly, (1 + δ)^N (split_sym: 2e-11 in 10⁶ steps). No formula for
-    exp((0, v)) avoids it: floats near 1 are spaced u, so the scalar part must carry a
-    rounding of up to u/2, and forcing |exp| = 1 (renormalising, or sin from √(1 − cos²))
-    either cannot move it or turns the angle by u/(2|v|) instead (both measured). Here the
-    increment q ⊗ (exp − 1) is accurate to relative rounding (|exp − 1| ~ |v|, so its
-    rounding is u|v|), and the one rounding that matters, of the sum q + increment, falls
-    on q's components, which change from step to step: a random walk, not a drift.
+    Why not ``qmul(q, qexp_pure(v))``: over a run that turns by nearly the same angle every
+    step (a body spinning steadily, split_sym's symmetric-top flow at its constant
+    :math:`\lvert L \rvert`), :math:`\cos\lvert v \rvert` rounds to the SAME float every
+    step, so :math:`\lvert \exp \rvert = 1 + \delta` with one fixed :math:`\delta \le u/2`
+    and :math:`\lvert q \rvert` drifts linearly, :math:`(1 + \delta)^N` (split_sym: 2e-11 in
+    :math:`10^6` steps). No formula for :math:`\exp((0, v))` avoids it: floats near 1 are
+    spaced :math:`u`, so the scalar part must carry a rounding of up to :math:`u/2`, and
+    forcing :math:`\lvert \exp \rvert = 1` (renormalising, or sin from
+    :math:`\sqrt{1 - \cos^2}`) either cannot move it or turns the angle by
+    :math:`u / (2 \lvert v \rvert)` instead (both measured). Here the increment
+    :math:`q \otimes (\exp - 1)` is accurate to relative rounding
+    (:math:`\lvert \exp - 1 \rvert \sim \lvert v \rvert`, so its rounding is
+    :math:`u \lvert v \rvert`), and the one rounding that matters, of the sum
+    :math:`q + \text{increment}`, falls on :math:`q`'s components, which change from step
+    to step: a random walk, not a drift.
     """
     d = qexpm1_pure(v)
     p = qmul(q, d)
@@ -172,10 +187,13 @@ def qmul_exp(q, v):
 
 @jit
 def qlog_unit(q):
-    """Vector part of log q for unit q: u·φ with q = (cos φ, u sin φ), φ = atan2(|q⃗|, w) ∈ [0, π].
+    r"""Vector part of :math:`\log q` for unit :math:`q`: :math:`u \phi` with
+    :math:`q = (\cos\phi, u \sin\phi)`,
+    :math:`\phi = \operatorname{atan2}(\lvert \vec q \rvert, w) \in [0, \pi]`.
 
-    atan2 keeps full relative precision at every angle, where acos(w) loses half the
-    digits near 0 and π. At q = -1 the axis is free; the z axis is chosen (documented).
+    atan2 keeps full relative precision at every angle, where :math:`\arccos w` loses half
+    the digits near 0 and :math:`\pi`. At :math:`q = -1` the axis is free; the z axis is
+    chosen (documented).
     """
     x, y, z = q[1], q[2], q[3]
     s = hypot3(x, y, z)
@@ -189,13 +207,15 @@ def qlog_unit(q):
 
 @jit
 def quat_from_rotvec(r):
-    """Unit quaternion of the rotation by |r| about r/|r| (active, right-handed)."""
+    r"""Unit quaternion of the rotation by :math:`\lvert r \rvert` about
+    :math:`r / \lvert r \rvert` (active, right-handed)."""
     return qexp_pure((0.5 * r[0], 0.5 * r[1], 0.5 * r[2]))
 
 
 @jit
 def rotvec_from_quat(q):
-    """Rotation vector of unit q, angle in [0, π] (q and -q give the same answer)."""
+    r"""Rotation vector of unit :math:`q`, angle in :math:`[0, \pi]` (:math:`q` and
+    :math:`-q` give the same answer)."""
     if q[0] < 0.0:
         q = (-q[0], -q[1], -q[2], -q[3])
     h = qlog_unit(q)
@@ -204,10 +224,12 @@ def rotvec_from_quat(q):
 
 @jit
 def geodesic_angle(a, b):
-    """Rotation angle of a* ⊗ b in [0, π]: the geodesic distance between two rotations.
+    r"""Rotation angle of :math:`a^* \otimes b` in :math:`[0, \pi]`: the geodesic distance
+    between two rotations.
 
-    2·atan2(|vec|, |scalar|) resolves differences down to 1e-16 rad; 2·acos(·) cannot go
-    below ~1e-8 rad.
+    :math:`2 \operatorname{atan2}(\lvert \text{vector} \rvert, \lvert \text{scalar} \rvert)`
+    resolves differences down to 1e-16 rad; :math:`2 \arccos(\cdot)` cannot go below
+    ~1e-8 rad.
     """
     d = qmul(qconj(a), b)
     return 2.0 * atan2(hypot3(d[1], d[2], d[3]), abs(d[0]))
@@ -215,14 +237,15 @@ def geodesic_angle(a, b):
 
 @jit
 def angle_any_norm(a, b):
-    """:func:`geodesic_angle` of a and b whatever their norms; NaN unless both are finite
-    and nonzero.
+    r""":func:`geodesic_angle` of :math:`a` and :math:`b` whatever their norms; NaN unless
+    both are finite and nonzero.
 
-    2·atan2(|vec d|, |scalar d|) of d = a* ⊗ b does not depend on the norms (d scales
-    with them): a state whose norm drifted (RK4 over a long or fast run) still has its
-    angle. |vec d| is :func:`qnorm`'s (a square root of the sum of squares, scaled only
-    where that under- or overflows) rather than two ``hypot`` calls: within an ulp, and
-    7x faster in a loop over samples.
+    :math:`2 \operatorname{atan2}(\lvert \vec d \rvert, \lvert d_0 \rvert)` of
+    :math:`d = a^* \otimes b` does not depend on the norms (:math:`d` scales with them): a
+    state whose norm drifted (RK4 over a long or fast run) still has its angle.
+    :math:`\lvert \vec d \rvert` is :func:`qnorm`'s (a square root of the sum of squares,
+    scaled only where that under- or overflows) rather than two ``hypot`` calls: within an
+    ulp, and 7x faster in a loop over samples.
     """
     d = qmul(qconj(a), b)
     v, s = qnorm((0.0, d[1], d[2], d[3])), abs(d[0])
@@ -231,9 +254,10 @@ def angle_any_norm(a, b):
 
 @jit
 def qinverse(a):
-    """a⁻¹ = a* / |a|², divided twice by |a| so that |a| down to 1e-300 does not underflow.
+    r""":math:`a^{-1} = a^* / \lvert a \rvert^2`, divided twice by :math:`\lvert a \rvert` so
+    that :math:`\lvert a \rvert` down to 1e-300 does not underflow.
 
-    a = 0 gives all-NaN, which the loops detect and report.
+    :math:`a = 0` gives all-NaN, which the loops detect and report.
     """
     n = qnorm(a)
     if n == 0.0:
@@ -243,7 +267,8 @@ def qinverse(a):
 
 @jit
 def qunit(a, tol):
-    """a / |a| when | |a| - 1 | <= tol, else all-NaN (so a loop's finiteness check flags it).
+    r""":math:`a / \lvert a \rvert` when :math:`\lvert a \rvert` is within ``tol`` of 1, else
+    all-NaN (so a loop's finiteness check flags it).
 
     NaN and infinite components also give NaN: their norm fails the comparison.
     """
@@ -255,7 +280,8 @@ def qunit(a, tol):
 
 @jit
 def qexp(a):
-    """exp(a) = e^w (cos|v|, sin|v| v/|v|) for a general quaternion a = (w, v)."""
+    r""":math:`\exp a = e^w \bigl(\cos\lvert v \rvert,\ v \sin\lvert v \rvert / \lvert v
+    \rvert\bigr)` for a general quaternion :math:`a = (w, v)`."""
     # e^w overflows above ln(DBL_MAX); inf is written out because Python's math.exp raises
     # there, and the kernels must behave alike compiled and uncompiled.
     e = inf if a[0] > 709.782712893384 else exp(a[0])
@@ -265,7 +291,9 @@ def qexp(a):
 
 @jit
 def qlog(a):
-    """log(a) = (ln|a|, u·atan2(|v|, w)) for nonzero a; at negative reals u is the z axis."""
+    r""":math:`\log a = \bigl(\ln\lvert a \rvert,\ u \operatorname{atan2}(\lvert v \rvert,
+    w)\bigr)` for nonzero :math:`a = (w, v)`, :math:`u = v / \lvert v \rvert`; at negative
+    reals :math:`u` is the z axis."""
     n = qnorm(a)
     if n == 0.0:
         return (-inf, nan, nan, nan)
@@ -275,10 +303,13 @@ def qlog(a):
 
 @jit
 def axis_angle_from_quat(q):
-    """(u_x, u_y, u_z, α) of unit q with α = 2·atan2(|q⃗|, |w|) ∈ [0, π].
+    r""":math:`(u_x, u_y, u_z, \alpha)` of unit :math:`q` with
+    :math:`\alpha = 2 \operatorname{atan2}(\lvert \vec q \rvert, \lvert w \rvert) \in [0, \pi]`.
 
-    q and -q give the same answer (the axis flips with the sign of w). At α = 0 the axis is
-    free; +z is returned, never NaN. At α = π (w = 0) both ±u are valid; q⃗/|q⃗| is returned.
+    :math:`q` and :math:`-q` give the same answer (the axis flips with the sign of
+    :math:`w`). At :math:`\alpha = 0` the axis is free; :math:`+z` is returned, never NaN.
+    At :math:`\alpha = \pi` (:math:`w = 0`) both :math:`\pm u` are valid;
+    :math:`\vec q / \lvert \vec q \rvert` is returned.
     """
     w, x, y, z = q
     if w < 0.0:
@@ -291,7 +322,8 @@ def axis_angle_from_quat(q):
 
 @jit
 def quat_from_axis_angle(u, angle):
-    """Unit quaternion of the rotation by ``angle`` about u/|u| (u ≠ 0; any real angle)."""
+    r"""Unit quaternion of the rotation by ``angle`` about :math:`u / \lvert u \rvert`
+    (:math:`u \ne 0`; any real angle)."""
     n = hypot3(u[0], u[1], u[2])
     if n == 0.0:
         return (nan, nan, nan, nan)
@@ -300,11 +332,14 @@ def quat_from_axis_angle(u, angle):
 
 @jit
 def qslerp(a, b, t):
-    """a ⊗ exp(t · log(a* ⊗ b)) along the shorter arc of rotations (unit a, b).
+    r""":math:`a \otimes \exp\bigl(t \log(a^* \otimes b)\bigr)` along the shorter arc of
+    rotations (unit :math:`a, b`).
 
     Written with the exp/log kernels, which are exact at tiny angles, instead of the
-    sin((1-t)Ω)/sin Ω weights, which divide 0 by 0 when a ≈ b. If a* b has w < 0 it is
-    negated first (b and -b are the same rotation), so slerp(q, -q, t) = q for every t.
+    :math:`\sin((1 - t)\Omega) / \sin\Omega` weights, which divide 0 by 0 when
+    :math:`a \approx b`. If :math:`a^* b` has :math:`w < 0` it is negated first (:math:`b`
+    and :math:`-b` are the same rotation), so :math:`\operatorname{slerp}(q, -q, t) = q` for
+    every :math:`t`.
     """
     d = qmul(qconj(a), b)
     if d[0] < 0.0:
@@ -313,17 +348,19 @@ def qslerp(a, b, t):
     return qmul(a, qexp_pure((t * h[0], t * h[1], t * h[2])))
 
 
-#: |û × v̂| at or below this counts as exactly (anti)parallel: normalising exactly parallel
-#: vectors rounds each component by up to ~2 ulp, which leaves a cross product of a few
-#: 1e-16; 1e-15 covers that with margin, and the rotation returned then maps û onto v̂ to
-#: within the same 1e-15.
+#: :math:`\lvert \hat u \times \hat v \rvert` at or below this counts as exactly
+#: (anti)parallel: normalising exactly parallel vectors rounds each component by up to
+#: ~2 ulp, which leaves a cross product of a few 1e-16; 1e-15 covers that with margin, and
+#: the rotation returned then maps :math:`\hat u` onto :math:`\hat v` to within the same
+#: 1e-15.
 PARALLEL_TOLERANCE = 1e-15
 
 
 @jit
 def perpendicular(u):
-    """A unit vector ⊥ unit u: u × e_k with e_k the coordinate axis least aligned with u
-    (the first such axis on ties), normalised. For u = ±x that is ±z; for u = ±z it is ±y."""
+    r"""A unit vector :math:`\perp` unit :math:`u`: :math:`u \times e_k` with :math:`e_k` the
+    coordinate axis least aligned with :math:`u` (the first such axis on ties), normalised.
+    For :math:`u = \pm x` that is :math:`\pm z`; for :math:`u = \pm z` it is :math:`\pm y`."""
     ax, ay, az = abs(u[0]), abs(u[1]), abs(u[2])
     if ax <= ay and ax <= az:
         p = (0.0, u[2], 0.0 - u[1])  # u × x (0.0 - keeps zeros unsigned)
@@ -337,13 +374,16 @@ def perpendicular(u):
 
 @jit
 def quat_from_two_vectors(u, v):
-    """Unit quaternion of the smallest rotation taking the direction of u onto that of v.
+    r"""Unit quaternion of the smallest rotation taking the direction of :math:`u` onto that
+    of :math:`v`.
 
-    Angle atan2(|û × v̂|, û · v̂) (accurate at 0 and π), axis û × v̂ re-orthogonalised
-    against û: near antiparallel vectors the cross product has a relative error of
-    ~1e-16/sin(angle), and an axis that is not exactly ⊥ û would move û off v̂ by that
-    much; after the projection the error in the image of û stays at round-off.
-    Parallel: the identity. Antiparallel: the half-turn about :func:`perpendicular` (û).
+    Angle :math:`\operatorname{atan2}(\lvert \hat u \times \hat v \rvert, \hat u \cdot \hat v)`
+    (accurate at 0 and :math:`\pi`), axis :math:`\hat u \times \hat v` re-orthogonalised
+    against :math:`\hat u`: near antiparallel vectors the cross product has a relative error
+    of :math:`\sim 10^{-16} / \sin(\text{angle})`, and an axis that is not exactly
+    :math:`\perp \hat u` would move :math:`\hat u` off :math:`\hat v` by that much; after the
+    projection the error in the image of :math:`\hat u` stays at round-off. Parallel: the
+    identity. Antiparallel: the half-turn about :func:`perpendicular` (:math:`\hat u`).
     Zero vectors give NaN (the caller reports them).
     """
     nu = hypot3(u[0], u[1], u[2])
@@ -371,7 +411,8 @@ def quat_from_two_vectors(u, v):
 
 @jit
 def matrix_from_quat(q):
-    """Rotation matrix of unit q, row-major 9-tuple: M v = q v q* (active)."""
+    r"""Rotation matrix of unit :math:`q`, row-major 9-tuple: :math:`M v = q v q^*`
+    (active)."""
     w, x, y, z = q
     return (
         1.0 - 2.0 * (y * y + z * z), 2.0 * (x * y - w * z), 2.0 * (x * z + w * y),
@@ -382,14 +423,24 @@ def matrix_from_quat(q):
 
 @jit
 def quat_from_matrix(m):
-    """Unit quaternion (w ≥ 0) of a rotation matrix given as a row-major 9-tuple.
+    r"""Unit quaternion (:math:`w \ge 0`) of a rotation matrix given as a row-major 9-tuple.
 
-    From M = [[w²+x²-y²-z², 2(xy-wz), 2(xz+wy)], [2(xy+wz), w²-x²+y²-z², 2(yz-wx)],
-    [2(xz-wy), 2(yz+wx), w²-x²-y²+z²]]: 4w² = 1 + tr M, 4x² = 1 + m00 - m11 - m22 (and
-    cyclic), and the off-diagonal sums and differences give 4wx, 4xy, ... . The component
-    whose square is largest (the largest of tr M, m00, m11, m22) is at least 1/2, so it is
-    taken from its square root and the others are divided by it: no division by a small
-    number anywhere, exact at half-turns where w = 0 (the notes' division by 4w fails).
+    From
+
+    .. math::
+
+        M = \begin{pmatrix}
+        w^2 + x^2 - y^2 - z^2 & 2(xy - wz) & 2(xz + wy) \\
+        2(xy + wz) & w^2 - x^2 + y^2 - z^2 & 2(yz - wx) \\
+        2(xz - wy) & 2(yz + wx) & w^2 - x^2 - y^2 + z^2
+        \end{pmatrix}:
+
+    :math:`4w^2 = 1 + \operatorname{tr} M`, :math:`4x^2 = 1 + m_{00} - m_{11} - m_{22}` (and
+    cyclic), and the off-diagonal sums and differences give :math:`4wx, 4xy, \ldots`. The
+    component whose square is largest (the largest of :math:`\operatorname{tr} M, m_{00},
+    m_{11}, m_{22}`) is at least :math:`1/2`, so it is taken from its square root and the
+    others are divided by it: no division by a small number anywhere, exact at half-turns
+    where :math:`w = 0` (the notes' division by :math:`4w` fails).
     """
     m00, m01, m02, m10, m11, m12, m20, m21, m22 = m
     tr = m00 + m11 + m22
@@ -426,13 +477,15 @@ def axis_quat(axis, angle):
 
 @jit
 def quat_from_euler(i, j, k, a, b, c):
-    """q_i(a) ⊗ q_j(b) ⊗ q_k(c): intrinsic rotations about axes i, then j′, then k″."""
+    r""":math:`q_i(a) \otimes q_j(b) \otimes q_k(c)`: intrinsic rotations about axes
+    :math:`i`, then :math:`j'`, then :math:`k''`."""
     return qmul(qmul(axis_quat(i, a), axis_quat(j, b)), axis_quat(k, c))
 
 
 @jit
 def wrap_angle(x):
-    """x in (-2π, 2π] mapped to (-π, π] by one exact shift of 2π."""
+    r""":math:`x \in (-2\pi, 2\pi]` mapped to :math:`(-\pi, \pi]` by one exact shift of
+    :math:`2\pi`."""
     if x > pi:
         return x - 2.0 * pi
     if x <= -pi:
@@ -442,25 +495,32 @@ def wrap_angle(x):
 
 @jit
 def euler_from_quat(q, i, j, k, zero_first, tol):
-    """Intrinsic angles (a, b, c, locked) with q = ±q_i(a) ⊗ q_j(b) ⊗ q_k(c), q unit.
+    r"""Intrinsic angles (a, b, c, locked) with
+    :math:`q = \pm q_i(a) \otimes q_j(b) \otimes q_k(c)`, :math:`q` unit.
 
-    With half angles a′ = a/2 (and so on), e_i e_j = ε e_m (ε = ±1, the parity of the
-    axis order):
+    With half angles :math:`a' = a/2` (and so on), :math:`e_i e_j = \varepsilon e_m`
+    (:math:`\varepsilon = \pm 1`, the parity of the axis order):
 
-    * proper (i = k, m the third axis):  (w, q_i) = cos b′ (cos(a′+c′), sin(a′+c′)) and
-      (q_j, ε q_m) = sin b′ (cos(a′−c′), sin(a′−c′)), so b = 2·atan2(|(q_j, q_m)|, |(w, q_i)|)
-      ∈ [0, π];
-    * Tait–Bryan (i, j, k distinct):  (w + q_j, q_i + ε q_k) = (cos b′ + sin b′)
-      (cos(a′+εc′), sin(a′+εc′)) and (w − q_j, q_i − ε q_k) = (cos b′ − sin b′)
-      (cos(a′−εc′), sin(a′−εc′)); sin b = 2(w q_j + ε q_i q_k), cos b = the product of the
-      two moduli, b ∈ [−π/2, π/2].
+    * proper (:math:`i = k`, :math:`m` the third axis):
+      :math:`(w, q_i) = \cos b' \bigl(\cos(a' + c'), \sin(a' + c')\bigr)` and
+      :math:`(q_j, \varepsilon q_m) = \sin b' \bigl(\cos(a' - c'), \sin(a' - c')\bigr)`, so
+      :math:`b = 2 \operatorname{atan2}\bigl(\lvert (q_j, q_m) \rvert, \lvert (w, q_i) \rvert\bigr)
+      \in [0, \pi]`;
+    * Tait–Bryan (:math:`i, j, k` distinct):
+      :math:`(w + q_j, q_i + \varepsilon q_k) = (\cos b' + \sin b')
+      \bigl(\cos(a' + \varepsilon c'), \sin(a' + \varepsilon c')\bigr)` and
+      :math:`(w - q_j, q_i - \varepsilon q_k) = (\cos b' - \sin b')
+      \bigl(\cos(a' - \varepsilon c'), \sin(a' - \varepsilon c')\bigr)`;
+      :math:`\sin b = 2(w q_j + \varepsilon q_i q_k)`, :math:`\cos b` the product of the two
+      moduli, :math:`b \in [-\pi/2, \pi/2]`.
 
-    Both sum and difference come from atan2 (quadrant-correct, no division), a and c in
-    (−π, π]. Gimbal lock: when b is within ``tol`` of the value where one of the two pairs
-    vanishes, only one combination of a and c is defined; the third angle of the sequence
-    as written is set to 0 (``zero_first`` says that is a, which is the case for extrinsic
-    sequences computed through their reversed intrinsic twin) and ``locked`` is 1.0.
-    Forcing it moves the rotation by at most 2·tol (a commutator of a rotation by tol).
+    Both sum and difference come from atan2 (quadrant-correct, no division), :math:`a` and
+    :math:`c` in :math:`(-\pi, \pi]`. Gimbal lock: when :math:`b` is within ``tol`` of the
+    value where one of the two pairs vanishes, only one combination of :math:`a` and
+    :math:`c` is defined; the third angle of the sequence as written is set to 0
+    (``zero_first`` says that is :math:`a`, which is the case for extrinsic sequences
+    computed through their reversed intrinsic twin) and ``locked`` is 1.0. Forcing it moves
+    the rotation by at most twice ``tol`` (a commutator of a rotation by ``tol``).
     """
     w = q[0]
     qi = q[1 + i]
@@ -500,18 +560,19 @@ def euler_from_quat(q, i, j, k, zero_first, tol):
 
 @jit
 def zyz_rates(angles, w):
-    """(ψ̇, θ̇, φ̇) from ZYZ angles (ψ, θ, φ) and body ω; divides by sin θ (caller's care).
+    r""":math:`(\dot\psi, \dot\theta, \dot\phi)` from ZYZ angles :math:`(\psi, \theta, \phi)`
+    and body :math:`\omega`; divides by :math:`\sin\theta` (caller's care).
 
     The checked, vectorised form is :func:`ga_rotors.kinematics.zyz_rates_from_body_omega`.
 
     Examples
     --------
-    A spin about the body axis only turns φ:
+    A spin about the body axis only turns :math:`\phi`:
 
     >>> zyz_rates((0.1, 0.5, 0.3), (0.0, 0.0, 10.0))
     (0.0, 0.0, 10.0)
 
-    The inverse of :func:`zyz_omega` wherever sin θ ≠ 0:
+    The inverse of :func:`zyz_omega` wherever :math:`\sin\theta \ne 0`:
 
     >>> angles = (0.1, 0.5, 0.3)
     >>> zyz_omega(angles, zyz_rates(angles, (0.2, 0.1, 10.0)))
@@ -527,19 +588,22 @@ def zyz_rates(angles, w):
 
 @jit
 def zyz_omega(angles, rates):
-    """Body ω from ZYZ angles (ψ, θ, φ) and their rates (ψ̇, θ̇, φ̇); regular everywhere.
+    r"""Body :math:`\omega` from ZYZ angles :math:`(\psi, \theta, \phi)` and their rates
+    :math:`(\dot\psi, \dot\theta, \dot\phi)`; regular everywhere.
 
     The checked, vectorised form is :func:`ga_rotors.kinematics.body_omega_from_zyz_rates`.
 
     Examples
     --------
-    Precession ψ̇ at nutation θ = 90°, φ = 0, seen in the body: about −x.
+    Precession :math:`\dot\psi` at nutation :math:`\theta = 90^\circ`, :math:`\phi = 0`,
+    seen in the body: about :math:`-x`.
 
     >>> import math
     >>> [round(c, 12) for c in zyz_omega((0.0, math.pi / 2, 0.0), (2.0, 0.0, 0.0))]
     [-2.0, 0.0, 0.0]
 
-    At θ = 0 it is still defined (ψ̇ and φ̇ add up):
+    At :math:`\theta = 0` it is still defined (:math:`\dot\psi` and :math:`\dot\phi` add
+    up):
 
     >>> zyz_omega((0.0, 0.0, 0.0), (2.0, 0.0, 3.0))
     (-0.0, 0.0, 5.0)
@@ -558,8 +622,9 @@ def zyz_omega(angles, rates):
 
 @jit
 def euler_coefficients(inertia):
-    """What Euler's equations divide by: ((I₂ − I₃)/I₁, (I₃ − I₁)/I₂, (I₁ − I₂)/I₃) and
-    (1/I₁, 1/I₂, 1/I₃), from the principal moments.
+    r"""What Euler's equations divide by:
+    :math:`\bigl((I_2 - I_3)/I_1, (I_3 - I_1)/I_2, (I_1 - I_2)/I_3\bigr)` and
+    :math:`(1/I_1, 1/I_2, 1/I_3)`, from the principal moments.
 
     The one place these six numbers are computed. A single run's loop computes them once
     (they depend on loop invariants only); a batched loop with one inertia per body
@@ -578,12 +643,15 @@ def euler_coefficients(inertia):
 
 @jit
 def free_euler_rates(inertia, w):
-    """ω̇ of the torque-free body: I ω̇ = (I ω) × ω, principal frame, tuples in and out.
+    r""":math:`\dot\omega` of the torque-free body:
+    :math:`\mathsf{I} \dot\omega = (\mathsf{I} \omega) \times \omega`, principal frame, tuples
+    in and out.
 
     Unchecked (compiled loops call it); the checked form is
     :meth:`ga_rotors.body.RigidBody.angular_acceleration`.
 
-    Written ((I₂ − I₃)/I₁)·ω₂·ω₃ so the inertia ratios (:func:`euler_coefficients`)
+    Written :math:`\bigl((I_2 - I_3)/I_1\bigr)\, \omega_2 \omega_3` so the inertia ratios
+    (:func:`euler_coefficients`)
     depend on loop invariants only: a compiled loop computes them once instead of
     dividing in every stage.
 
@@ -592,7 +660,7 @@ def free_euler_rates(inertia, w):
     >>> free_euler_rates((1.0, 2.0, 3.0), (1.0, 1.0, 1.0))  # ((2-3)/1, (3-1)/2, (1-2)/3)
     (-1.0, 1.0, -0.3333333333333333)
 
-    About a principal axis the body spins steadily: ω̇ = 0.
+    About a principal axis the body spins steadily: :math:`\dot\omega = 0`.
 
     >>> free_euler_rates((1.0, 2.0, 3.0), (0.0, 5.0, 0.0))
     (0.0, 0.0, 0.0)
@@ -604,13 +672,16 @@ def free_euler_rates(inertia, w):
 
 @jit
 def euler_rates(inertia, w, tau):
-    """ω̇ from Euler's equations: I ω̇ = (I ω) × ω + τ, principal frame, tuples in and out.
+    r""":math:`\dot\omega` from Euler's equations:
+    :math:`\mathsf{I} \dot\omega = (\mathsf{I} \omega) \times \omega + \tau`, principal
+    frame, tuples in and out.
 
-    τ/I is taken as τ·(1/I) (hoisted out of loops, ≤ 1 ulp more rounding).
+    :math:`\tau / I` is taken as :math:`\tau \cdot (1/I)` (hoisted out of loops, at most
+    1 ulp more rounding).
 
     Examples
     --------
-    The free rates of :func:`free_euler_rates` plus τ/I:
+    The free rates of :func:`free_euler_rates` plus :math:`\tau / I`:
 
     >>> euler_rates((1.0, 2.0, 3.0), (1.0, 1.0, 1.0), (1.0, 2.0, 3.0))
     (0.0, 2.0, 0.6666666666666667)
@@ -625,7 +696,8 @@ def euler_rates(inertia, w, tau):
 
 @jit
 def kinetic_energy(w, moments):
-    """½ Σ Iₖ ωₖ² in the principal frame, summed as ``RigidBody.energy``'s einsum sums it
+    r""":math:`\tfrac12 \sum_k I_k \omega_k^2` in the principal frame, summed as
+    ``RigidBody.energy``'s einsum sums it
     (the run's energy columns and the summary's drift are the same numbers).
 
     Examples
@@ -638,9 +710,9 @@ def kinetic_energy(w, moments):
 
 @jit
 def gravity_potential(q, r, weight):
-    """−(q r q*)·(m g) for unit q: the lever r from the pivot to the centre of mass (body)
-    turned into space, against the weight m g; summed as numpy's matrix-vector product
-    sums it.
+    r""":math:`-(q r q^*) \cdot (m g)` for unit :math:`q`: the lever :math:`r` from the pivot
+    to the centre of mass (body) turned into space, against the weight :math:`m g`; summed
+    as numpy's matrix-vector product sums it.
 
     Examples
     --------
