@@ -42,9 +42,10 @@ __all__ = ["DIM", "NSTATS", "STATS", "UNRESOLVED_TURN"]
 
 DIM = 3
 
-#: A step is "unresolved" when it would turn ψ by more than this many radians.
-#: RK4's local error for a rotation at rate λ is ~(hλ)⁵/5! relative: 1e-7 at hλ = 0.1,
-#: and beyond it the 1/sin θ growth of the rates within the step dominates.
+#: A step is "unresolved" when it would turn :math:`\psi` by more than this many radians.
+#: RK4's local error for a rotation at rate :math:`\lambda` is :math:`\sim (h\lambda)^5/5!`
+#: relative: 1e-7 at :math:`h\lambda = 0.1`, and beyond it the :math:`1/\sin\theta` growth
+#: of the rates within the step dominates.
 UNRESOLVED_TURN = 0.1
 
 #: Layout of the watch statistics array.

@@ -79,7 +79,7 @@ class DampedSymmetricTop:
         given and returned, are those of the user's body frame (the torque
         :math:`-c\,\omega` is the same in every frame).
     c : float
-        Damping coefficient (N·m·s), ≥ 0.
+        Damping coefficient (N·m·s), :math:`c \ge 0`.
     orientation : array_like (4,)
         Initial body->space unit quaternion.
     angular_velocity : array_like (3,)
