@@ -41,7 +41,7 @@ from ga_rotors import euler, shapes  # noqa: E402
 from ga_rotors._jit import jit  # noqa: E402
 from ga_rotors.integrators import (  # noqa: E402
     Problem,
-    _codegen,
+    _cache,
     get,
 )
 from ga_rotors.kinematics import body_omega_from_zyz_rates  # noqa: E402
@@ -337,7 +337,7 @@ def main(argv: list[str] | None = None) -> int:
         def end_to_end(path=path, x0=x0):
             results[f"run {path}"] = rk4.run(problem, path, x0, W0, 0.0, H, N, 1)
 
-        loop = _codegen.specialise(rk4, problem, path).loop
+        loop = _cache.specialise(rk4, problem, path).module.loop
         out = (np.empty(N + 1), np.empty((N + 1, 4)), np.empty((N + 1, 3)))
         params, stats = np.zeros(0), np.zeros(0)
 

@@ -9,7 +9,7 @@ One decorator, so the whole package shares one policy:
 * ``no_cfunc_wrapper=True``: numba otherwise compiles, for every function, a C-callable
   wrapper that only serves passing the function as a first-class value into another
   compiled function, which ga_rotors never does (kernels reach a loop by import, see
-  ``integrators._codegen``); without it a cold ``ga-rotors paper`` compiles in about
+  ``integrators._source``); without it a cold ``ga-rotors paper`` compiles in about
   10 % less CPU (7.7 s -> 6.95 s, three pairs of runs, a loaded machine).
 * no ``fastmath``: it would let LLVM assume no NaN/inf, which breaks the finiteness
   checks the wrappers rely on, and reorders the sums the error analysis assumes.
@@ -17,7 +17,9 @@ One decorator, so the whole package shares one policy:
 Kernels stay plain Python functions underneath. Setting ``NUMBA_DISABLE_JIT=1`` runs
 them uncompiled; the test suite does that once to check compiled and uncompiled
 kernels agree. :func:`plain` gives one kernel's uncompiled form, for code that calls a
-kernel once per call (one rotor at a time) and should not start numba for it.
+kernel once per call (one rotor at a time) and should not start numba for it;
+:func:`inline` its inline form, for a loop over many bodies that must see every formula
+it calls (the batched loops of :mod:`ga_rotors.integrators`).
 """
 
 from __future__ import annotations
@@ -74,6 +76,50 @@ def plain(kernel):
 
 #: id(compiled kernel) -> (the kernel, kept alive so its id is not reused; its plain form)
 _PLAIN: dict[int, tuple] = {}
+
+
+def inline(kernel, replace: tuple = ()):
+    """The same Python function as ``kernel``, compiled with ``inline="always"``, its calls
+    to other compiled kernels rebound to their inline forms too.
+
+    numba optimises each compiled function on its own and links its callees afterwards,
+    so a loop that calls kernels makes real calls, and LLVM cannot vectorise it across
+    bodies; the inline form puts the *same formula* (the same source, not a rewrite) into
+    the loop. ``replace``: pairs (kernel, stand-in) — wherever the inline forms would call
+    that kernel they call the stand-in (a batched loop reads values a kernel computed
+    once per body instead of computing them in every stage). A function that is not
+    compiled is returned as it is.
+
+    Examples
+    --------
+    >>> from ga_rotors import _kernels as K
+    >>> inline(K.free_euler_rates) is inline(K.free_euler_rates)
+    True
+    >>> inline(K.free_euler_rates).targetoptions["inline"]
+    'always'
+    """
+    key = (id(kernel), replace)
+    found = _INLINE.get(key)
+    if found is not None:
+        return found[1]
+    for old, new in replace:
+        if kernel is old:
+            return new
+    func = getattr(kernel, "py_func", None)
+    if func is None:
+        return kernel
+    scope = dict(func.__globals__)
+    for name in _names(func.__code__):
+        if hasattr(scope.get(name), "py_func"):
+            scope[name] = inline(scope[name], replace)
+    copy = types.FunctionType(func.__code__, scope, func.__name__, func.__defaults__)
+    out = numba.njit(inline="always", error_model="numpy")(copy)
+    _INLINE[key] = (kernel, out)
+    return out
+
+
+#: (id(compiled kernel), replace) -> (the kernel, kept alive; its inline form)
+_INLINE: dict[tuple, tuple] = {}
 
 
 def _names(code: types.CodeType) -> set[str]:

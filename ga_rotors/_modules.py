@@ -1,18 +1,20 @@
 """Loading a module from a file by its import spec, or from its source text: registered,
 executed, unregistered if it fails. User torque modules (:mod:`ga_rotors.trust`) and
-generated loop modules (:mod:`ga_rotors.integrators._codegen`, :mod:`ga_rotors.ensemble`)
-are all imported this way; the generated ones under :data:`GENERATED_LOCK`.
+generated loop modules (:mod:`ga_rotors.integrators._cache`) are all imported this way;
+the generated ones under :data:`GENERATED_LOCK`, their text kept in :mod:`linecache`
+(:func:`remember_source`) so tracebacks and :func:`inspect.getsource` show it.
 """
 
 from __future__ import annotations
 
 import importlib.util
+import linecache
 import sys
 import threading
 import types
 from importlib.machinery import ModuleSpec
 
-__all__ = ["GENERATED_LOCK", "load_registered", "load_source"]
+__all__ = ["GENERATED_LOCK", "load_registered", "load_source", "remember_source"]
 
 #: Held while a generated module is looked up, made and loaded: a module is registered in
 #: ``sys.modules`` before it has run, and another thread finding it there half made used
@@ -49,19 +51,35 @@ def load_registered(spec: ModuleSpec) -> types.ModuleType:
 
 def load_source(name: str, text: str) -> types.ModuleType:
     """The module ``name`` made from the source ``text`` (no file: compiled in memory),
-    registered and removed again if it raises, as :func:`load_registered`.
+    registered and removed again if it raises, as :func:`load_registered`; its text is
+    remembered (:func:`remember_source`).
 
     Examples
     --------
-    >>> load_source("ga_rotors_demo_text", "VALUE = 4\\n").VALUE
-    4
-    >>> sys.modules.pop("ga_rotors_demo_text").__file__
-    '<ga_rotors_demo_text>'
+    >>> import inspect
+    >>> module = load_source("ga_rotors_demo_text", "def f():\\n    return 4\\n")
+    >>> module.f(), module.__file__
+    (4, '<ga_rotors_demo_text>')
+    >>> print(inspect.getsource(module.f))
+    def f():
+        return 4
+    <BLANKLINE>
+    >>> _ = sys.modules.pop("ga_rotors_demo_text")
     """
     module = types.ModuleType(name)
     module.__file__ = f"<{name}>"
+    remember_source(module.__file__, text)
     code = compile(text, module.__file__, "exec")
     return _run_registered(name, module, lambda: exec(code, module.__dict__))
+
+
+def remember_source(filename: str, text: str) -> None:
+    """Keep ``text`` in :mod:`linecache` as the lines of ``filename`` (as kingdon does
+    for its generated code): a traceback through a generated module, and
+    :func:`inspect.getsource` of its functions, show the generated text, even for a
+    module compiled in memory or a file pruned from the cache since."""
+    # mtime None: linecache.checkcache keeps the entry instead of looking for the file
+    linecache.cache[filename] = (len(text), None, text.splitlines(True), filename)
 
 
 def _run_registered(name: str, module: types.ModuleType, run) -> types.ModuleType:

@@ -1,7 +1,7 @@
 """Torques a scene can declare, each a compiled kernel and its parameters (a TorqueTerm).
 
 A scene's ``[[effects]]`` entries become :class:`ga_rotors.integrators.TorqueTerm` objects;
-the code generator (:mod:`ga_rotors.integrators._codegen`) writes a loop whose ``torque``
+the code generator (:mod:`ga_rotors.integrators._source`) writes a loop whose ``torque``
 is the sum of exactly those kernels. An effect that is not declared is not in the
 generated source at all, and a scene without effects is the free problem, whose loop has
 no torque term. Every kernel returns the torque in the *principal body frame* the

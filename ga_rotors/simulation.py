@@ -308,7 +308,6 @@ class _Plan(NamedTuple):
     nsteps: int
     sample_every: int
     outputs: tuple
-    initial_limit: object
     step_limit_key: str
 
 
@@ -360,10 +359,6 @@ def _plan(body, orientation, angular_velocity, duration, step, paths, integrator
         q0 = _q.multiply(q0, principal)
         w0 = _q.rotate(_q.conjugate(principal), w0)
 
-    # The step limit is judged on the initial state (principal frame) by _pieces: inside
-    # the primary path's compiled call for one piece (Integrator.run_watched).
-    initial_limit = None
-
     starts = {}
     for p in requested:
         spec = _paths.get(p)
@@ -378,23 +373,25 @@ def _plan(body, orientation, angular_velocity, duration, step, paths, integrator
             starts[p] = module.initial_state(q0)
 
     return _Plan(method, problem, requested, starts, w0, rigid, principal, float(t0),
-                 float(step), nsteps, sample_every, tuple(outputs), initial_limit,
-                 step_limit_key)  # fmt: skip
+                 float(step), nsteps, sample_every, tuple(outputs), step_limit_key)  # fmt: skip
 
 
 def _pieces(plan: _Plan, chunk: int | None, progress):
     """The run of ``plan`` as Trajectories of consecutive samples (see
-    :func:`simulate_chunks`); ``chunk=None``: one piece, each path's loop called once."""
+    :func:`simulate_chunks`); ``chunk=None``: one piece, each path's loop called once.
+
+    Every path is one :meth:`~ga_rotors.integrators.Integrator.run`; the primary path's
+    judges the step limit on the initial state (past it, a warning naming the caller of
+    simulate, or lgvi's refusal before any step) and watches the samples it stores (a
+    torque may carry ω past the limit the start was within); the others' are not judged
+    again."""
     method, problem, requested, nsteps = plan.method, plan.problem, plan.requested, plan.nsteps
     every, h, t0 = plan.sample_every, plan.h, plan.t0
-    if type(method).segments is base.Integrator.segments:
+    if not method.continues:
         chunk = None  # an integrator that cannot continue a run: one piece, the whole run
     total = nsteps * len(requested)
     done = dict.fromkeys(requested, 0)
     sources = {}
-    initial_limit = None
-    if chunk is not None:  # judged here, watched piece by piece below
-        initial_limit = method.check_step(problem, plan.w0, h, nsteps, plan.step_limit_key)
     for p in requested:
         report = None
         if progress is not None:
@@ -403,28 +400,16 @@ def _pieces(plan: _Plan, chunk: int | None, progress):
                 done[p] = steps
                 progress(sum(done.values()), total)
 
-        if chunk is None and p == requested[0]:
-            # one piece: the step limit judged on the initial state and watched over the
-            # samples in the primary path's own call (past it, a warning naming the
-            # caller of simulate, or lgvi's refusal before any step)
-            whole = method.run_watched(
-                problem, p, plan.starts[p], plan.w0, t0, h, nsteps, every, report,
-                where=plan.step_limit_key, stacklevel=4,
-            )  # fmt: skip
-            sources[p] = iter([whole])
-        elif chunk is None:
-            whole = method.integrate(
-                problem, p, plan.starts[p], plan.w0, t0, h, nsteps, every, report
-            )
-            sources[p] = iter([whole])
-        else:
-            sources[p] = method.segments(
-                problem, p, plan.starts[p], plan.w0, t0, h, nsteps, every, chunk, report
-            )
+        primary = p == requested[0]
+        found = method.run(
+            problem, p, plan.starts[p], plan.w0, t0, h, nsteps, every, chunk=chunk,
+            progress=report, where=plan.step_limit_key if primary else None, watch=primary,
+            stacklevel=4,
+        )  # fmt: skip
+        sources[p] = iter([found]) if chunk is None else found
     span = nsteps if chunk is None else max(1, int(chunk) // every) * every
     status = {p: {"complete": True, "samples": 0, "ended_at": t0} for p in requested}
     live = dict(sources)
-    watching = initial_limit is not None and not initial_limit.exceeded
     for lo in range(0, nsteps, span):
         hi = min(nsteps, lo + span)
         results = {}
@@ -461,16 +446,7 @@ def _pieces(plan: _Plan, chunk: int | None, progress):
             if hi == nsteps and nsteps % every:
                 marks = np.concatenate([marks, [nsteps]])
             grid = t0 + h * marks
-        piece = _derive(plan, grid, results, status)
-        if watching:
-            # a torque may carry ω past the limit the start was within: judged on the samples
-            found = method.watch_step(
-                problem, grid, piece.meta.pop("_w"), h, nsteps, where=plan.step_limit_key
-            )
-            watching = found is None
-        else:
-            piece.meta.pop("_w")
-        yield piece
+        yield _derive(plan, grid, results, status)
 
 
 def _derive(plan: _Plan, grid, results: dict, status: dict) -> Trajectory:
@@ -535,7 +511,6 @@ def _derive(plan: _Plan, grid, results: dict, status: dict) -> Trajectory:
         "torques": [t.name for t in plan.problem.torques],
         "paths": {p: dict(info) for p, info in status.items()},
         "primary": requested[0],
-        "_w": primary_w,  # principal frame, for the step-limit watch; removed by _pieces
     }
     return Trajectory(arrays, components, meta)
 

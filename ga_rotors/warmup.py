@@ -181,16 +181,16 @@ def all_tasks() -> list[Task]:
 
 
 def _marker_dir() -> Path | None:
-    from .integrators import _codegen
+    from .integrators import _cache
 
-    directory = _codegen.cache_location()
+    directory = _cache.cache_location()
     return None if directory is None else directory / "warm"
 
 
 def _marker(directory: Path, task: Task) -> Path:
-    from .integrators import _codegen
+    from .integrators import _cache
 
-    return directory / f"{_codegen.version_tag()}-{task.key()}"
+    return directory / f"{_cache.version_tag()}-{task.key()}"
 
 
 def clear_markers(every_version: bool = False) -> int:
@@ -202,11 +202,11 @@ def clear_markers(every_version: bool = False) -> int:
     >>> clear_markers() >= 0
     True
     """
-    from .integrators import _codegen
+    from .integrators import _cache
 
     directory = _marker_dir()
     removed = 0
-    mine = _codegen.version_tag() + "-"
+    mine = _cache.version_tag() + "-"
     if directory is not None and directory.is_dir():
         for f in directory.iterdir():
             if not (every_version or f.name.startswith(mine)):

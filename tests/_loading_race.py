@@ -15,11 +15,11 @@ def race_first_load(monkeypatch, run):
     return (the slowed module names, the errors raised, the results returned). Callers
     first reset whatever else remembers what ``run`` derived."""
     from ga_rotors import _modules
-    from ga_rotors.integrators import _codegen
+    from ga_rotors.integrators import _cache
 
     for name in [name for name in sys.modules if name.startswith("_ga_rotors_gen_")]:
         monkeypatch.delitem(sys.modules, name)
-    monkeypatch.setattr(_codegen, "_MEMO", {})
+    monkeypatch.setattr(_cache, "_MEMO", {})
     slowed = []
 
     def slow(spec):  # load_registered; the first load leaves time for the other thread

@@ -33,12 +33,12 @@ def cache(tmp_path, monkeypatch):
     """An empty compiled-loop cache for one test (tests/test_cache.py, test_warmup.py):
     generated modules and warm-up markers start from nothing. It stands in for pytest's own
     ``cache`` fixture, which the suite does not use."""
-    from ga_rotors.integrators import _codegen
+    from ga_rotors.integrators import _cache
 
     directory = tmp_path / "generated"
-    monkeypatch.setattr(_codegen, "_candidates", lambda: [directory])
-    monkeypatch.setattr(_codegen, "_MEMO", {})
-    monkeypatch.setattr(_codegen, "_PRUNED", False)
-    _codegen.cache_location.cache_clear()
+    monkeypatch.setattr(_cache, "_candidates", lambda: [directory])
+    monkeypatch.setattr(_cache, "_MEMO", {})
+    monkeypatch.setattr(_cache, "_PRUNED", False)
+    _cache.cache_location.cache_clear()
     yield directory
-    _codegen.cache_location.cache_clear()
+    _cache.cache_location.cache_clear()

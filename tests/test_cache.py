@@ -13,7 +13,7 @@ from _torques_for_tests import constant_omega
 
 from ga_rotors.cli import main
 from ga_rotors.errors import InputError
-from ga_rotors.integrators import PrescribedOmega, Problem, _codegen, get
+from ga_rotors.integrators import PrescribedOmega, Problem, _cache, get
 
 DAY = 86400.0
 
@@ -35,36 +35,36 @@ def _fake(directory, version, age_days, now):
 
 def _specialise():
     problem = Problem(omega=PrescribedOmega(constant_omega, (0.0, 0.0, 1.0)))
-    return _codegen.specialise(get("rk4"), problem, "quaternion")
+    return _cache.specialise(get("rk4"), problem, "quaternion")
 
 
 def test_module_names_carry_the_package_version(cache):
     spec = _specialise()
-    assert spec.path.name.split("_")[-2] == _codegen.version_tag()
-    (entry,) = _codegen.cached_modules()
-    assert entry.path == spec.path and entry.version == _codegen.version_tag()
+    assert spec.path.name.split("_")[-2] == _cache.version_tag()
+    (entry,) = _cache.cached_modules()
+    assert entry.path == spec.path and entry.version == _cache.version_tag()
 
 
 def test_prune_deletes_only_old_modules_of_other_versions(cache):
     now = time.time()
-    mine = _codegen.version_tag()
+    mine = _cache.version_tag()
     old_other = _fake(cache, "deadbeef", 30, now)
     new_other = _fake(cache, "0badcafe", 1, now)
     old_mine = _fake(cache, mine, 30, now)
-    assert _codegen.prune_cache(now=now) == 3
+    assert _cache.prune_cache(now=now) == 3
     assert not any(f.exists() for f in old_other)
     assert all(f.exists() for f in new_other + old_mine)
     # just inside the limit: kept
-    assert _codegen.prune_cache(max_age_days=1.0 + 1 / 24, now=now) == 0
+    assert _cache.prune_cache(max_age_days=1.0 + 1 / 24, now=now) == 0
 
 
 def test_the_first_module_a_process_generates_prunes_the_cache(cache):
     now = time.time()
-    old_other = _fake(cache, "deadbeef", _codegen.PRUNE_AFTER_DAYS + 1, now)
+    old_other = _fake(cache, "deadbeef", _cache.PRUNE_AFTER_DAYS + 1, now)
     _specialise()
     assert not any(f.exists() for f in old_other)
-    again = _fake(cache, "deadbeef", _codegen.PRUNE_AFTER_DAYS + 1, now)
-    _codegen._MEMO.clear()
+    again = _fake(cache, "deadbeef", _cache.PRUNE_AFTER_DAYS + 1, now)
+    _cache._MEMO.clear()
     _specialise()  # once per process: a second generation does not list the directory again
     assert all(f.exists() for f in again)
 
@@ -76,12 +76,12 @@ def test_cache_command_reports_and_clears(cache, capsys):
     assert main(["cache"]) == 0
     out = capsys.readouterr().out
     assert f"cache: {cache}" in out
-    assert f"this version ({_codegen.version_tag()}): 1 module" in out
+    assert f"this version ({_cache.version_tag()}): 1 module" in out
     assert "other versions: 1 module, 3 B (deleted 14 days after they were made)" in out
     # --clear says what it removes and keeps other versions' modules.
     assert main(["cache", "--clear"]) == 0
     out = capsys.readouterr().out
-    assert f"removing 1 module of this version ({_codegen.version_tag()})" in out
+    assert f"removing 1 module of this version ({_cache.version_tag()})" in out
     assert "kept 1 module of other versions" in out
     assert [f.name.split("_")[-2] for f in cache.glob("gen_*")] == ["deadbeef"]
     # --clear --all removes every version's.
@@ -96,13 +96,13 @@ def test_cache_command_reports_and_clears(cache, capsys):
 def test_cache_command_without_a_writable_directory(tmp_path, monkeypatch, capsys):
     blocker = tmp_path / "file"
     blocker.write_text("not a directory")
-    monkeypatch.setattr(_codegen, "_candidates", lambda: [blocker / "generated"])
-    _codegen.cache_location.cache_clear()
+    monkeypatch.setattr(_cache, "_candidates", lambda: [blocker / "generated"])
+    _cache.cache_location.cache_clear()
     try:
         assert main(["cache"]) == 0
         assert "compiled in memory" in capsys.readouterr().out
     finally:
-        _codegen.cache_location.cache_clear()
+        _cache.cache_location.cache_clear()
 
 
 # ---------------------------------------------------------------------------- a private cache
@@ -111,13 +111,13 @@ def test_cache_command_without_a_writable_directory(tmp_path, monkeypatch, capsy
 @pytest.fixture
 def env_cache(tmp_path, monkeypatch):
     monkeypatch.setenv("GA_ROTORS_CACHE_DIR", str(tmp_path / "c"))
-    _codegen.cache_location.cache_clear()
+    _cache.cache_location.cache_clear()
     yield tmp_path / "c"
-    _codegen.cache_location.cache_clear()
+    _cache.cache_location.cache_clear()
 
 
 def test_a_new_cache_is_private(env_cache):
-    where = _codegen.cache_location()
+    where = _cache.cache_location()
     assert where == env_cache / "generated"
     for folder in (where, env_cache):
         assert stat.S_IMODE(os.stat(folder).st_mode) == 0o700
@@ -128,7 +128,7 @@ def test_a_cache_others_can_write_into_is_refused(env_cache, capsys, folder):
     (env_cache / "generated").mkdir(parents=True)
     os.chmod(env_cache.parent / folder, 0o777)
     with pytest.raises(InputError, match=r"can be written by others \(mode 777\)"):
-        _codegen.cache_location()
+        _cache.cache_location()
     assert main(["cache"]) == 2
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and "GA_ROTORS_CACHE_DIR" in err and "chmod 700" in err
@@ -139,7 +139,7 @@ def test_a_cache_owned_by_someone_else_is_refused(env_cache):
     (env_cache / "generated").mkdir(parents=True, mode=0o700)
     os.chown(env_cache / "generated", 4242, 4242)
     with pytest.raises(InputError, match="belongs to user id 4242, not to you"):
-        _codegen.cache_location()
+        _cache.cache_location()
 
 
 def test_no_shared_temporary_fallback(tmp_path, monkeypatch):
@@ -149,14 +149,14 @@ def test_no_shared_temporary_fallback(tmp_path, monkeypatch):
     blocker.write_text("not a directory")
     monkeypatch.delenv("GA_ROTORS_CACHE_DIR", raising=False)
     monkeypatch.setenv("XDG_CACHE_HOME", str(blocker))
-    monkeypatch.setattr(_codegen, "_MEMO", {})
-    _codegen.cache_location.cache_clear()
+    monkeypatch.setattr(_cache, "_MEMO", {})
+    _cache.cache_location.cache_clear()
     try:
-        assert _codegen.cache_location() is None
+        assert _cache.cache_location() is None
         assert _specialise().path is None
         assert not list(Path(tempfile.gettempdir()).glob("ga_rotors-*/generated/gen_*"))
     finally:
-        _codegen.cache_location.cache_clear()
+        _cache.cache_location.cache_clear()
 
 
 def test_threads_specialising_the_same_loop_at_once_wait_for_one_another(monkeypatch):

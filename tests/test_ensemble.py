@@ -63,10 +63,28 @@ from ga_rotors.scene import load_scene  # noqa: E402
 from ga_rotors.scene import run_scene as run_one  # noqa: E402
 
 
-def single_run(scene, times):
-    """The single run's orientation and ω of the scene's first path at ``times``."""
-    tr = run_one(scene)
+def single_run(scene, times, start=None):
+    """The single run's orientation and ω of the scene's first path at ``times``, in the
+    scene's body frame.
+
+    A scene whose principal axes are its body axes: :func:`run_scene`. Otherwise (a full
+    tensor, or a pivot off the axis of symmetry) ``simulate`` of the scene's body given
+    with its principal rotation, from ``start`` (q, ω in the body frame: the samples'),
+    answering in that frame as every output must (issue 30)."""
+    from ga_rotors import simulate
+    from ga_rotors.body import RigidBody
+
     spec = _paths.get(scene.paths[0])
+    if scene.principal_rotation == (1.0, 0.0, 0.0, 0.0):
+        tr = run_one(scene)
+    else:
+        body = RigidBody(scene.body.moments, scene.principal_rotation)
+        tr = simulate(
+            body, *start, duration=scene.data["time"]["duration"], step=scene.step,
+            paths=scene.paths[0], integrator=scene.method, torques=scene.torques(),
+            accept_lower_order=scene.data["integrator"].get("accept_lower_order", False),
+            sample_every=scene.sample_every, t0=scene.data["time"]["start"],
+        )  # fmt: skip
     q = spec.load().quaternions(tr[spec.array])
     rows = [int(np.argmin(np.abs(tr.t - t))) for t in times]
     assert np.allclose(tr.t[rows], times, rtol=0, atol=1e-12)
@@ -74,13 +92,21 @@ def single_run(scene, times):
 
 
 def check_samples_follow_single_runs(scene, changes, times):
+    from ga_rotors import quaternion as Q
+
     samples = scene_samples(scene, changes)
     run = run_samples(samples, times)
     assert run.t.tolist() == list(times)
     n = len(samples)
     for i in sorted({0, n // 2, n - 1}):
         one = scene.replace({k: np.asarray(v)[i].tolist() for k, v in changes.items()})
-        q, w = single_run(one, times)
+        start = samples.orientation[i], samples.angular_velocity[i]
+        # the sample's start is the scene's, turned from its principal frame to its body's
+        turn = np.array(one.principal_rotation)
+        assert np.allclose(Q.multiply(start[0], turn), one.orientation, rtol=0, atol=1e-15)
+        assert np.allclose(Q.rotate(Q.conjugate(turn), start[1]), one.angular_velocity,
+                           rtol=1e-15, atol=0)  # fmt: skip
+        q, w = single_run(one, times, start)
         assert np.array_equal(run.q[:, i], q), i  # bit for bit, not close
         assert np.array_equal(run.w[:, i], w), i
     return run
@@ -123,14 +149,33 @@ def test_the_vectorised_mapping_equals_a_scene_per_sample():
         assert tuple(fast.inertia[i]) == one.body.moments
 
 
-def test_a_scene_with_off_diagonal_inertia_reports_in_the_frame_a_single_run_does():
+def test_a_scene_with_off_diagonal_inertia_gives_states_in_the_tensors_frame():
+    # Issue 30: every output in the frame the user wrote the body in, as simulate() with
+    # the tensor's body answers; the loop integrates in the principal frame, turned into
+    # it and back at the edges with SceneSamples.principal.
+    from ga_rotors import simulate
+    from ga_rotors.body import RigidBody
+
     tensor = [[2.0e-4, 1.0e-5, 0.0], [1.0e-5, 3.0e-4, 0.0], [0.0, 0.0, 4.0e-4]]
     scene = load_scene("intermediate_axis_flip").replace(
         {"body": {"tensor": tensor}, "time.duration": 0.02}
     )
     assert scene.principal_rotation != (1.0, 0.0, 0.0, 0.0)
-    changes = {"initial.angular_velocity.body[1]": [10.0, 12.0]}
-    check_samples_follow_single_runs(scene, changes, [0.02])
+    rates = [[0.0, 10.0, 0.01], [0.1, 12.0, 0.0]]
+    samples = scene_samples(scene, {"initial.angular_velocity.body": rates})
+    # the samples' start is the scene's, in the tensor's frame (as written in the file)
+    assert np.allclose(samples.angular_velocity, rates, rtol=1e-15, atol=1e-15)
+    start = scene.data["initial"]["orientation"]["quaternion"]
+    assert np.allclose(samples.orientation, [start] * 2, rtol=0, atol=1e-15)
+    run = run_samples(samples, [0.01, 0.02])
+    body = RigidBody.from_tensor(tensor)
+    for i in range(2):
+        tr = simulate(body, samples.orientation[i], samples.angular_velocity[i], duration=0.02,
+                      step=scene.step, paths=scene.paths[0], integrator=scene.method)  # fmt: skip
+        rows = [10, 20]  # of 21 samples, one a step
+        assert np.array_equal(tr.t[rows], run.t)
+        assert np.array_equal(run.q[:, i], tr.quaternions()[rows]), i  # bit for bit
+        assert np.array_equal(run.w[:, i], tr.w[rows]), i
 
 
 def test_a_bad_sample_is_named_by_the_scene_key():
@@ -245,7 +290,9 @@ def test_samples_whose_gravity_kernels_differ_each_run_their_single_runs_kernel(
     assert kernels == [effects.vertical_gravity, effects.gravity] * 2
     run = run_samples(samples, [0.01, 0.02])
     for i in range(4):
-        q, w = single_run(scene.replace({"effects[0].pivot_to_com": pivots[i]}), [0.01, 0.02])
+        start = samples.orientation[i], samples.angular_velocity[i]
+        one = scene.replace({"effects[0].pivot_to_com": pivots[i]})
+        q, w = single_run(one, [0.01, 0.02], start)
         assert np.array_equal(run.q[:, i], q) and np.array_equal(run.w[:, i], w), i
 
 

@@ -29,7 +29,9 @@ from ga_rotors.integrators import (
     Problem,
     TemplateIntegrator,
     TorqueTerm,
-    _codegen,
+    _cache,
+    _runner,
+    _source,
     catalogue,
     get,
     names,
@@ -60,23 +62,23 @@ def test_template_slots_refuse_to_run_uninstantiated():
 
 
 def test_free_module_has_no_torque_at_all():
-    text = _codegen.source(get("rk4"), Problem(DISK), "quaternion")
+    text = _source.source(get("rk4"), Problem(DISK), "quaternion")[0]
     assert "torque" not in text
     assert "free_euler_rates(inertia, w)" in text
-    spec = _codegen.specialise(get("rk4"), Problem(DISK), "quaternion")
+    spec = _cache.specialise(get("rk4"), Problem(DISK), "quaternion")
     assert not hasattr(spec.module, "torque")
 
 
 def test_only_declared_torques_enter_the_source():
     problem = Problem(DISK, (TorqueTerm(counting_torque, (0.0, 0.0, 0.0, 0.0)),))
-    text = _codegen.source(get("rk4"), problem, "rotor")
+    text = _source.source(get("rk4"), problem, "rotor")[0]
     assert "counting_torque" in text
     assert "tripwire_torque" not in text and "constant_body_torque" not in text
     two = Problem(
         DISK,
         (TorqueTerm(constant_body_torque, (1.0, 2.0, 3.0)), TorqueTerm(linear_damping, (0.5,))),
     )
-    text = _codegen.source(get("rk4"), two, "rotor")
+    text = _source.source(get("rk4"), two, "rotor")[0]
     assert "params[0:3]" in text and "params[3:4]" in text
 
 
@@ -84,11 +86,11 @@ def test_declared_torque_runs_exactly_once_per_stage():
     # Call the compiled loop directly with our own params array, so the kernel's
     # evaluation counter (params[0]) can be read back: RK4 evaluates f four times a step.
     problem = Problem(DISK, (TorqueTerm(counting_torque, (0.0, 0.0, 0.0, 0.0)),))
-    spec = _codegen.specialise(get("rk4"), problem, "quaternion")
+    spec = _cache.specialise(get("rk4"), problem, "quaternion")
     params = np.zeros(4)
     n = 250
     out_t, out_x, out_w = np.empty(n + 1), np.empty((n + 1, 4)), np.empty((n + 1, 3))
-    rows = spec.loop(
+    rows = spec.module.loop(
         IDENTITY, np.array([0.1, 0.2, 3.0]), 0.0, 1e-3, 0, n, 1, DISK, params,
         out_t, out_x, out_w, np.zeros(0),
     )  # fmt: skip
@@ -105,17 +107,17 @@ def test_undeclared_torque_is_never_evaluated_uncompiled(tmp_path):
         import numpy as np
         import _torques_for_tests as T
         from ga_rotors.integrators import Problem, TorqueTerm, get
-        from ga_rotors.integrators import _codegen
+        from ga_rotors.integrators import _cache
 
         TorqueTerm(T.tripwire_torque)            # a valid kernel: only undeclared
         problem = Problem((1.0, 2.0, 3.0), (TorqueTerm(T.counting_torque, (0, 0, 0, 0)),))
-        spec = _codegen.specialise(get("rk4"), problem, "rotor")
+        spec = _cache.specialise(get("rk4"), problem, "rotor")
         params = np.zeros(4)
         out = np.empty(6), np.empty((6, 4)), np.empty((6, 3))
-        rows = spec.loop(np.array([1.0, 0, 0, 0]), np.array([0.1, 0.2, 0.3]), 0.0, 0.01, 0,
+        rows = spec.module.loop(np.array([1.0, 0, 0, 0]), np.array([0.1, 0.2, 0.3]), 0.0, 0.01, 0,
                          5, 1, (1.0, 2.0, 3.0), params, *out, np.zeros(0))
-        free = _codegen.specialise(get("rk4"), Problem((1.0, 2.0, 3.0)), "rotor")
-        free.loop(np.array([1.0, 0, 0, 0]), np.array([0.1, 0.2, 0.3]), 0.0, 0.01, 0, 5,
+        free = _cache.specialise(get("rk4"), Problem((1.0, 2.0, 3.0)), "rotor")
+        free.module.loop(np.array([1.0, 0, 0, 0]), np.array([0.1, 0.2, 0.3]), 0.0, 0.01, 0, 5,
                   1, (1.0, 2.0, 3.0), np.zeros(0), *out, np.zeros(0))
         print(rows, int(params[0]), hasattr(free.module, "torque"))
         """
@@ -213,15 +215,48 @@ def _bad_step(t, x, w, h, inertia, params):
     return x, torque_like(w)  # noqa: F821 - deliberately unresolvable
 
 
-def test_template_with_an_unresolvable_global_fails_loudly():
+def test_template_with_an_unresolvable_global_fails_in_one_line():
     bad = TemplateIntegrator(
         name="bad", order=1, description="", conserves=frozenset(),
         paths=frozenset({"quaternion"}), steps={FREE: _bad_step}, evaluations=1,
     )  # fmt: skip
-    text = _codegen.source(bad, Problem(DISK), "quaternion")
-    assert "torque_like" not in text.split("def _bad_step")[0]  # generation never guesses
-    with pytest.raises(Exception, match="torque_like"):
+    says = "template _bad_step of bad: 'torque_like' is not defined in its module test_integrators"
+    with pytest.raises(InputError, match=says):  # generation never guesses
+        _source.source(bad, Problem(DISK), "quaternion")
+    with pytest.raises(InputError, match=says):
         bad.run(Problem(DISK), "quaternion", IDENTITY, np.zeros(3), 0.0, 0.1, 1, 1)
+
+
+def _helper_not_declared(w):
+    return (w[0], w[1], w[2])
+
+
+def _step_with_a_missing_helper(t, x, w, h, inertia, params):
+    return x, _helper_not_declared(w)
+
+
+def test_a_template_calling_a_helper_missing_from_helpers_is_one_line():
+    # Before, numba's 35-line TypingError ("Untyped global name ..."), at the first run.
+    mine = TemplateIntegrator(
+        name="missing_helper", order=1, description="", conserves=frozenset(),
+        paths=frozenset({"quaternion"}), steps={FREE: _step_with_a_missing_helper},
+        evaluations=1,
+    )  # fmt: skip
+    with pytest.raises(InputError) as caught:
+        mine.run(Problem(DISK), "quaternion", IDENTITY, np.zeros(3), 0.0, 0.1, 1, 1)
+    message = str(caught.value)
+    assert message == (
+        "template _step_with_a_missing_helper of missing_helper calls _helper_not_declared, "
+        "a plain Python function that is not among its helpers: add _helper_not_declared to "
+        "helpers= (or compile it as a kernel)"
+    )
+    declared = TemplateIntegrator(
+        name="declared_helper", order=1, description="", conserves=frozenset(),
+        paths=frozenset({"quaternion"}), steps={FREE: _step_with_a_missing_helper},
+        helpers=(_helper_not_declared,), evaluations=1,
+    )  # fmt: skip
+    text = _source.source(declared, Problem(DISK), "quaternion")[0]
+    assert "def _helper_not_declared(w):" in text
 
 
 def test_state_that_stops_being_finite_ends_the_run_early():
@@ -238,46 +273,46 @@ def test_unwritable_cache_falls_back_to_the_next_directory(tmp_path, monkeypatch
     blocker = tmp_path / "file"
     blocker.write_text("not a directory")
     good = tmp_path / "ok" / "generated"
-    monkeypatch.setattr(_codegen, "_candidates", lambda: [blocker / "generated", good])
-    _codegen.cache_location.cache_clear()
+    monkeypatch.setattr(_cache, "_candidates", lambda: [blocker / "generated", good])
+    _cache.cache_location.cache_clear()
     try:
-        assert _codegen.cache_location() == good
+        assert _cache.cache_location() == good
     finally:
-        _codegen.cache_location.cache_clear()
+        _cache.cache_location.cache_clear()
 
 
 def test_cache_falls_back_to_memory_when_nothing_is_writable(tmp_path, monkeypatch):
     blocker = tmp_path / "file"
     blocker.write_text("not a directory")
-    monkeypatch.setattr(_codegen, "_candidates", lambda: [blocker / "generated"])
-    monkeypatch.setattr(_codegen, "_MEMO", {})
-    _codegen.cache_location.cache_clear()
+    monkeypatch.setattr(_cache, "_candidates", lambda: [blocker / "generated"])
+    monkeypatch.setattr(_cache, "_MEMO", {})
+    _cache.cache_location.cache_clear()
     try:
-        assert _codegen.cache_location() is None
+        assert _cache.cache_location() is None
         problem = Problem(omega=PrescribedOmega(constant_omega, (0.0, 0.0, 1.0)))
-        spec = _codegen.specialise(get("rk4"), problem, "quaternion")
+        spec = _cache.specialise(get("rk4"), problem, "quaternion")
         assert spec.path is None and "cache=False" in spec.source
         r = get("rk4").run(problem, "quaternion", IDENTITY, None, 0.0, 0.5, 2, 1)
         assert r.source is None and r.complete
     finally:
-        _codegen.cache_location.cache_clear()
+        _cache.cache_location.cache_clear()
 
 
 def test_generated_file_is_named_by_content_and_written_once(tmp_path, monkeypatch):
-    monkeypatch.setattr(_codegen, "_candidates", lambda: [tmp_path / "generated"])
-    monkeypatch.setattr(_codegen, "_MEMO", {})
-    _codegen.cache_location.cache_clear()
+    monkeypatch.setattr(_cache, "_candidates", lambda: [tmp_path / "generated"])
+    monkeypatch.setattr(_cache, "_MEMO", {})
+    _cache.cache_location.cache_clear()
     try:
         problem = Problem(omega=PrescribedOmega(constant_omega, (0.0, 0.0, 1.0)))
-        spec = _codegen.specialise(get("rk4"), problem, "rotor")
+        spec = _cache.specialise(get("rk4"), problem, "rotor")
         assert spec.path.parent == tmp_path / "generated"
         assert spec.path.read_text() == spec.source
         before = spec.path.stat().st_mtime_ns
-        _codegen._write_once(spec.path, spec.source)  # identical: untouched (numba keys on mtime)
+        _cache._write_once(spec.path, spec.source)  # identical: untouched (numba keys on mtime)
         assert spec.path.stat().st_mtime_ns == before
         assert [p.name for p in spec.path.parent.iterdir() if p.name.startswith(".")] == []
     finally:
-        _codegen.cache_location.cache_clear()
+        _cache.cache_location.cache_clear()
 
 
 def test_vector_field_is_the_loops_right_hand_side():
@@ -286,17 +321,17 @@ def test_vector_field_is_the_loops_right_hand_side():
 
     tau = (0.01, -0.02, 0.005)
     problem = Problem(DISK, (TorqueTerm(constant_body_torque, tau),))
-    f = _codegen.vector_field(problem, "quaternion")
+    f = _runner.vector_field(problem, "quaternion")
     q = np.array([0.9, 0.1, -0.3, 0.2])
     q /= np.linalg.norm(q)
     w = np.array([0.3, -1.0, 15.0])
     got = f(0.5, np.concatenate([q, w]))
     assert np.allclose(got[:4], quaternion_rate(q, w), rtol=0, atol=1e-15)
     assert np.allclose(got[4:], euler_rates(DISK, tuple(w), tau), rtol=1e-15, atol=0)
-    free = _codegen.vector_field(Problem(DISK), "rotor")
-    assert "torque" not in _codegen.specialise(None, Problem(DISK), "rotor").source
+    free = _runner.vector_field(Problem(DISK), "rotor")
+    assert "torque" not in _cache.specialise(None, Problem(DISK), "rotor", "rhs").source
     assert free(0.0, np.array([1.0, 0, 0, 0, 0, 0, 2.0])).tolist() == [0, -1.0, 0, 0, 0, 0, 0]
-    kin = _codegen.vector_field(Problem(omega=PrescribedOmega(wobble, (0.2, 3.0, 10.0))), "euler")
+    kin = _runner.vector_field(Problem(omega=PrescribedOmega(wobble, (0.2, 3.0, 10.0))), "euler")
     assert kin(0.0, np.array([0.0, 0.5, 0.0])).shape == (3,)
     with pytest.raises(InputError, match="y: expected shape \\(7,\\)"):
         f(0.0, np.zeros(4))
@@ -308,7 +343,7 @@ def test_scipy_dop853_on_the_vector_field_reaches_the_exact_top():
     from ga_rotors.reference.symmetric_top import SymmetricTop
 
     w0 = np.array([0.1, 0.0, 15.0])
-    f = _codegen.vector_field(Problem(DISK), "quaternion")
+    f = _runner.vector_field(Problem(DISK), "quaternion")
     sol = solve_ivp(f, (0.0, 1.0), [*IDENTITY, *w0], method="DOP853", rtol=1e-12, atol=1e-13)
     q = sol.y[:4, -1] / np.linalg.norm(sol.y[:4, -1])
     err = SymmetricTop(DISK, IDENTITY, w0).orientation_error([1.0], q[None, :])

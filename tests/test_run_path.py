@@ -19,7 +19,7 @@ from ga_rotors.integrators import (
     Problem,
     TemplateIntegrator,
     TorqueTerm,
-    _codegen,
+    _runner,
     catalogue,
     get,
     loops,
@@ -52,7 +52,7 @@ def test_the_one_call_gives_the_general_paths_samples_bit_for_bit(name):
     method, problem = get(name), Problem(BODY)
     fast = method.run(problem, "quaternion", Q0, W0, 0.0, 1e-3, 37, 5)
     _same(fast, _general(method, problem, "quaternion", Q0, W0, 1e-3, 37, 5))
-    _same(fast, method.integrate(problem, "quaternion", Q0, W0, 0.0, 1e-3, 37, 5))
+    _same(fast, method.run(problem, "quaternion", Q0, W0, 0.0, 1e-3, 37, 5, where=None))
 
 
 @pytest.mark.parametrize(
@@ -117,7 +117,7 @@ def test_run_past_the_limit_warns_once_and_returns_the_unjudged_run():
     with pytest.warns(StepLimitWarning, match="h: rk4 cannot step") as caught:
         fast = method.run(problem, "quaternion", Q0, w0, 0.0, 1e-3, 1000, 100)
     assert len(caught) == 1 and caught[0].filename == __file__
-    _same(fast, method.integrate(problem, "quaternion", Q0, w0, 0.0, 1e-3, 1000, 100))
+    _same(fast, method.run(problem, "quaternion", Q0, w0, 0.0, 1e-3, 1000, 100, where=None))
 
 
 def test_lgvi_past_its_limit_is_refused_before_any_step():
@@ -162,8 +162,8 @@ def test_the_compiled_verdict_is_the_step_limits_own_numbers(name, inertia, w0, 
     method, problem = get(name), Problem(inertia)
     if name == "split_sym" or nsteps > 50:  # keep each example's run short
         nsteps = min(nsteps, 50)
-    prep = _codegen.prepared(method, problem, "quaternion", checked=True)
-    _, value, bound, _ = _codegen.run_prepared(prep, Q0, w0, 0.0, h, nsteps, nsteps, loops.JUDGE)
+    prep = _runner.prepared(method, problem, "quaternion", checked=True)
+    _, value, bound, _ = _runner.run_prepared(prep, Q0, w0, 0.0, h, nsteps, nsteps, loops.JUDGE)
     expected = method.step_limit(inertia, w0, h, nsteps)
     assert (value, bound) == (expected.value, expected.limit)
 
@@ -209,8 +209,8 @@ def test_the_fused_watch_finds_the_sample_watch_step_warns_about():
     # A constant torque spins the body up past rk4's limit during the run.
     torque = TorqueTerm(constant_body_torque, (0.0, 0.0, 30.0), depends_on_omega=False)
     method, problem = get("rk4"), Problem((1.0, 1.5, 2.0), (torque,))
-    prep = _codegen.prepared(method, problem, "quaternion", checked=True)
-    result, value, bound, crossing = _codegen.run_prepared(
+    prep = _runner.prepared(method, problem, "quaternion", checked=True)
+    result, value, bound, crossing = _runner.run_prepared(
         prep, Q0, (0.0, 0.0, 10.0), 0.0, 0.01, 2000, 10, prep.flags | loops.WATCH
     )
     assert value < bound and crossing > 0

@@ -14,7 +14,7 @@ import pytest
 
 from ga_rotors import effects
 from ga_rotors.errors import SceneError
-from ga_rotors.integrators import Problem, TemplateIntegrator, _codegen, get
+from ga_rotors.integrators import Problem, TemplateIntegrator, _runner, _source, get
 from ga_rotors.scene import Scene, load_scene, run_scene
 from ga_rotors.scene import run as scene_run
 
@@ -46,7 +46,7 @@ def scene_with(*entries) -> Scene:
 
 def generated_source(scene: Scene, path: str) -> str:
     problem = Problem(scene.body.moments, scene.torques())
-    return _codegen.source(get(scene.data["integrator"]["method"]), problem, path)
+    return _source.source(get(scene.data["integrator"]["method"]), problem, path)[0]
 
 
 def imported_kernels(text: str) -> set[str]:
@@ -138,8 +138,8 @@ def test_undeclared_paths_are_never_integrated(monkeypatch):
     ran, inside = [], []
 
     def recorder(original):
-        # a path is run by integrate, or by run_watched (simulate's primary path), which
-        # may itself call integrate: the outermost call is the one recorded
+        # every path is one Integrator.run (which may call the base class's run): the
+        # outermost call is the one recorded
         def recording(self, problem, path, *args, **kwargs):
             if not inside:
                 ran.append(path)
@@ -151,7 +151,7 @@ def test_undeclared_paths_are_never_integrated(monkeypatch):
 
         return recording
 
-    for name in ("integrate", "run_watched"):
+    for name in ("run",):
         monkeypatch.setattr(TemplateIntegrator, name, recorder(getattr(TemplateIntegrator, name)))
     for paths in (["quaternion"], ["euler", "rotor"]):
         ran.clear()
@@ -239,7 +239,7 @@ def test_chunked_loops_give_the_same_samples(monkeypatch):
     # states and the Euler path's watch statistics must be identical to one call.
     s = load_scene("paper_0.001deg").replace({"time.duration": 2.0, "output.quantities": []})
     whole = run_scene(s)
-    monkeypatch.setattr(_codegen, "CHUNK_STEPS", 300)  # 7 chunks of 300 steps (30 samples)
+    monkeypatch.setattr(_runner, "CHUNK_STEPS", 300)  # 7 chunks of 300 steps (30 samples)
     calls = []
     chunked = run_scene(s, progress=lambda done, total: calls.append((done, total)))
     for name in whole.names:

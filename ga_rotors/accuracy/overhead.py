@@ -2,7 +2,7 @@
 
 The overhead of a call is its time minus the time of its compiled loop alone (called
 directly with its arrays allocated beforehand,
-:func:`ga_rotors.integrators._codegen.bare_loop`): what the call costs around the loop
+:func:`ga_rotors.integrators._runner.bare_loop`): what the call costs around the loop
 — the checks, the step limit (judged in the same compiled call as the loop), allocating
 the samples, building the result. Three calls
 are timed interleaved (loop, ``Integrator.run``, ``simulate``), repeated, and reported as
@@ -39,7 +39,7 @@ def measure_overhead(method: str = "rk4", nsteps: int = 10, rounds: int = 2000) 
     True
     """
     from ..integrators import Problem, get
-    from ..integrators._codegen import bare_loop
+    from ..integrators._runner import bare_loop
     from ..simulation import simulate
 
     integ = get(method)

@@ -8,11 +8,11 @@ $XDG_CACHE_HOME/ga_rotors/generated or ~/.cache/ga_rotors/generated. Modules mad
 versions of ga_rotors are deleted 14 days after they were made (a version still in use
 recompiles then, once); --clear says what it removes and deletes this version's modules
 (the next runs compile them again), --clear --all every version's. The folder is private
-(mode 0700); one writable by others or owned by someone else is refused. --warm compiles,
-in parallel processes, every loop the paper and the bundled scenes use, so that their first
+(mode 0700); one writable by others or owned by someone else is refused. --warm compiles
+every loop the paper and the bundled scenes use, one line per job, so that their first
 run loads them (the README's install line runs it; without it ga-rotors paper and run
-compile what they need themselves); Ctrl-C stops it and its workers, and leaves a cache
-the next run completes.
+compile what they need themselves); Ctrl-C stops it and leaves a cache the next run
+completes.
 """
 
 from __future__ import annotations
@@ -35,7 +35,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument(
         "--warm",
         action="store_true",
-        help="compile now, in parallel, every loop the paper and the bundled scenes use",
+        help="compile now every loop the paper and the bundled scenes use",
     )
 
 
@@ -53,18 +53,18 @@ def _modules(n: int) -> str:
 
 def run(args: argparse.Namespace) -> int:
     from ..errors import InputError
-    from ..integrators import _codegen
+    from ..integrators import _cache
 
     if args.all and not args.clear:
         raise InputError("--all: only with --clear (ga-rotors cache --clear --all)")
     if args.warm and args.clear:
         raise InputError("--warm: not with --clear (one, then the other)")
-    directory = _codegen.cache_location()
+    directory = _cache.cache_location()
     if directory is None:
         print("no writable cache directory: loops are compiled in memory at every start")
         return 0
-    entries = _codegen.cached_modules(directory)
-    mine = _codegen.version_tag()
+    entries = _cache.cached_modules(directory)
+    mine = _cache.version_tag()
     current = [c for c in entries if c.version == mine]
     others = [c for c in entries if c.version != mine]
     if args.clear:
@@ -76,7 +76,7 @@ def run(args: argparse.Namespace) -> int:
         )
         from ..warmup import clear_markers
 
-        removed = _codegen.clear_cache(every_version=args.all)
+        removed = _cache.clear_cache(every_version=args.all)
         removed += clear_markers(every_version=args.all)
         kept = "" if args.all or not others else f"; kept {_modules(len(others))} of other versions"
         print(f"removed {removed} files{kept}")
@@ -96,6 +96,6 @@ def run(args: argparse.Namespace) -> int:
     )
     print(
         f"other versions: {_modules(len(others))}, {_size(sum(c.bytes for c in others))} "
-        f"(deleted {_codegen.PRUNE_AFTER_DAYS:g} days after they were made)"
+        f"(deleted {_cache.PRUNE_AFTER_DAYS:g} days after they were made)"
     )
     return 0

@@ -2,9 +2,10 @@
 
 The interface (how to add an integrator, the template slots, torques, the code
 generation that makes numba's cache work) is documented in
-:mod:`ga_rotors.integrators.base` and, step by step, in ``docs/extending.md``. Use
-:func:`get` to look one up, :func:`catalogue` to list them, and
-:func:`ga_rotors.simulation.simulate` to run one.
+:mod:`ga_rotors.integrators.base` and, step by step, in ``docs/extending.md``; problem
+kinds (what a kind of problem brings to a loop) in :mod:`ga_rotors.integrators.kinds`.
+Use :func:`get` to look one up, :func:`catalogue` to list them, :meth:`Integrator.run` to
+run one, and :func:`ga_rotors.simulation.simulate` to simulate a body.
 """
 
 from .base import (
@@ -13,6 +14,7 @@ from .base import (
     KINEMATIC,
     ORIENTATION_TORQUES,
     TORQUED,
+    Batch,
     Integrator,
     LoopResult,
     PrescribedOmega,
@@ -24,23 +26,29 @@ from .base import (
     register,
     torque_conflict,
 )
+from .kinds import KINDS, ProblemKind, SlotSource, register_kind
 from .template import TemplateIntegrator
 
 __all__ = [
     "ANY_TORQUE",
     "FREE",
+    "KINDS",
     "KINEMATIC",
     "ORIENTATION_TORQUES",
     "TORQUED",
+    "Batch",
     "Integrator",
     "LoopResult",
     "PrescribedOmega",
     "Problem",
+    "ProblemKind",
+    "SlotSource",
     "TemplateIntegrator",
     "TorqueTerm",
     "catalogue",
     "get",
     "names",
     "register",
+    "register_kind",
     "torque_conflict",
 ]

@@ -81,14 +81,19 @@ Specialisation (why code generation)
 ------------------------------------
 numba does not cache a function that receives compiled functions as arguments, nor a
 closure, so "one loop, any torque" would recompile in every process (~1 s). Instead,
-:mod:`ga_rotors.integrators._codegen` writes, for one (integrator, problem kind, path,
+:mod:`ga_rotors.integrators._source` writes, for one (integrator, problem kind, path,
 declared torque kernels), a small source module: imports of the kernels the templates
-use, ``torque`` as the sum of exactly the declared torque kernels, ``accel``, the
-templates and the loop of :mod:`ga_rotors.integrators.loops`, each under ``@jit``
-(cache=True). The file is written atomically into a per-user cache directory, named by a
-hash of its text and of the sources it depends on, then imported, so numba's on-disk
-cache applies. Undeclared torques are not in the source at all; free problems have no
-``torque``.
+use, the slots the problem's kind generates (:mod:`ga_rotors.integrators.kinds`: for a
+torqued body ``torque`` as the sum of exactly the declared torque kernels, and
+``accel``), the templates and the kind's loop (:mod:`ga_rotors.integrators.loops`), each
+under ``@jit`` (cache=True). :mod:`ga_rotors.integrators._cache` writes it atomically into
+a per-user cache directory, named by a hash of its text and of the sources it depends on,
+and imports it from there, so numba's on-disk cache applies; the text is kept in
+:mod:`linecache`, so tracebacks and ``inspect.getsource`` show it. Undeclared torques are
+not in the source at all; free problems have no ``torque``. The same route gives a batch
+of bodies its loop (the same step, compiled inline in a batched loop template) and
+scipy-style integrators their vector field. A template that calls a plain Python function
+missing from ``helpers=`` is refused in one line naming it.
 
 Effects (issue 5's torques)
 ---------------------------
@@ -100,20 +105,21 @@ its parameters. A prescribed angular velocity is a :class:`PrescribedOmega`:
 
 Running
 -------
-:meth:`Integrator.run` takes a :class:`Problem` and a path name and returns a
-:class:`LoopResult`; :func:`ga_rotors.simulation.simulate` is the user-facing entry point.
-``run`` checks the combination once per (problem, path) (:meth:`Integrator.check`,
-remembered by the problem), judges the step limit on the initial state
-(:meth:`Integrator.check_step`, closed form, its message built only past the limit), then
-calls :meth:`Integrator.integrate`, which does no checking: a caller that has checked
-once (``simulate`` over several paths) calls ``integrate`` directly. A template
-integrator's ``run`` does all of it in one compiled call of its generated module
+:meth:`Integrator.run` is the one way to run: it takes a :class:`Problem` (or a
+:class:`~.problem.Batch` of bodies) and a path name and returns a :class:`LoopResult`
+(or, with ``chunk``, the run as consecutive pieces); :func:`ga_rotors.simulation.simulate`
+is the user-facing entry point. ``run`` checks the combination once per (problem, path)
+(:meth:`Integrator.check`, remembered by the problem), judges the step limit on the
+initial state (:meth:`Integrator.check_step`, closed form, its message built only past
+the limit) and, asked to, watches the stored samples (:meth:`Integrator.watch_step`). A
+template integrator does all of it in one compiled call of its generated module
 (:func:`~ga_rotors.integrators.loops.judged_run`: the limit, measured by a compiled kernel,
 then the loop), and comes back to :meth:`Integrator.check_step` for the words only past
 the limit; what a run costs around its loop is measured by ``benchmarks/bench_overhead.py``.
 A non-template integrator (e.g. scipy's DOP853) subclasses :class:`Integrator` and
-implements :meth:`~Integrator.integrate` itself; :func:`ga_rotors.integrators._codegen.vector_field`
-gives it the same compiled, specialised right-hand side.
+implements ``_whole`` (and, if it can continue a run, ``_pieces``) itself;
+:func:`ga_rotors.integrators._runner.vector_field` gives it the same compiled, specialised
+right-hand side.
 """
 
 from __future__ import annotations
@@ -128,12 +134,13 @@ from typing import NamedTuple
 import numpy as np
 
 from ..errors import InputError
+from .kinds import KINDS
 from .limits import WATCH_GROWTH, watch_candidates
 from .problem import (
     FREE,
     KINEMATIC,
-    PROBLEM_KINDS,
     TORQUED,
+    Batch,
     PrescribedOmega,
     Problem,
     TorqueTerm,
@@ -144,13 +151,14 @@ __all__ = [
     "ANY_TORQUE",
     "BUILTIN_MODULES",
     "FREE",
+    "KINDS",
     "KINEMATIC",
     "ORIENTATION_TORQUES",
-    "PROBLEM_KINDS",
     "PROPERTIES",
     "TORQUED",
     "TORQUE_SUPPORT",
     "WATCH_GROWTH",
+    "Batch",
     "Integrator",
     "LoopResult",
     "PrescribedOmega",
@@ -248,51 +256,52 @@ class Integrator(ABC):
     step_limit_action: str = "warn"
     #: A tolerance, not the step, sets its accuracy (``h`` then only fixes sample times).
     adaptive: bool = False
+    #: It can continue a run where a piece ended (``run(chunk=...)`` then hands the run
+    #: out in pieces of that size; otherwise in one piece, the whole run).
+    continues: bool = False
 
     @property
     @abstractmethod
     def problems(self) -> frozenset[str]:
         """Problem kinds supported."""
 
-    @abstractmethod
-    def integrate(
-        self, problem: Problem, path: str, x0, w0, t0: float, h: float, nsteps: int,
-        every: int, progress: Callable[[int], None] | None = None,
-    ) -> LoopResult:  # fmt: skip
-        """Integrate ``nsteps`` steps of size ``h`` from (x0, w0) at t0 on ``path``, keeping
-        every ``every``-th sample, with no checks (see :meth:`run`); ``progress(done)`` is
-        called as steps complete (at least once, at the end)."""
-
-    def segments(
-        self, problem: Problem, path: str, x0, w0, t0: float, h: float, nsteps: int,
-        every: int, chunk: int, progress: Callable[[int], None] | None = None,
-    ):  # fmt: skip
-        """:meth:`integrate`'s samples as consecutive pieces of about ``chunk`` steps, so a
-        long run holds one piece at a time (a generator of :class:`LoopResult`; the first
-        holds sample 0, each next one the samples after the previous piece's last).
-
-        Joined, the pieces are :meth:`integrate`'s samples bit for bit: each continues
-        from the exact state, step number and carried state (watch statistics; an
-        adaptive method's step size) where the previous one ended. The compiled methods
-        and ``dop853`` do this; this default, for an integrator that cannot continue,
-        yields one piece holding the whole run (and :func:`~ga_rotors.simulation.simulate_chunks`
-        then hands out the run as one piece).
-
-        Examples
-        --------
-        >>> r = get("rk4").segments(Problem((1.0, 2.0, 3.0)), "rotor", (1.0, 0, 0, 0),
-        ...                         (0.0, 0.0, 2.0), 0.0, 0.01, 100, 10, chunk=50)
-        >>> [piece.t.tolist()[-1] for piece in r]
-        [0.5, 1.0]
-        """
-        yield self.integrate(problem, path, x0, w0, t0, h, nsteps, every, progress)
-
     def run(
-        self, problem: Problem, path: str, x0, w0, t0: float, h: float, nsteps: int,
-        every: int, progress: Callable[[int], None] | None = None,
-    ) -> LoopResult:  # fmt: skip
-        """:meth:`check` (once per problem and path), :meth:`check_step` on (w0, h, nsteps),
-        then :meth:`integrate`.
+        self, problem: Problem | Batch, path: str, x0, w0, t0: float, h: float, nsteps: int,
+        every, *, chunk: int | None = None, progress: Callable[[int], None] | None = None,
+        where: str | None = "h", watch: bool = False, stacklevel: int = 2,
+        parallel: bool = True,
+    ):  # fmt: skip
+        """Integrate ``nsteps`` steps of size ``h`` from (x0, w0) at ``t0`` on ``path``,
+        keeping every ``every``-th sample (and the last): the one way to run a loop.
+
+        :meth:`check` (once per problem and path), then the step limit judged on the
+        initial state (past it, a :class:`~ga_rotors.errors.StepLimitWarning`, or for a
+        method that has no step there an InputError, the message starting with ``where``;
+        ``where=None``: not judged, for a caller that judged it already).
+
+        Parameters
+        ----------
+        problem : Problem or Batch
+            What is integrated; a :class:`Batch` integrates many bodies at once (``x0``
+            (n, dim), ``w0`` (n, 3); ``every`` may then be the step numbers to sample;
+            not judged; ``parallel``: over numba's threads, or in the calling thread).
+        chunk : int, optional
+            Hand the run out as consecutive pieces of about ``chunk`` steps (an iterator
+            of :class:`LoopResult`: the first holds sample 0, each next one the samples
+            after the previous piece's last), so a long run holds one piece at a time.
+            Joined, they are the whole run's samples bit for bit. For a batch: the
+            bodies per chunk of its loop (default 256, a chunk's states stay in L1).
+        progress : callable, optional
+            ``progress(steps_done)``, called as the loop advances (at least at the end).
+        watch : bool
+            Also judge the limit at the stored samples whose ω sets a new high
+            (:meth:`watch_step`): a torque may carry a run past the limit it started within.
+        stacklevel : int
+            The warnings' as seen from here (2: this method's caller).
+
+        Returns
+        -------
+        LoopResult, or an iterator of them with ``chunk``
 
         Examples
         --------
@@ -300,23 +309,11 @@ class Integrator(ABC):
         ...                    (0.0, 0.0, 2.0), 0.0, 0.01, 100, 100)
         >>> r.t.tolist(), r.complete
         ([0.0, 1.0], True)
-        """
-        self.check_once(problem, path)
-        self.check_step(problem, w0, h, nsteps, where="h")
-        return self.integrate(problem, path, x0, w0, t0, h, nsteps, every, progress)
+        >>> pieces = get("rk4").run(Problem((1.0, 2.0, 3.0)), "rotor", (1.0, 0, 0, 0),
+        ...                         (0.0, 0.0, 2.0), 0.0, 0.01, 100, 10, chunk=50)
+        >>> [piece.t.tolist()[-1] for piece in pieces]
+        [0.5, 1.0]
 
-    def run_watched(
-        self, problem: Problem, path: str, x0, w0, t0: float, h: float, nsteps: int,
-        every: int, progress: Callable[[int], None] | None = None, *, where: str = "step",
-        stacklevel: int = 2,
-    ) -> LoopResult:  # fmt: skip
-        """:meth:`run`, with the step limit's messages starting with ``where``, then
-        watched over the stored samples (:meth:`watch_step`) when the start was within it:
-        what :func:`ga_rotors.simulation.simulate` does for its primary path.
-        ``stacklevel`` is the warnings' as seen from here (2: this method's caller).
-
-        Examples
-        --------
         A torque spins the body up past rk4's limit during the run:
 
         >>> import warnings
@@ -324,18 +321,58 @@ class Integrator(ABC):
         >>> spin = TorqueTerm(body_torque, (0.0, 0.0, 30.0), depends_on_omega=False)
         >>> with warnings.catch_warnings(record=True) as caught:
         ...     warnings.simplefilter("always")
-        ...     r = get("rk4").run_watched(Problem((1.0, 1.5, 2.0), (spin,)), "quaternion",
-        ...                                (1.0, 0, 0, 0), (0.0, 0.0, 10.0), 0.0, 0.01, 2000,
-        ...                                10, where="mine")
+        ...     r = get("rk4").run(Problem((1.0, 1.5, 2.0), (spin,)), "quaternion",
+        ...                        (1.0, 0, 0, 0), (0.0, 0.0, 10.0), 0.0, 0.01, 2000, 10,
+        ...                        where="mine", watch=True)
         >>> str(caught[0].message).startswith("mine: rk4 crosses its step limit at t = ")
         True
         """
+        if isinstance(problem, Batch):
+            self.check_once(problem.problem, path)
+            return self._batch(problem, path, x0, w0, t0, h, nsteps, every, parallel, chunk)
         self.check_once(problem, path)
-        limit = self.check_step(problem, w0, h, nsteps, where=where, stacklevel=stacklevel + 1)
-        result = self.integrate(problem, path, x0, w0, t0, h, nsteps, every, progress)
-        if limit is not None and not limit.exceeded:
+        if chunk is not None and (
+            isinstance(chunk, bool) or not isinstance(chunk, int | np.integer) or chunk < 1
+        ):
+            raise InputError(f"expected a positive integer, got {chunk!r}", key="chunk")
+        limit = None
+        if where is not None:
+            limit = self.check_step(problem, w0, h, nsteps, where, stacklevel + 1)
+        watching = watch and limit is not None and not limit.exceeded
+        if chunk is not None:
+            found = self._pieces(problem, path, x0, w0, t0, h, nsteps, every, chunk, progress)
+            return self._watched(found, problem, h, nsteps, where) if watching else found
+        result = self._whole(problem, path, x0, w0, t0, h, nsteps, every, progress)
+        if watching:
             self.watch_step(problem, result.t, result.w, h, nsteps, where, stacklevel + 1)
         return result
+
+    def _watched(self, pieces, problem: Problem, h: float, nsteps: int, where: str):
+        """``pieces``, each watched (:meth:`watch_step`) until a sample past the limit."""
+        for piece in pieces:
+            if problem is not None:
+                found = self.watch_step(problem, piece.t, piece.w, h, nsteps, where, 4)
+                problem = None if found is not None else problem
+            yield piece
+
+    @abstractmethod
+    def _whole(self, problem: Problem, path: str, x0, w0, t0: float, h: float, nsteps: int,
+               every: int, progress) -> LoopResult:  # fmt: skip
+        """The run in one piece, unchecked (:meth:`run` checked it)."""
+
+    def _pieces(self, problem: Problem, path: str, x0, w0, t0: float, h: float, nsteps: int,
+                every: int, chunk: int, progress):  # fmt: skip
+        """The run as pieces of about ``chunk`` steps (see :meth:`run`), unchecked. This
+        default, for an integrator that cannot continue a run (``continues`` False),
+        yields one piece holding the whole run."""
+        yield self._whole(problem, path, x0, w0, t0, h, nsteps, every, progress)
+
+    def _batch(self, batch: Batch, path: str, x0, w0, t0, h, nsteps, every, parallel, chunk):
+        """A batch's run (see :meth:`run`); this default refuses it."""
+        raise InputError(
+            f"{self.name} integrates one body at a time; batches run on the fixed-step "
+            "template methods", key="integrator",
+        )  # fmt: skip
 
     def check_once(self, problem: Problem, path: str) -> None:
         """:meth:`check`, remembered by the problem: a problem and path that passed are
@@ -487,7 +524,7 @@ class Integrator(ABC):
         unknown = set(self.conserves) - PROPERTIES
         if unknown:
             raise InputError(f"{self.name}: unknown conserved properties {sorted(unknown)}")
-        if not set(self.problems) <= set(PROBLEM_KINDS):
+        if not set(self.problems) <= set(KINDS):
             raise InputError(f"{self.name}: unknown problem kinds {sorted(self.problems)}")
         if self.step_limit_action not in ("warn", "raise"):
             raise InputError(

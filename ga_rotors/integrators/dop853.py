@@ -3,10 +3,10 @@
 Not a compiled loop: scipy drives the steps in Python and calls the right-hand side once
 per evaluation. The right-hand side itself is the same compiled, specialised vector field
 the fixed-step methods use (ẋ from the path's kinematics, ω̇ from Euler's equations with
-exactly the declared torques), :func:`ga_rotors.integrators._codegen.vector_field`, so
+exactly the declared torques), :func:`ga_rotors.integrators._runner.vector_field`, so
 a comparison with the compiled methods measures the method and scipy's driver, not a
 slower formula. Order 8, adaptive: a tolerance, not a step, sets the accuracy; the ``h``
-and ``every`` of :meth:`Dop853.run` only fix the sample times. Conserves nothing.
+and ``every`` of its ``run`` only fix the sample times. Conserves nothing.
 """
 
 from __future__ import annotations
@@ -45,6 +45,7 @@ class Dop853(Integrator):
     paths = frozenset({"rotor", "quaternion", "euler"})
     evaluations = 12  # per accepted step; the run's own count is in ``stats[0]``
     adaptive = True
+    continues = True
 
     def __init__(self, rtol: float = 1e-10, atol: float | None = None):
         if not (0.0 < rtol < 1.0):
@@ -57,10 +58,10 @@ class Dop853(Integrator):
     def problems(self) -> frozenset[str]:
         return frozenset({FREE, TORQUED, KINEMATIC})
 
-    def integrate(self, problem, path, x0, w0, t0, h, nsteps, every, progress=None):
+    def _whole(self, problem, path, x0, w0, t0, h, nsteps, every, progress=None):
         from scipy.integrate import solve_ivp
 
-        from ._codegen import vector_field
+        from ._runner import vector_field
 
         rhs = vector_field(problem, path)
         x0 = np.asarray(x0, dtype=np.float64)
@@ -96,11 +97,11 @@ class Dop853(Integrator):
             stats=np.array([float(sol.nfev)]),
         )
 
-    def segments(self, problem, path, x0, w0, t0, h, nsteps, every, chunk, progress=None):
-        """See :meth:`Integrator.segments`: scipy's DOP853 stepper kept alive between
-        pieces (its step size, error history and dense output carry over), each piece the
-        samples of about ``chunk`` steps read off its dense output exactly as
-        ``solve_ivp(t_eval=...)`` reads them, so the pieces joined are :meth:`integrate`'s
+    def _pieces(self, problem, path, x0, w0, t0, h, nsteps, every, chunk, progress=None):
+        """See :meth:`Integrator.run`'s ``chunk``: scipy's DOP853 stepper kept alive
+        between pieces (its step size, error history and dense output carry over), each
+        piece the samples of about ``chunk`` steps read off its dense output exactly as
+        ``solve_ivp(t_eval=...)`` reads them, so the pieces joined are the whole run's
         samples bit for bit.
 
         Examples
@@ -108,15 +109,15 @@ class Dop853(Integrator):
         >>> from ga_rotors.integrators import Problem
         >>> args = (Problem((1.0, 2.0, 3.0)), "quaternion", (1.0, 0, 0, 0), (0.1, 0, 2.0),
         ...         0.0, 0.01, 100, 10)
-        >>> pieces = list(DOP853.segments(*args, chunk=40))
+        >>> pieces = list(DOP853.run(*args, chunk=40))
         >>> [len(p.t) for p in pieces]
         [5, 4, 2]
-        >>> bool((np.concatenate([p.x for p in pieces]) == DOP853.integrate(*args).x).all())
+        >>> bool((np.concatenate([p.x for p in pieces]) == DOP853.run(*args).x).all())
         True
         """
         from scipy.integrate import DOP853 as Stepper
 
-        from ._codegen import vector_field
+        from ._runner import vector_field
 
         rhs = vector_field(problem, path)
         x0 = np.asarray(x0, dtype=np.float64)

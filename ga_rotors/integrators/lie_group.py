@@ -39,7 +39,7 @@ from .slots import accel, o_from_quat, o_quat, omega
 from .template import TemplateIntegrator
 
 # The step templates below are not in __all__: they are source the code generator
-# specialises (ga_rotors.integrators._codegen), not functions to call; the public entry
+# specialises (ga_rotors.integrators._source), not functions to call; the public entry
 # is the registered integrator, run through Integrator.run.
 __all__ = [
     "CF4",

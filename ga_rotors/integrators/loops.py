@@ -1,14 +1,17 @@
 """Loop templates: the compiled driver every fixed-step integrator runs inside.
 
 Templates are plain Python (see :mod:`ga_rotors.integrators.base`); the code generator
-pastes them into a module next to the integrator's step template and the path's kernels,
-and compiles them there. Both loops share one calling convention::
+(:mod:`ga_rotors.integrators._source`) pastes them into a module next to the integrator's
+step template and the path's kernels, and compiles them there. Which loop a problem runs
+is its kind's declaration (:mod:`ga_rotors.integrators.kinds`). The loops share one calling
+convention::
 
     rows = loop(x0, w0, t0, h, first, nsteps, every, inertia, params, out_t, out_x, out_w,
                 stats)
 
-* ``x0`` (dim,) path state at step ``first``, ``w0`` (3,) body ω (ignored by the
-  kinematic loop); the loop takes steps ``first`` to ``first + nsteps``;
+* ``x0`` (dim,) path state at step ``first``, ``w0`` the rate part of the state (the
+  body ω; ignored by the kinematic loop), read and written through the kind's
+  ``r_load``/``r_store``; the loop takes steps ``first`` to ``first + nsteps``;
 * sample 0 is the initial state; then every ``every`` steps and always the last step;
 * ``t = t0 + (first + i)·h`` is computed, not accumulated, so times carry no drift, and a
   run continued from step ``first`` sees exactly the times a single run sees;
@@ -22,16 +25,48 @@ only when a limit is past (:meth:`ga_rotors.integrators.TemplateIntegrator.run`)
 
 The right-hand-side templates (``dynamics_rhs``, ``kinematic_rhs``) evaluate the vector
 field once, for integrators that are not compiled loops (scipy's DOP853); see
-:func:`ga_rotors.integrators._codegen.vector_field`.
+:func:`ga_rotors.integrators._runner.vector_field`.
+
+The batched templates (:func:`batch_chunk`, :func:`batch_loop`) run many bodies at once,
+each with its own body and parameters, with the *same* step (compiled inline, so the
+loop over bodies vectorises): struct-of-arrays states, ``x`` of shape (dim, n), ``w`` of
+shape (rate, n), read and written one row per component (``x_rows``, ``x_get``,
+``x_put``, ... generated for the sizes at hand), bodies in chunks small enough to stay in
+the L1 cache, each chunk taking all its steps before the next, chunks spread over the
+cores with ``prange``.
 """
 
 from __future__ import annotations
 
-from ._arith import finite_row, store3
-from .limits import _watch_candidates
-from .slots import accel, limit, loop, o_load, o_rate, o_store, o_watch, omega, step
+from numba import prange
 
-# Templates only (consumed by ga_rotors.integrators._codegen, never called as Python):
+from ._arith import finite_row
+from .limits import _watch_candidates
+from .slots import (
+    accel,
+    body_get,
+    body_rows,
+    limit,
+    loop,
+    o_load,
+    o_rate,
+    o_store,
+    o_watch,
+    omega,
+    param_get,
+    param_rows,
+    r_load,
+    r_store,
+    step,
+    w_get,
+    w_put,
+    w_rows,
+    x_get,
+    x_put,
+    x_rows,
+)
+
+# Templates only (consumed by ga_rotors.integrators._source, never called as Python):
 # nothing here is an API of its own.
 __all__: list[str] = []
 
@@ -41,10 +76,10 @@ def fixed_step_loop(
 ):
     """Dynamics: ``x, w = step(t, x, w, h, inertia, params)`` repeated ``nsteps`` times."""
     x = o_load(x0)
-    w = (w0[0], w0[1], w0[2])
+    w = r_load(w0)
     out_t[0] = t0 + first * h
     o_store(out_x, 0, x)
-    store3(out_w, 0, w)
+    r_store(out_w, 0, w)
     row = 1
     countdown = every
     for i in range(nsteps):
@@ -56,7 +91,7 @@ def fixed_step_loop(
             countdown = every
             out_t[row] = t0 + (first + i + 1) * h
             o_store(out_x, row, x)
-            store3(out_w, row, w)
+            r_store(out_w, row, w)
             if not (finite_row(out_x, row) and finite_row(out_w, row)):
                 return row
             row += 1
@@ -70,7 +105,7 @@ def kinematic_loop(
     x = o_load(x0)
     out_t[0] = t0 + first * h
     o_store(out_x, 0, x)
-    store3(out_w, 0, omega(out_t[0], params))
+    r_store(out_w, 0, omega(out_t[0], params))
     row = 1
     countdown = every
     for i in range(nsteps):
@@ -83,7 +118,7 @@ def kinematic_loop(
             t1 = t0 + (first + i + 1) * h
             out_t[row] = t1
             o_store(out_x, row, x)
-            store3(out_w, row, omega(t1, params))
+            r_store(out_w, row, omega(t1, params))
             if not (finite_row(out_x, row) and finite_row(out_w, row)):
                 return row
             row += 1
@@ -133,3 +168,32 @@ def dynamics_rhs(t, y, inertia, params, out):
 def kinematic_rhs(t, y, inertia, params, out):
     """out = ẋ for the path state y under the prescribed ω(t)."""
     o_store(out.reshape((1, y.shape[0])), 0, o_rate(o_load(y), omega(t, params)))
+
+
+def batch_chunk(x, w, body, params, lo, hi, t0, h, marks, out_x, out_w):
+    """Bodies ``lo``..``hi - 1`` of a batch through every step, in place in ``x`` (dim, n)
+    and ``w`` (rate, n); their states at step ``marks[m]`` into ``out_x[m]`` and
+    ``out_w[m]``. ``body`` (body size, n) and ``params`` (P, n) are per body; a state
+    that stops being finite stays NaN (nothing reads it)."""
+    xs, ws = x_rows(x, lo, hi), w_rows(w, lo, hi)
+    bs, ps = body_rows(body, lo, hi), param_rows(params, lo, hi)
+    done = 0
+    for m in range(marks.shape[0]):
+        for k in range(done, marks[m]):
+            t = t0 + k * h
+            for i in range(hi - lo):
+                xi, wi = step(t, x_get(xs, i), w_get(ws, i), h, body_get(bs, i), param_get(ps, i))
+                x_put(xs, i, xi)
+                w_put(ws, i, wi)
+        done = marks[m]
+        out_x[m, :, lo:hi] = x[:, lo:hi]
+        out_w[m, :, lo:hi] = w[:, lo:hi]
+
+
+def batch_loop(x, w, body, params, t0, h, marks, out_x, out_w, chunk):
+    """Every body of a batch, ``chunk`` bodies at a time, the chunks spread over the
+    cores (see :func:`batch_chunk`)."""
+    n = x.shape[1]
+    for c in prange((n + chunk - 1) // chunk):
+        lo = c * chunk
+        batch_chunk(x, w, body, params, lo, min(n, lo + chunk), t0, h, marks, out_x, out_w)

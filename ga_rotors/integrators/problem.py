@@ -5,7 +5,8 @@ compiled loop, the packed parameters) is remembered on it (:meth:`Problem.derive
 :func:`problem_for` shares one problem between the calls that repeat the same moments and
 torques. Torque and ω kernels are compiled functions defined at module level of an
 importable module, so the generated loops can import them by name
-(:mod:`ga_rotors.integrators._codegen`).
+(:mod:`ga_rotors.integrators._source`). A :class:`Batch` is many bodies with one problem's
+torques, each with its own moments and torque parameters, run at once.
 """
 
 from __future__ import annotations
@@ -22,8 +23,8 @@ from ..errors import InputError
 __all__ = [
     "FREE",
     "KINEMATIC",
-    "PROBLEM_KINDS",
     "TORQUED",
+    "Batch",
     "PrescribedOmega",
     "Problem",
     "TorqueTerm",
@@ -33,7 +34,6 @@ __all__ = [
 FREE = "free"
 TORQUED = "torqued"
 KINEMATIC = "kinematic"
-PROBLEM_KINDS = (FREE, TORQUED, KINEMATIC)
 
 
 def _kernel_location(kernel, what: str) -> tuple[str, str]:
@@ -238,3 +238,53 @@ def problem_for(inertia, torques=(), accept_lower_order: bool = False) -> Proble
             _PROBLEMS.clear()
         found = _PROBLEMS[key] = Problem(key[0], key[1], accept_lower_order=accept_lower_order)
     return found
+
+
+@dataclass(frozen=True, eq=False)
+class Batch:
+    """Many bodies with ``problem``'s declared torques, each with its own moments and
+    torque parameters: what :meth:`~ga_rotors.integrators.Integrator.run` integrates at
+    once, each body as its own single run would, bit for bit.
+
+    ``inertia`` (n, 3) principal moments, one row per body (for another problem kind, the
+    kind's ``body_size`` numbers: :mod:`~ga_rotors.integrators.kinds`); ``params`` (n, P) each body's
+    packed torque parameters (as :meth:`Problem.params` packs the problem's; default: the
+    problem's for every body).
+
+    Examples
+    --------
+    >>> b = Batch(Problem((1.0, 2.0, 3.0)), [[1.0, 2.0, 3.0], [1.0, 2.0, 2.5]])
+    >>> len(b), b.params.shape
+    (2, (2, 0))
+    >>> Batch(Problem((1.0, 2.0, 3.0)), [[1.0, 2.0, 3.0]], params=[[1.0]])
+    Traceback (most recent call last):
+    ...
+    ga_rotors.errors.InputError: params: expected shape (1, 0) (one row of the problem's 0 parameters per body), got (1, 1)
+    """  # noqa: E501
+
+    problem: Problem
+    inertia: np.ndarray
+    params: np.ndarray | None = None
+
+    def __post_init__(self):
+        if not isinstance(self.problem, Problem):
+            raise InputError(f"expected a Problem, got {self.problem!r}", key="problem")
+        inertia = np.asarray(self.inertia, dtype=np.float64)
+        if inertia.ndim != 2:
+            raise InputError(f"expected one row per body, got shape {inertia.shape}",
+                             key="inertia")  # fmt: skip
+        size = self.problem.params().size
+        if self.params is None:
+            params = np.tile(self.problem.params(), (inertia.shape[0], 1))
+        else:
+            params = np.asarray(self.params, dtype=np.float64)
+        if params.shape != (inertia.shape[0], size):
+            raise InputError(
+                f"expected shape {(inertia.shape[0], size)} (one row of the problem's {size} "
+                f"parameters per body), got {params.shape}", key="params",
+            )  # fmt: skip
+        object.__setattr__(self, "inertia", inertia)
+        object.__setattr__(self, "params", params)
+
+    def __len__(self) -> int:
+        return self.inertia.shape[0]

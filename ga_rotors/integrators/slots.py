@@ -3,9 +3,9 @@
 A template (a plain Python function, see :mod:`ga_rotors.integrators.base`) imports the
 slots it uses from this module, so it reads and lints as ordinary Python. The generated
 module that instantiates the template defines or imports a compiled function under the
-same name instead, chosen for one orientation path, one problem kind and one set of
-declared torques. Calling a slot directly (running a template uninstantiated) raises
-:class:`TemplateSlotError`.
+same name instead, chosen for one orientation path, one problem kind
+(:mod:`ga_rotors.integrators.kinds`) and one set of declared torques. Calling a slot
+directly (running a template uninstantiated) raises :class:`TemplateSlotError`.
 
 Every slot takes and returns tuples of floats (``x`` an orientation state, ``w`` a body
 angular velocity 3-tuple, ``q`` a unit quaternion 4-tuple, ``t``/``h`` floats).
@@ -41,7 +41,19 @@ o_watch    o_watch(t, x, w, h, stats)            the path's own diagnostics (the
                                                  path counts steps near sin θ = 0); a path
                                                  with nothing to watch binds a kernel that
                                                  compiles to no instruction
+r_load     r_load(array) -> w                    read the rate part of a state (the kind's
+                                                 ``rate_load``: ω, 3 numbers)
+r_store    r_store(out, row, w)                  write it into a 2-D array
 ========== ===================================== =========================================
+
+The batched loop (:func:`~ga_rotors.integrators.loops.batch_chunk`) reads and writes its
+struct-of-arrays states through slots generated for the sizes at hand: ``x_rows(a, lo,
+hi)`` the tuple of row slices ``a[k, lo:hi]`` of the orientation states, ``x_get(rows,
+i)`` body i's state as a tuple, ``x_put(rows, i, x)`` written back; ``w_rows``,
+``w_get``, ``w_put`` the same for the rates; ``body_rows``/``body_get`` the bodies (what
+the step receives as ``inertia``: the moments, then what the kind stores per body) and
+``param_rows``/``param_get`` the torques' parameters (a tuple per body where every kernel
+reads its parameters one by one, else the body's column as an array).
 """
 
 from __future__ import annotations
@@ -50,10 +62,14 @@ from ..errors import GaRotorsError
 
 __all__ = [
     "ALL_SLOTS",
+    "BATCH_SLOTS",
     "GENERATED_SLOTS",
+    "KIND_SLOTS",
     "PATH_SLOTS",
     "TemplateSlotError",
     "accel",
+    "body_get",
+    "body_rows",
     "limit",
     "loop",
     "o_axpy",
@@ -66,8 +82,18 @@ __all__ = [
     "o_store",
     "o_watch",
     "omega",
+    "param_get",
+    "param_rows",
+    "r_load",
+    "r_store",
     "step",
     "torque",
+    "w_get",
+    "w_put",
+    "w_rows",
+    "x_get",
+    "x_put",
+    "x_rows",
 ]
 
 
@@ -84,8 +110,15 @@ PATH_SLOTS = {
     "o_watch": "watch",
 }
 
+#: Slot name -> the attribute of a problem kind that binds it.
+KIND_SLOTS = {"r_load": "rate_load", "r_store": "rate_store"}
+
+#: Slots of the batched loop, written for the sizes of one batch.
+BATCH_SLOTS = ("x_rows", "x_get", "x_put", "w_rows", "w_get", "w_put", "body_rows",
+               "body_get", "param_rows", "param_get")  # fmt: skip
+
 #: Slots whose definition the code generator writes.
-GENERATED_SLOTS = ("torque", "accel", "omega", "step", "loop", "limit")
+GENERATED_SLOTS = ("torque", "accel", "omega", "step", "loop", "limit", *BATCH_SLOTS)
 
 
 class TemplateSlotError(GaRotorsError, RuntimeError):
@@ -109,6 +142,11 @@ def _slot_examples(name: str) -> str:
         bound = (
             f"    >>> PATH_SLOTS[{name!r}]  # each path module's kernel of this name binds it\n"
             f"    {PATH_SLOTS[name]!r}\n"
+        )
+    elif name in KIND_SLOTS:
+        bound = (
+            f"    >>> KIND_SLOTS[{name!r}]  # the problem kind's kernel of this name binds it\n"
+            f"    {KIND_SLOTS[name]!r}\n"
         )
     else:
         bound = (
@@ -151,5 +189,17 @@ o_from_quat = _slot("o_from_quat", "x = o_from_quat(q): a unit quaternion in pat
 o_load = _slot("o_load", "x = o_load(array): read a state.")
 o_store = _slot("o_store", "o_store(out, row, x): write a state.")
 o_watch = _slot("o_watch", "o_watch(t, x, w, h, stats): path diagnostics.")
+r_load = _slot("r_load", "w = r_load(array): read the rate part of a state.")
+r_store = _slot("r_store", "r_store(out, row, w): write the rate part of a state.")
+x_rows = _slot("x_rows", "rows = x_rows(a, lo, hi): a batch's orientation rows for a chunk.")
+x_get = _slot("x_get", "x = x_get(rows, i): body i's orientation state.")
+x_put = _slot("x_put", "x_put(rows, i, x): write body i's orientation state.")
+w_rows = _slot("w_rows", "rows = w_rows(a, lo, hi): a batch's rate rows for a chunk.")
+w_get = _slot("w_get", "w = w_get(rows, i): body i's rates.")
+w_put = _slot("w_put", "w_put(rows, i, w): write body i's rates.")
+body_rows = _slot("body_rows", "rows = body_rows(a, lo, hi): a chunk's bodies, stored values too.")
+body_get = _slot("body_get", "inertia = body_get(rows, i): body i as its step receives it.")
+param_rows = _slot("param_rows", "rows = param_rows(a, lo, hi): a chunk's torque parameters.")
+param_get = _slot("param_get", "params = param_get(rows, i): body i's torque parameters.")
 
-ALL_SLOTS = frozenset(PATH_SLOTS) | frozenset(GENERATED_SLOTS)
+ALL_SLOTS = frozenset(PATH_SLOTS) | frozenset(KIND_SLOTS) | frozenset(GENERATED_SLOTS)

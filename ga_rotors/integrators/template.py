@@ -2,8 +2,9 @@
 
 How a template integrator is declared (its steps, helpers, cost per step, step limit) is
 the interface documented in :mod:`ga_rotors.integrators.base`; how its templates become
-a compiled loop is :mod:`ga_rotors.integrators._codegen`. This module joins the two, so
-that neither imports the other.
+a compiled loop is :mod:`ga_rotors.integrators._source` (the text),
+:mod:`ga_rotors.integrators._cache` (the module) and :mod:`ga_rotors.integrators._runner`
+(running it). This module joins them to the interface, so that neither imports the other.
 """
 
 from __future__ import annotations
@@ -11,8 +12,9 @@ from __future__ import annotations
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 
-from . import _codegen, loops
+from . import _runner, loops
 from .base import ANY_TORQUE, Integrator
+from .problem import Problem
 
 __all__ = ["TemplateIntegrator"]
 
@@ -54,6 +56,7 @@ class TemplateIntegrator(Integrator):
     step_limit: Callable | None = None
     step_limit_action: str = "warn"
     evaluations: float = field(kw_only=True)
+    continues = True  # not a field: every template integrator continues a run
 
     def __post_init__(self):
         object.__setattr__(self, "conserves", frozenset(self.conserves))
@@ -69,12 +72,15 @@ class TemplateIntegrator(Integrator):
     def problems(self) -> frozenset[str]:
         return self._problems
 
-    def run(self, problem, path, x0, w0, t0, h, nsteps, every, progress=None):
-        """See :meth:`Integrator.run`: the same checks, with the step limit judged inside
-        the run's one compiled call (:func:`~ga_rotors.integrators.loops.judged_run`) when
-        the limit is measured (:func:`~ga_rotors.integrators.limits.measured`, every
-        built-in limit); only a run past it comes back to :meth:`check_step`, which builds
-        the words and warns, or raises before any step for a method that refuses (lgvi).
+    def run(self, problem, path, x0, w0, t0, h, nsteps, every, *, chunk=None, progress=None,
+            where="h", watch=False, stacklevel=2, parallel=True):  # fmt: skip
+        """See :meth:`Integrator.run`: the same checks; a run in one piece without progress
+        judges the step limit inside its one compiled call
+        (:func:`~ga_rotors.integrators.loops.judged_run`) when the limit is measured
+        (:func:`~ga_rotors.integrators.limits.measured`, every built-in limit), and
+        watches the stored samples there too; only a run past the limit comes back to
+        :meth:`check_step` (or :meth:`watch_step`), which builds the words and warns, or
+        raises before any step for a method that refuses (lgvi).
 
         Examples
         --------
@@ -89,66 +95,44 @@ class TemplateIntegrator(Integrator):
         ...
         ga_rotors.errors.InputError: h: lgvi cannot step h·|ω| = 2 (limit 1): ...
         """
-        last = self._last
-        if last[0] is problem and last[1] == path:
-            prep = last[2]
-        else:
-            prep = _codegen.prepared(self, problem, path, checked=True)
-            object.__setattr__(self, "_last", (problem, path, prep))
-        if progress is not None or prep.python_limit:
-            self.check_step(problem, w0, h, nsteps, where="h")
-            return _codegen.run_prepared(prep, x0, w0, t0, h, nsteps, every, 0, progress)[0]
-        result, value, bound, _ = _codegen.run_prepared(
-            prep, x0, w0, t0, h, nsteps, every, prep.flags
-        )
-        if not value < bound:  # past the limit: the words, and the warning or the error
-            self.check_step(problem, w0, h, nsteps, where="h")
-            if result is None:  # refused, yet check_step let it pass: run it unjudged
-                result = _codegen.run_prepared(prep, x0, w0, t0, h, nsteps, every)[0]
-        return result
+        if chunk is None and progress is None and where is not None and type(problem) is Problem:
+            last = self._last
+            if last[0] is problem and last[1] == path:
+                prep = last[2]
+            else:
+                prep = _runner.prepared(self, problem, path, checked=True)
+                object.__setattr__(self, "_last", (problem, path, prep))
+            if not prep.python_limit:
+                return self._judged(prep, problem, x0, w0, t0, h, nsteps, every, where, watch,
+                                    stacklevel + 1)  # fmt: skip
+        return super().run(
+            problem, path, x0, w0, t0, h, nsteps, every, chunk=chunk, progress=progress,
+            where=where, watch=watch, stacklevel=stacklevel + 1, parallel=parallel,
+        )  # fmt: skip
 
-    def run_watched(
-        self, problem, path, x0, w0, t0, h, nsteps, every, progress=None, *, where="step",
-        stacklevel=2,
-    ):  # fmt: skip
-        """See :meth:`Integrator.run_watched`: as :meth:`run`, the watch over the stored
-        samples done in the same compiled call; only a limit past (at the start, or at a
-        sample) comes back to :meth:`check_step` or :meth:`watch_step` for the words.
-
-        Examples
-        --------
-        >>> from ga_rotors.integrators import Problem, get
-        >>> r = get("rk4").run_watched(Problem((1.0, 2.0, 3.0)), "quaternion",
-        ...                            (1.0, 0, 0, 0), (0.0, 0.0, 2.0), 0.0, 0.01, 100, 50)
-        >>> r.t.tolist()
-        [0.0, 0.5, 1.0]
-        """
-        prep = _codegen.prepared(self, problem, path, checked=True)
-        if progress is not None or prep.python_limit:
-            return super().run_watched(
-                problem, path, x0, w0, t0, h, nsteps, every, progress, where=where,
-                stacklevel=stacklevel + 1,
-            )  # fmt: skip
-        flags = prep.flags | loops.WATCH if prep.flags else 0
-        result, value, bound, crossing = _codegen.run_prepared(
+    def _judged(self, prep, problem, x0, w0, t0, h, nsteps, every, where, watch, stacklevel):
+        """One compiled call: the limit, the loop and (``watch``) the watch; the words only
+        past the limit."""
+        flags = prep.flags | loops.WATCH if watch and prep.flags else prep.flags
+        result, value, bound, crossing = _runner.run_prepared(
             prep, x0, w0, t0, h, nsteps, every, flags
         )
-        if not value < bound:
+        if not value < bound:  # past the limit: the words, and the warning or the error
             self.check_step(problem, w0, h, nsteps, where, stacklevel + 1)
             if result is None:  # refused, yet check_step let it pass: run it unjudged
-                result = _codegen.run_prepared(prep, x0, w0, t0, h, nsteps, every)[0]
+                result = _runner.run_prepared(prep, x0, w0, t0, h, nsteps, every)[0]
         elif crossing >= 0:
             self.watch_step(problem, result.t, result.w, h, nsteps, where, stacklevel + 1)
         return result
 
-    def integrate(self, problem, path, x0, w0, t0, h, nsteps, every, progress=None):
-        """See :meth:`Integrator.integrate`; the compiled loop is specialised once per
-        problem and path, then each call only allocates the samples and runs it."""
-        return _codegen.run_loop(self, problem, path, x0, w0, t0, h, nsteps, every, progress)
+    def _whole(self, problem, path, x0, w0, t0, h, nsteps, every, progress):
+        prep = _runner.prepared(self, problem, path)
+        return _runner.run_prepared(prep, x0, w0, t0, h, nsteps, every, 0, progress)[0]
 
-    def segments(self, problem, path, x0, w0, t0, h, nsteps, every, chunk, progress=None):
-        """See :meth:`Integrator.segments`: :func:`~._codegen.run_segments`, the compiled
-        loop continued piece by piece from the exact state at its step number."""
-        return _codegen.run_segments(
-            self, problem, path, x0, w0, t0, h, nsteps, every, chunk, progress
-        )
+    def _pieces(self, problem, path, x0, w0, t0, h, nsteps, every, chunk, progress):
+        prep = _runner.prepared(self, problem, path)
+        return _runner.pieces(prep, x0, w0, t0, h, nsteps, every, chunk, progress)
+
+    def _batch(self, batch, path, x0, w0, t0, h, nsteps, every, parallel, chunk):
+        return _runner.run_batch(self, batch, path, x0, w0, t0, h, nsteps, every, parallel,
+                                 _runner.BATCH_CHUNK if chunk is None else chunk)  # fmt: skip

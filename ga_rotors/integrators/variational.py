@@ -42,7 +42,7 @@ from .slots import o_from_quat, o_quat, torque
 from .template import TemplateIntegrator
 
 # The step templates below are not in __all__: they are source the code generator
-# specialises (ga_rotors.integrators._codegen), not functions to call; the public entry
+# specialises (ga_rotors.integrators._source), not functions to call; the public entry
 # is the registered integrator, run through Integrator.run.
 __all__ = ["LGVI", "NEWTON_STALLED", "RESIDUAL_ROUNDING"]
 
