@@ -4,7 +4,7 @@ API's first product in a fresh process.
 Run from the repository root::
 
     python benchmarks/bench_first_run.py                 # 3 repeats: rotor, paper, run
-    python benchmarks/bench_first_run.py --repeats 2 --only workers
+    python benchmarks/bench_first_run.py --repeats 2 --only warm-up
     python benchmarks/bench_first_run.py --repeats 1 --only rotor
 
 Every measurement is a fresh process. "First run after install" is simulated with empty
@@ -18,8 +18,8 @@ repeats:
 * ``first run (warms itself)``: the command on empty caches, as without the install
   line's warm-up: it compiles what it needs first (ga_rotors.warmup, a progress line per
   job, in its own process), then runs;
-* ``ga-rotors cache --warm``: the README's install step on empty caches (parallel
-  workers, a line per job), timed on its own;
+* ``ga-rotors cache --warm``: the README's install step on empty caches (a line per
+  job), timed on its own;
 * ``first run after cache --warm``: then the command: the first run after the README's
   install line (the claim: within 1.5x of a warm run);
 * ``warm run``: the command again, everything cached.
@@ -28,10 +28,8 @@ Wall time is what a user waits; CPU time (the process and its children, user + s
 is what the machine spends and is less disturbed by other jobs. Reported: median and
 min–max over the repeats, and the ratios of the medians.
 
-The ``workers`` rows (``--only workers``) time the warm-up of every job
-(``ga_rotors.warmup.all_tasks``) on fresh caches in one process and in one worker per CPU
-(the first job alone, then the others side by side): what parallel workers cost in CPU
-and gain in wall time on this machine.
+The ``warm-up`` row (``--only warm-up``) times the warm-up of every job
+(``ga_rotors.warmup.all_tasks``) on fresh caches, from Python.
 
 The rotor rows time, inside a fresh process with numba's cache warm, the first call of
 ``rotor.from_axis_angle`` + ``rotor.compose`` (ga_rotors' rotor API) and the first ``R * R``
@@ -123,22 +121,20 @@ def one_repeat(name: str, results: dict) -> None:
         shutil.rmtree(scratch, ignore_errors=True)
 
 
-WARM_UP = "import sys; from ga_rotors import warmup; warmup.warm(warmup.all_tasks(), processes={n})"
+WARM_UP = "from ga_rotors import warmup; warmup.warm(warmup.all_tasks())"
 
 
-def workers_repeat(results: dict) -> None:
-    """Every warm-up job in one process, then in one worker per CPU, on fresh caches."""
-    for n in (1, os.cpu_count() or 1):
-        scratch = Path(tempfile.mkdtemp(prefix="bench_first_run-"))
-        try:
-            env = {**os.environ, "GA_ROTORS_CACHE_DIR": str(scratch / "ga"),
-                   "NUMBA_CACHE_DIR": str(scratch / "numba")}  # fmt: skip
-            wall, cpu = _timed([sys.executable, "-c", WARM_UP.format(n=n)], env)
-        finally:
-            shutil.rmtree(scratch, ignore_errors=True)
-        label = f"every job, {n} process{'es' if n > 1 else ''}"
-        results.setdefault(("warm-up", label), []).append((wall, cpu))
-        print(f"  warm-up: {label}: wall {wall:.2f} s, CPU {cpu:.2f} s", flush=True)
+def warm_up_repeat(results: dict) -> None:
+    """Every warm-up job, on fresh caches."""
+    scratch = Path(tempfile.mkdtemp(prefix="bench_first_run-"))
+    try:
+        env = {**os.environ, "GA_ROTORS_CACHE_DIR": str(scratch / "ga"),
+               "NUMBA_CACHE_DIR": str(scratch / "numba")}  # fmt: skip
+        wall, cpu = _timed([sys.executable, "-c", WARM_UP], env)
+    finally:
+        shutil.rmtree(scratch, ignore_errors=True)
+    results.setdefault(("warm-up", "every job"), []).append((wall, cpu))
+    print(f"  warm-up: every job: wall {wall:.2f} s, CPU {cpu:.2f} s", flush=True)
 
 
 def rotor_repeat(results: dict) -> None:
@@ -156,7 +152,7 @@ def _fmt(values) -> str:
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--repeats", type=int, default=3)
-    parser.add_argument("--only", choices=["paper", "run", "rotor", "workers"], action="append")
+    parser.add_argument("--only", choices=["paper", "run", "rotor", "warm-up"], action="append")
     args = parser.parse_args(argv)
     if GA is None:
         raise SystemExit("the ga-rotors command is not installed next to this Python")
@@ -164,8 +160,8 @@ def main(argv=None) -> int:
     results: dict = {}
     for _ in range(args.repeats):
         for name in which:  # interleaved: each repeat of each command in turn
-            if name in ("rotor", "workers"):
-                (rotor_repeat if name == "rotor" else workers_repeat)(results)
+            if name in ("rotor", "warm-up"):
+                (rotor_repeat if name == "rotor" else warm_up_repeat)(results)
             else:
                 one_repeat(name, results)
     load = os.getloadavg()[0] if hasattr(os, "getloadavg") else float("nan")
@@ -178,7 +174,7 @@ def main(argv=None) -> int:
         cpu = _fmt(cpus) if all(c == c for c in cpus) else ""
         print(f"{name + ': ' + label:<44} {_fmt(walls):>22} {cpu:>22}")
     for name in which:
-        if name in ("rotor", "workers"):
+        if name in ("rotor", "warm-up"):
             continue
 
         def med(label, k, name=name):

@@ -1,32 +1,28 @@
-"""Compile ahead: the loops a command needs, in parallel processes, once per installed version.
+"""Compile ahead: the loops a command needs, once per installed version.
 
 The first run of a loop compiles it (numba, seconds of CPU per loop) and stores the machine
 code (see docs/cache.md); every later process loads it. :func:`warm` moves that first
 compilation out of the command a user is waiting for: each :class:`Task` is a tiny run of
 the real work (one scene on one orientation path, 2 output steps, run in pieces and its
 data written as ``ga-rotors run`` does; the paper's computations and CSV files on 10
-steps) that leaves the compiled code in the cache, run here or in
-forked worker processes. A task that succeeded is remembered by a marker file under the
-cache directory, named by the package version and the task, so a warm cache costs a few
-file checks.
+steps) that leaves the compiled code in the cache. A task that succeeded is remembered by
+a marker file under the cache directory, named by the package version and the task, so a
+warm cache costs a few file checks.
 
-``ga-rotors cache --warm`` warms everything the bundled commands use (the paper and
-every bundled scene) in forked worker processes, one per CPU, each task in a fresh worker
-that ends with it: Ctrl-C, SIGTERM or an error in the parent kills and reaps the running
-workers (and on Linux a worker dies with its parent however that ends), and numba writes
-each cache file whole before renaming it into place, so an interrupted warm-up leaves a
-usable cache that the next run completes. ``ga-rotors paper`` and ``ga-rotors run`` warm
-what they need in their own process, one progress line per task, when their tasks have
-not been done yet: that keeps the compiled code in memory for the run that follows, and
-costs the least CPU: parallel workers each compile again the kernels every loop shares,
-and shorten the wall time only where cores are idle (``benchmarks/bench_first_run.py
---only workers``; docs/cache.md).
+``ga-rotors cache --warm`` warms everything the bundled commands use (the paper and every
+bundled scene); ``ga-rotors paper`` and ``ga-rotors run`` warm what they need when their
+tasks have not been done yet. Either way the tasks run here, in this process, one after
+the other, one progress line each: numba compiles under the interpreter's lock, so
+threads would not overlap, and worker processes would each compile again the kernels
+every loop shares (20 % more CPU, measured) for wall time gained only on idle cores;
+in this process the compiled code also stays in memory for the run that follows. Ctrl-C
+stops it at the task it is in: numba writes each cache file whole before renaming it into
+place, so an interrupted warm-up leaves a usable cache that the next run completes.
 """
 
 from __future__ import annotations
 
 import hashlib
-import os
 import sys
 import time
 import warnings
@@ -149,11 +145,7 @@ def paper_tasks() -> list[Task]:
 
 
 def all_tasks() -> list[Task]:
-    """The paper's tasks and every bundled scene's.
-
-    Tasks whose loop (integrator, path, kinds of effect) an earlier task compiles come
-    last, so that parallel workers do not compile the same loop at once; they still run,
-    for what else their scene computes (its exact reference, its outputs).
+    """The paper's tasks and every bundled scene's, each once.
 
     Examples
     --------
@@ -163,21 +155,10 @@ def all_tasks() -> list[Task]:
     """
     from .scene import bundled
 
-    first, later, seen, keys = [], [], set(), set()
+    tasks: dict[str, Task] = {}  # the paper's scene is also bundled: once
     for task in [*paper_tasks(), *(t for name in bundled() for t in scene_tasks(name))]:
-        if task.key() in keys:  # the paper's scene is also bundled
-            continue
-        keys.add(task.key())
-        if task.scene is not None:
-            d = task.scene.data
-            what = (d["integrator"]["method"], tuple(task.scene.paths),
-                    tuple(sorted(e["type"] for e in d["effects"])))  # fmt: skip
-            if what in seen:
-                later.append(task)
-                continue
-            seen.add(what)
-        first.append(task)
-    return first + later
+        tasks.setdefault(task.key(), task)
+    return list(tasks.values())
 
 
 def _marker_dir() -> Path | None:
@@ -223,143 +204,17 @@ def _run_one(task: Task) -> tuple[float, str | None]:
     start = time.perf_counter()
     try:
         task.run()
-    except Exception as exc:  # reported by the parent, which goes on with the others
-        return time.perf_counter() - start, f"{type(exc).__name__}: {exc}"
+    except Exception as exc:  # reported, and the others go on
+        return time.perf_counter() - start, f"{type(exc).__name__}: {exc}"[:500]
     return time.perf_counter() - start, None
 
 
-def _become_worker(parent: int, unblock) -> None:
-    """In a forked worker: die at once on SIGTERM or Ctrl-C, and with the parent.
-
-    The parent's handlers (SIGTERM raised as an exception, SIGINT as KeyboardInterrupt)
-    would be caught around the task, and the worker would go on compiling, orphaned once
-    the parent had gone. A worker stopped mid-compilation leaves numba's cache usable: its
-    files are written whole under a temporary name, then renamed into place.
-    """
-    import signal
-
-    signal.signal(signal.SIGTERM, signal.SIG_DFL)
-    signal.signal(signal.SIGINT, signal.SIG_DFL)
-    _block(False, unblock)
-    if sys.platform.startswith("linux"):  # the kernel ends the worker if the parent dies
-        try:
-            import ctypes
-
-            ctypes.CDLL(None).prctl(1, signal.SIGKILL)  # PR_SET_PDEATHSIG
-        except (OSError, AttributeError):
-            pass
-    if os.getppid() != parent:  # the parent died before the line above
-        os._exit(1)
-
-
-def _block(block: bool, previous=None):
-    """Hold back (or let through again) Ctrl-C and SIGTERM; returns the mask to restore."""
-    import signal
-
-    if not hasattr(signal, "pthread_sigmask"):
-        return None
-    if block:
-        return signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGINT, signal.SIGTERM})
-    if previous is not None:
-        signal.pthread_sigmask(signal.SIG_SETMASK, previous)
-    return None
-
-
-def _start(task: Task, unblock=None) -> tuple[int, int]:
-    """Fork a worker for ``task``; return its pid and the pipe its result comes through.
-    ``unblock``: the signal mask the worker restores once its handlers are the defaults."""
-    parent = os.getpid()
-    read, write = os.pipe()
-    pid = os.fork()
-    if pid == 0:  # pragma: no cover - runs in the worker, which reports through the pipe
-        status = 1
-        try:
-            os.close(read)
-            _become_worker(parent, unblock)
-            took, error = _run_one(task)
-            # small enough for the pipe's buffer: the write never waits for the parent
-            os.write(write, repr((took, None if error is None else error[:500])).encode())
-            status = 0
-        finally:
-            os._exit(status)
-    os.close(write)
-    return pid, read
-
-
-def _result(text: bytes, status: int) -> tuple[float, str | None]:
-    """The result a finished worker sent, or why it sent none."""
-    import ast
-
-    if text:
-        try:
-            return ast.literal_eval(text.decode())
-        except (ValueError, SyntaxError, UnicodeDecodeError):  # killed while writing it
-            return 0.0, "the worker ended while reporting its result"
-    if os.WIFSIGNALED(status):
-        return 0.0, f"the worker was killed (signal {os.WTERMSIG(status)})"
-    return 0.0, f"the worker ended without a result (exit status {os.WEXITSTATUS(status)})"
-
-
-def _in_workers(todo: list[Task], n: int, done) -> None:
-    """Run each task in its own forked worker, at most ``n`` at once, calling ``done`` as
-    each ends. A worker forked after another ended loads what that one compiled from the
-    disk cache instead of compiling it again. Whatever stops the parent (Ctrl-C, SIGTERM,
-    an error) kills and reaps every running worker first: none is left behind."""
-    import select
-    import signal
-
-    running: dict[int, tuple[int, Task]] = {}  # the result pipe -> (pid, task)
-    waiting = list(todo)
-    sys.stdout.flush()
-    sys.stderr.flush()
-    try:
-        while waiting or running:
-            # the first task alone: it compiles what every task shares (the kernels, the
-            # references, the conversions), which the workers after it then load from the
-            # disk instead of each compiling it again (measured once under load: the whole
-            # warm-up 12.5 s CPU instead of 16.4 s with all at once; 9.7 s in one process)
-            while waiting and len(running) < (1 if len(waiting) == len(todo) - 1 else n):
-                task = waiting.pop(0)
-                # Ctrl-C or SIGTERM between the fork and this record would leave the new
-                # worker out of the clean-up below: they wait until it is recorded
-                blocked = _block(True)
-                try:
-                    pid, read = _start(task, blocked)
-                    running[read] = (pid, task)
-                finally:
-                    _block(False, blocked)
-            # a pipe is ready when its worker wrote its result and ended (or just ended)
-            ready, _, _ = select.select(list(running), [], [])
-            for read in ready:
-                pid, task = running.pop(read)
-                with os.fdopen(read, "rb") as fh:
-                    text = fh.read()
-                _, status = os.waitpid(pid, 0)
-                done(task, *_result(text, status))
-    finally:
-        for pid, _ in running.values():
-            try:
-                os.kill(pid, signal.SIGKILL)
-            except ProcessLookupError:
-                pass
-        for read, (pid, _) in running.items():
-            try:
-                os.waitpid(pid, 0)
-            except ChildProcessError:
-                pass
-            os.close(read)
-
-
-def warm(
-    tasks, processes: int | None = None, stream=None, show: bool = True
-) -> list[tuple[Task, str]]:
-    """Run the tasks not done yet for this version, in parallel forked processes.
+def warm(tasks, stream=None, show: bool = True) -> list[tuple[Task, str]]:
+    """Run the tasks not done yet for this version, here, one after the other.
 
     Parameters
     ----------
     tasks : list of Task
-    processes : int, optional
-        At most this many at once (default: the number of CPUs).
     stream : file, optional
         Where the progress lines go (default: sys.stderr); nothing is written when every
         task was done already.
@@ -393,20 +248,16 @@ def warm(
     todo = [t for t in tasks if not _marker(directory, t).exists()]
     if not todo:
         return []
-    n = max(1, min(processes or os.cpu_count() or 1, len(todo)))
     start = time.perf_counter()
     print(
-        f"ga-rotors: compiling {len(todo)} loop set(s) in {n} process(es), once per installed "
-        "version (`ga-rotors cache --warm` does this ahead)",
+        f"ga-rotors: compiling {len(todo)} loop set(s), once per installed version "
+        "(`ga-rotors cache --warm` does this ahead)",
         file=stream,
         flush=True,
     )
     failed = []
-    count = 0
-
-    def done(task: Task, took: float, error: str | None) -> None:
-        nonlocal count
-        count += 1
+    for count, task in enumerate(todo, 1):
+        took, error = _run_one(task)
         if error is None:
             try:
                 directory.mkdir(mode=0o700, parents=True, exist_ok=True)
@@ -418,11 +269,5 @@ def warm(
         status = "" if error is None else f" failed: {error.splitlines()[0] if error else ''}"
         line = f"  [{count}/{len(todo)}] {task.label} ({took:.1f} s){status}"
         print(line, file=stream, flush=True)
-
-    if n == 1 or not hasattr(os, "fork"):
-        for task in todo:
-            done(task, *_run_one(task))
-    else:
-        _in_workers(todo, n, done)
     print(f"ga-rotors: compiled in {time.perf_counter() - start:.1f} s", file=stream, flush=True)
     return failed

@@ -1,4 +1,7 @@
-"""Compiling ahead: tasks, parallel workers, markers, and the commands that warm themselves."""
+"""Compiling ahead: tasks, markers, and the commands that warm themselves.
+
+The cold ``cache --warm`` of every bundled loop followed by ``paper`` and ``run`` (two
+minutes of compiling) runs in the long mode only: ``GA_ROTORS_LONG=1``."""
 
 from __future__ import annotations
 
@@ -8,7 +11,6 @@ import signal
 import subprocess
 import sys
 import time
-from pathlib import Path
 
 import pytest
 
@@ -36,12 +38,13 @@ def test_all_tasks_cover_the_paper_and_every_bundled_scene_and_path():
     assert len(labels) == len(set(labels))
 
 
-def test_warm_runs_each_task_once_in_parallel_workers_and_remembers_it(cache):
+def test_warm_runs_each_task_once_here_and_remembers_it(cache):
     tasks = warmup.scene_tasks("heavy_top")
     log = io.StringIO()
-    assert warmup.warm(tasks, processes=2, stream=log) == []
+    assert warmup.warm(tasks, stream=log) == []
     lines = log.getvalue().splitlines()
-    assert lines[0].startswith("ga-rotors: compiling 2 loop set(s) in 2 process(es)")
+    assert lines[0].startswith("ga-rotors: compiling 2 loop set(s), once per installed version")
+    assert lines[-1].startswith("ga-rotors: compiled in ")
     assert sorted(line.split("] ")[1].split(" (")[0] for line in lines[1:3]) == sorted(
         t.label for t in tasks
     )
@@ -62,16 +65,10 @@ class _Unreadable:
 def test_a_failing_task_is_reported_not_raised_and_not_remembered(cache):
     bad = warmup.Task("broken", _Unreadable())
     log = io.StringIO()
-    failed = warmup.warm([bad, *warmup.scene_tasks("spinning_disk")], processes=2, stream=log)
+    failed = warmup.warm([bad, *warmup.scene_tasks("spinning_disk")], stream=log)
     assert [(t.label, e.split(":")[0]) for t, e in failed] == [("broken", "TypeError")]
     assert "broken (" in log.getvalue() and "failed: TypeError" in log.getvalue()
     assert len(list((cache / "warm").iterdir())) == len(warmup.scene_tasks("spinning_disk"))
-
-
-def test_one_process_runs_the_tasks_here(cache):
-    log = io.StringIO()
-    assert warmup.warm(warmup.scene_tasks("spinning_disk"), processes=1, stream=log) == []
-    assert "in 1 process(es)" in log.getvalue()
 
 
 def test_cache_warm_command(cache, monkeypatch, capsys):
@@ -98,7 +95,7 @@ def test_run_warms_its_scene_first_then_never_again(cache, tmp_path, capsys):
     out = tmp_path / "out"
     assert main(["run", "spinning_disk", "--out", str(out), "--progress"]) == 0
     err = capsys.readouterr().err
-    assert "ga-rotors: compiling" in err and "in 1 process(es)" in err
+    assert "ga-rotors: compiling" in err
     assert "spinning_disk: rotor path" in err
     assert main(["run", "spinning_disk", "--out", str(out), "--progress"]) == 0
     assert "compiling" not in capsys.readouterr().err
@@ -119,7 +116,7 @@ def test_paper_warms_itself_after_checking_its_output_directory(cache, tmp_path,
     assert "compiling" not in capsys.readouterr().err  # refused before any compiling
     assert main(["paper", "--out", str(tmp_path / "out"), "--no-figures"]) == 0
     err = capsys.readouterr().err
-    assert "ga-rotors: compiling 4 loop set(s) in 1 process(es)" in err
+    assert "ga-rotors: compiling 4 loop set(s)" in err
     assert "paper: its other computations" in err and "paper_15deg: euler path" in err
 
 
@@ -138,17 +135,13 @@ class Name:
     def to_toml(self):
         return self.text
 
-class Quick(warmup.Task):
-    def run(self):
-        pass
-
 class Slow(warmup.Task):
     def run(self):
         time.sleep(120)
 
 real = warmup.scene_tasks("spinning_disk")
 tasks = {
-    "two waiting": [Quick("quick", Name("q")), Slow("s1", Name("s1")), Slow("s2", Name("s2"))],
+    "waiting": [Slow("slow", Name("s"))],
     "compiling": [real[0], Slow("slow", Name("s"))],
     "again": real,
 }[sys.argv[1]]
@@ -157,58 +150,34 @@ sys.exit(main(["cache", "--warm"]))
 """
 
 
-def _children(pid: int) -> list[int]:
-    path = Path(f"/proc/{pid}/task/{pid}/children")
-    return [int(p) for p in path.read_text().split()] if path.exists() else []
-
-
-def _start_warm(
-    which: str, env: dict, workers: int, after: str | None = None
-) -> tuple[subprocess.Popen, list[int]]:
-    """``cache --warm`` in a subprocess, once ``workers`` of its workers run (after the
-    progress line of the task ``after``, whose worker has then been reaped)."""
+def _start_warm(which: str, env: dict) -> subprocess.Popen:
+    """``cache --warm`` in a subprocess, once it has said it is compiling."""
     proc = subprocess.Popen(
         [sys.executable, "-c", _WARM, which], env=env, text=True,
         stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
     )  # fmt: skip
     assert "compiling" in proc.stdout.readline()
-    if after is not None:
-        assert f"] {after} (" in proc.stdout.readline()
-    deadline = time.monotonic() + 60
-    while len(kids := _children(proc.pid)) < workers and time.monotonic() < deadline:
-        time.sleep(0.05)
-    assert len(kids) == workers, proc.stdout.read()
-    return proc, kids
+    return proc
 
 
-needs_proc = pytest.mark.skipif(
-    not Path(f"/proc/{os.getpid()}/task/{os.getpid()}/children").exists(),
-    reason="lists a process's children through Linux's /proc",
-)
-
-
-@needs_proc
 @pytest.mark.parametrize(
     ("signum", "status", "line"),
     [(signal.SIGINT, 130, "ga-rotors: interrupted"), (signal.SIGTERM, 143, "terminated")],
 )
-def test_stopping_a_warm_up_stops_its_workers(tmp_path, signum, status, line):
+def test_stopping_a_warm_up_stops_it_at_once(tmp_path, signum, status, line):
     env = {**os.environ, "GA_ROTORS_CACHE_DIR": str(tmp_path)}
-    proc, workers = _start_warm("two waiting", env, workers=2, after="quick")
+    proc = _start_warm("waiting", env)
     proc.send_signal(signum)
     assert proc.wait(timeout=30) == status, proc.stdout.read()
     assert line in proc.stdout.read()
-    assert not [pid for pid in workers if Path(f"/proc/{pid}").exists()]
 
 
-@needs_proc
 def test_a_warm_up_killed_while_compiling_leaves_a_usable_cache(tmp_path):
     env = {**os.environ, "GA_ROTORS_CACHE_DIR": str(tmp_path)}
-    proc, workers = _start_warm("compiling", env, workers=1)
+    proc = _start_warm("compiling", env)
     time.sleep(0.3)  # into the compilation
     proc.terminate()
     assert proc.wait(timeout=30) == 143
-    assert not Path(f"/proc/{workers[0]}").exists()
     again = subprocess.run(
         [sys.executable, "-c", _WARM, "again"], env=env, capture_output=True, text=True
     )
@@ -223,40 +192,10 @@ def test_a_warm_up_killed_while_compiling_leaves_a_usable_cache(tmp_path):
     assert "compiling" not in run.stderr
 
 
-class _Dies(warmup.Task):
-    """A task whose worker is killed (out of memory, a user's kill -9) before it reports."""
-
-    def run(self):
-        os.kill(os.getpid(), signal.SIGKILL)
-
-
-class _Quick(warmup.Task):
-    def run(self):
-        pass
-
-
-def test_a_worker_killed_before_reporting_is_a_failed_task_not_an_error(cache):
-    class Key:
-        def __init__(self, text):
-            self.text = text
-
-        def to_toml(self):
-            return self.text
-
-    log = io.StringIO()
-    failed = warmup.warm([_Quick("quick", Key("q")), _Dies("dies", Key("d"))], 2, stream=log)
-    assert [(t.label, e) for t, e in failed] == [("dies", "the worker was killed (signal 9)")]
-    assert "dies (0.0 s) failed: the worker was killed" in log.getvalue()
-
-
-def test_a_result_cut_short_is_reported_as_such():
-    assert warmup._result(b"(1.5, None)", 0) == (1.5, None)
-    assert warmup._result(b"(1.5, 'Type", 0) == (
-        0.0,
-        "the worker ended while reporting its result",
-    )
-
-
+@pytest.mark.skipif(
+    os.environ.get("GA_ROTORS_LONG") != "1",
+    reason="long mode: set GA_ROTORS_LONG=1 (a cold cache --warm, about two minutes)",
+)
 def test_paper_and_run_compile_nothing_after_cache_warm(tmp_path):
     """README command 1: ``cache --warm`` then ``paper``; and ``run``, in pieces. Every
     kernel they call (loops, conversions, figure data, the CSV number formatting) must be

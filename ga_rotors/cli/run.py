@@ -222,7 +222,7 @@ def run(args: argparse.Namespace) -> int:
         # A scene's first run compiles, and says so where the progress bar shows; user
         # code is left to the run itself, which checks the opt-in and reports on one line.
         show = sys.stderr.isatty() if args.progress is None else args.progress
-        warm(scene_tasks(scene), processes=1, show=show)
+        warm(scene_tasks(scene), show=show)
     out = Path(args.out) if args.out is not None else Path(DEFAULT_OUT) / scene.name
     chunk = {}
     if args.chunk_steps is not None:
