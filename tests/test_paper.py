@@ -89,17 +89,15 @@ def test_out_that_is_a_file_is_refused_without_traceback(tmp_path, capsys):
     assert err.startswith("ga-rotors: error: --out:") and "Traceback" not in err
 
 
-@pytest.mark.skipif(not hasattr(os, "fork"), reason="the worker needs fork")
 def test_figure_worker_failure_is_reported(tmp_path, monkeypatch):
     from ga_rotors.errors import GaRotorsError
     from ga_rotors.paper import reproduce
 
-    def broken(*args, **kwargs):
-        raise RuntimeError("no canvas")
-
-    monkeypatch.setattr(paper_figures, "draw_all", broken)  # inherited by the fork
+    # a share naming a figure that does not exist: its drawing process fails
+    monkeypatch.setattr(reproduce, "_SHARES", (*reproduce._SHARES, ("no_such_figure",)))
     (tmp_path / "summary.txt").write_text("the previous run's")
-    with pytest.raises(GaRotorsError, match="drawing the figures failed: RuntimeError: no canvas"):
+    says = "drawing the figures failed: KeyError: 'no_such_figure'"
+    with pytest.raises(GaRotorsError, match=says):
         reproduce.reproduce(tmp_path, data=True, parallel=True)
     # All or nothing: the data were written before the figures failed, and are not moved
     # in; the previous set stays, and no staging folder or temporary file is left.

@@ -17,7 +17,6 @@ fair comparison. A missing peer is skipped with a notice.
 from __future__ import annotations
 
 import itertools
-import warnings
 
 import numpy as np
 
@@ -51,31 +50,33 @@ def dop853_scipy(case: Case, rtol: float, repeats: int, budget: float) -> Point:
                  "scipy")  # fmt: skip
 
 
-def _in_child(func, limit: float):
-    """``func()`` run in a forked child process, or None if it has not returned after
-    ``limit`` seconds (the child is then killed). The child does its own timing, so the
-    fork costs nothing that is measured."""
+def _in_child(func, args: tuple, limit: float):
+    """``func(*args)`` run in a child process, or None if it has not returned after
+    ``limit`` seconds (the child is then killed). The child does its own timing, so
+    starting it costs nothing that is measured. ``func`` is a module-level function and
+    ``args`` plain data: the child is not a fork of this process (whose threads, JAX's
+    among them, a fork would copy mid-flight) but of a clean server process
+    (``forkserver``; ``spawn`` where there is none)."""
     import multiprocessing
 
-    ctx = multiprocessing.get_context("fork")
+    methods = multiprocessing.get_all_start_methods()
+    ctx = multiprocessing.get_context("forkserver" if "forkserver" in methods else "spawn")
     receive, send = ctx.Pipe(duplex=False)
-
-    def target():
-        send.send(func())
-
-    child = ctx.Process(target=target, daemon=True)
-    with warnings.catch_warnings():
-        # JAX (diffrax, a compiled peer measured earlier in the process) warns at every
-        # fork that a child touching JAX may deadlock. This child runs numpy-quaternion
-        # and scipy only, never JAX, and the time limit below ends any child that hangs.
-        warnings.filterwarnings("ignore", "os.fork", RuntimeWarning)
-        child.start()
+    child = ctx.Process(target=_reply, args=(send, func, args), daemon=True)
+    child.start()
+    send.close()
     result = receive.recv() if receive.poll(limit) else None
     child.join(0.1)
     if child.is_alive():
         child.kill()
         child.join()
+    receive.close()
     return result
+
+
+def _reply(send, func, args) -> None:
+    """In the child: ``func(*args)`` sent back to the parent."""
+    send.send(func(*args))
 
 
 def numpy_quaternion(
@@ -87,8 +88,8 @@ def numpy_quaternion(
 
     On the fast spinner at tolerances ≤ 1e-11 its scipy ``ode`` DOP853 call never returns
     (measured: still computing after minutes, inside Fortran, where no signal reaches it),
-    so each measurement runs in a forked child limited to ``limit`` seconds; None means it
-    did not finish.
+    so each measurement runs in a child process limited to ``limit`` seconds; None means
+    it did not finish. The case is one of :func:`~ga_rotors.accuracy.cases`, named.
 
     Examples
     --------
@@ -100,14 +101,24 @@ def numpy_quaternion(
     ...     p = numpy_quaternion(cases()["asymmetric_far"], 1e-10, 1, 0.1)
     ...     assert p.family == "numpy-quaternion" and p.error < 1e-7
     """
+    found = _in_child(_numpy_quaternion_run, (case.name, tol, repeats, budget), limit)
+    if found is None:
+        return None
+    times, q, evaluations = found
+    w_end = np.asarray(case.body_rate(case.duration))
+    return point(case, "numpy_quaternion", tol, times, evaluations, q, [w_end],
+                 "numpy-quaternion")  # fmt: skip
+
+
+def _numpy_quaternion_run(name: str, tol: float, repeats: int, budget: float):
+    """In the child: :func:`numpy_quaternion`'s measurement of case ``name``: the timings,
+    the orientations (w, x, y, z) at the sample times, and the evaluations of ω."""
     import quaternion as npq
 
+    from .cases import cases
+
+    case = cases()[name]
     rate = case.body_rate
-
-    def omega(t):
-        w = rate(t)
-        return [-w[0], -w[1], -w[2]]
-
     q0 = case.q0
     p0 = npq.quaternion(q0[0], -q0[1], -q0[2], -q0[3])
     marks = sample_times(case)
@@ -115,7 +126,8 @@ def numpy_quaternion(
 
     def counted(t):
         counter[0] += 1
-        return omega(t)
+        w = rate(t)
+        return [-w[0], -w[1], -w[2]]
 
     def run():
         counter[0] = 0
@@ -125,15 +137,8 @@ def numpy_quaternion(
             out.append(p)
         return out
 
-    found = _in_child(lambda: (timed(run, repeats, budget), counter[0]), limit)
-    if found is None:
-        return None
-    (times, ps), evaluations = found
-    pe = npq.as_float_array(ps)
-    q = pe * np.array([1.0, -1.0, -1.0, -1.0])
-    w_end = np.asarray(rate(case.duration))
-    return point(case, "numpy_quaternion", tol, times, evaluations, q, [w_end],
-                 "numpy-quaternion")  # fmt: skip
+    times, ps = timed(run, repeats, budget)
+    return times, npq.as_float_array(ps) * np.array([1.0, -1.0, -1.0, -1.0]), counter[0]
 
 
 def mujoco_model(case: Case, integrator: str, h: float):

@@ -1,15 +1,15 @@
 """Reproduce the paper's gyroscope into a directory: summary, CSV data and figures.
 
 :func:`reproduce` runs :func:`ga_rotors.paper.runs.run_all` and writes ``summary.txt``,
-one CSV per run and the figures of :mod:`ga_rotors.paper.figures`, drawn in forked
-worker processes while the parent simulates (``ga-rotors paper`` does this).
+one CSV per run and the figures of :mod:`ga_rotors.paper.figures`, drawn by a standard
+process pool while this process simulates and writes the data (``ga-rotors paper`` does
+this).
 """
 
 from __future__ import annotations
 
-import os
-import pickle
-import sys
+import multiprocessing
+from concurrent.futures import ProcessPoolExecutor
 from pathlib import Path
 
 from ..errors import GaRotorsError
@@ -17,7 +17,7 @@ from ..errors import GaRotorsError
 __all__ = ["DEFAULT_OUT", "reproduce"]
 
 DEFAULT_OUT = "results"
-#: The figures each forked worker draws (two cores: two workers, while the parent
+#: The figures each drawing process draws (two cores: two processes, while this one
 #: simulates and then writes the CSV files), balanced by measured drawing cost.
 _SHARES = (
     ("fig03_euler_angles_15deg", "fig05_quaternion_15deg", "fig07_rotor_angles_0.001deg",
@@ -31,101 +31,29 @@ _SHARES = (
 FORMATS = ("png", "svg", "pdf")  # the keys of ga_rotors.paper.figures.FIGURE_FORMATS
 
 
-class _Drawer:
-    """One forked figure process: it receives the figure data through a pipe, draws its
-    share of the figures and sends back the paths (or the error) through another.
+def _drawing_pool() -> ProcessPoolExecutor:
+    """A pool of one process per share of the figures, started now, so that they import
+    matplotlib (the slow import) while this process simulates.
 
-    Building figures costs more CPU than the simulations, so two such processes share the
-    figures while the parent simulates and then writes the CSV files. They are started by
-    :func:`_start_drawers`, before the parent imports numba or starts any thread.
-    """
-
-    def __init__(self, stems: tuple[str, ...]):
-        self.stems = stems
-        self.pid: int | None = None  # the parent waits for the first drawer only
-        self._to_child = os.pipe()
-        self._to_parent = os.pipe()
-
-    def _close_parent_ends(self) -> None:
-        os.close(self._to_child[1])
-        os.close(self._to_parent[0])
-
-    def _close_child_ends(self) -> None:
-        os.close(self._to_child[0])
-        os.close(self._to_parent[1])
-
-    def _serve(self, children=()) -> None:  # pragma: no cover - runs in a forked child
-        try:
-            from . import figures
-
-            with os.fdopen(self._to_child[0], "rb") as fh:
-                job = pickle.load(fh)
-            if job is None:
-                result = ("skipped", [])
-            else:
-                data, out, digest, fmt = job
-                result = ("ok", figures.draw_all(data, out, digest, self.stems, fmt=fmt))
-        except BaseException as exc:  # reported to the parent, which raises it
-            result = ("error", f"{type(exc).__name__}: {exc}")
-        try:
-            with os.fdopen(self._to_parent[1], "wb") as fh:
-                pickle.dump(result, fh)
-            for pid in children:
-                os.waitpid(pid, 0)
-        finally:
-            os._exit(0)
-
-    def send(self, job) -> None:
-        with os.fdopen(self._to_child[1], "wb") as fh:
-            pickle.dump(job, fh, protocol=pickle.HIGHEST_PROTOCOL)
-
-    def result(self) -> list[Path]:
-        try:
-            with os.fdopen(self._to_parent[0], "rb") as fh:
-                status, value = pickle.load(fh)
-        except EOFError:
-            status, value = "error", "the figure process died"
-        finally:
-            if self.pid is not None:
-                os.waitpid(self.pid, 0)
-        if status == "error":
-            raise GaRotorsError(f"drawing the figures failed: {value}")
-        return value
+    Building figures costs more CPU than the simulations, hence processes. They are
+    forked from a clean server process that has imported the figures' modules once
+    (``forkserver``; ``spawn`` where there is none), never from this process and its
+    threads."""
+    methods = multiprocessing.get_all_start_methods()
+    context = multiprocessing.get_context("forkserver" if "forkserver" in methods else "spawn")
+    if context.get_start_method() == "forkserver":
+        context.set_forkserver_preload(["ga_rotors.paper.figures", "matplotlib.figure"])
+    pool = ProcessPoolExecutor(len(_SHARES), mp_context=context)
+    for _ in _SHARES:
+        pool.submit(_ready)
+    return pool
 
 
-def _start_drawers(shares) -> list[_Drawer]:
-    """Fork the figure processes: the first imports matplotlib (the slow import, overlapped
-    with the parent's simulation) and then forks the others from itself, so they share
-    that import instead of each paying it (about 0.7 s of CPU per process, on two cores
-    that also run the parent)."""
-    drawers = [_Drawer(share) for share in shares]
-    sys.stdout.flush()
-    sys.stderr.flush()
-    pid = os.fork()
-    if pid == 0:  # pragma: no cover - runs in the child, which reports through the pipes
-        for d in drawers:
-            d._close_parent_ends()
-        try:
-            import matplotlib.figure  # noqa: F401
+def _ready() -> None:
+    """A drawing process's first job: the imports its figures need."""
+    import matplotlib.figure  # noqa: F401
 
-            from . import figures  # noqa: F401
-        except BaseException:  # each drawer imports again, and reports the error
-            pass
-        children = []
-        for d in drawers[1:]:
-            child = os.fork()
-            if child == 0:
-                for other in drawers:
-                    if other is not d:
-                        other._close_child_ends()
-                d._serve()
-            children.append(child)
-            d._close_child_ends()
-        drawers[0]._serve(children)
-    for d in drawers:
-        d._close_child_ends()
-    drawers[0].pid = pid
-    return drawers
+    from . import figures  # noqa: F401
 
 
 def reproduce(
@@ -147,9 +75,9 @@ def reproduce(
     data : bool
         Write ``summary.txt`` and one CSV per scene (``paper_15deg.csv``, ...).
     parallel : bool
-        Draw the figures in forked processes (POSIX), and first compile the loops not
-        cached yet with a progress line on stderr (:mod:`ga_rotors.warmup`); the command
-        line does this.
+        Draw the figures in a process pool while the data are computed and written, and
+        first compile the loops not cached yet with a progress line on stderr
+        (:mod:`ga_rotors.warmup`); the command line does this.
     fmt : {"png", "svg", "pdf"}
         The figures' format: PNG at 150 dpi (default), or vector SVG/PDF for print.
 
@@ -181,50 +109,42 @@ def reproduce(
 
 
 def _write_all(stage: Path, figures: bool, data: bool, parallel: bool, fmt: str = "png"):
-    drawers = []
-    if figures and parallel and hasattr(os, "fork"):
-        drawers = _start_drawers(_SHARES)
-    sent = 0
+    pool = _drawing_pool() if figures and parallel else None
     try:
         if parallel:  # the first run after an install or upgrade compiles, and says so,
-            # while the figure processes import matplotlib
+            # while the drawing processes import matplotlib
             from ..warmup import paper_tasks, warm
 
-            warm(paper_tasks(), processes=1)
+            warm(paper_tasks())
         from ..files import write_text
         from . import figures as paper_figures
         from .digest import data_digest
         from .runs import run_all, summary
 
         runs = run_all()
-        job = None
+        drawn = []
         if figures:
-            job = (paper_figures.figure_data(runs), stage, data_digest(runs), fmt)
-        for drawer in drawers:
-            drawer.send(job)
-            sent += 1
+            job = (paper_figures.figure_data(runs), stage, data_digest(runs))
+            if pool is not None:
+                drawn = [pool.submit(paper_figures.draw_all, *job, share, fmt=fmt)
+                         for share in _SHARES]  # fmt: skip
         written = []
         if data:
             text = summary(runs) + "\n"
             written.append(write_text(stage / "summary.txt", text))
             written += [s.trajectory.to_csv(stage / f"{s.key}.csv") for s in runs]
-        if figures and not drawers:
-            written += paper_figures.draw_all(*job[:3], fmt=fmt)
+        if figures and pool is None:
+            written += paper_figures.draw_all(*job, fmt=fmt)
+        by_name = {}
+        for future in drawn:  # a share that failed fails the set (the data are not moved in)
+            try:
+                by_name.update((p.stem, p) for p in future.result())
+            except Exception as exc:
+                raise GaRotorsError(
+                    f"drawing the figures failed: {type(exc).__name__}: {exc}"
+                ) from None
     finally:
-        for drawer in drawers[sent:]:  # failed before the figures were handed over
-            try:
-                drawer.send(None)
-            except OSError:  # interrupted (SIGTERM) while sending: its pipe is closed
-                pass
-        results = []
-        for drawer in drawers:  # collect every worker, then report the first failure
-            try:
-                results.append(drawer.result())
-            except GaRotorsError as exc:
-                results.append(exc)
-    for r in results:
-        if isinstance(r, Exception):
-            raise r
-    by_name = {p.stem: p for r in results for p in r}
+        if pool is not None:
+            pool.shutdown(cancel_futures=True)
     written += [by_name[stem] for stem in paper_figures.FIGURES if stem in by_name]
     return runs, written
