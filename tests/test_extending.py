@@ -1,7 +1,7 @@
-"""docs/extending.md, run as written: a toy torque effect, Euler-angle path and output
-format registered through exactly the documented steps, in a fresh process (registries
-are per process, so the suite's own registries stay as shipped), then checked against
-independent oracles."""
+"""docs/extending.md, run as written: a toy torque effect, Euler-angle path, output format,
+integrator and problem kind registered through exactly the documented steps, in a fresh
+process (registries are per process, so the suite's own registries stay as shipped), then
+checked against independent oracles."""
 
 from __future__ import annotations
 
@@ -27,6 +27,9 @@ import json as _json
 from scipy.spatial.transform import Rotation
 from ga_rotors import kinematics, quaternion as Q
 
+# the rotation part of the free flight, on the built-in quaternion path
+free = get("rk4").run(Problem((1.0, 2.0, 3.0)), "quaternion", pose0[:4], rates0[:3], 0.0,
+                      1e-3, 2000, 100)
 rng = np.random.default_rng(5)
 q = Q.normalize(rng.normal(size=4))
 m, B = rng.normal(size=3), rng.normal(size=3)
@@ -52,6 +55,10 @@ print(_json.dumps({
     "effect_in_schema": "magnetic" in gr.effects.EFFECTS,
     "heun_order": float(np.log2(coarse.error / fine.error)),
     "heun_evaluations": [coarse.evaluations, fine.evaluations],
+    "flight_position": float(np.abs(flight.x[:, 4:] - np.outer(flight.t, rates0[3:])).max()),
+    "flight_rotation_is_rk4s": bool(np.array_equal(flight.x[:, :4], free.x)
+                                    and np.array_equal(flight.w[:, :3], free.w)),
+    "flight_v": bool((flight.w[:, 3:] == rates0[3:]).all()),
     "heun_simulate": float(Q.distance(
         gr.simulate([1.0, 2.0, 3.0], [1, 0, 0, 0], [1.0, 0.5, 0.2], duration=1.0, step=1e-3,
                     integrator="heun").quaternions()[-1],
@@ -75,10 +82,12 @@ def documented_steps() -> tuple[dict[str, str], str]:
 def test_the_page_documents_each_extension_with_its_files():
     text = PAGE.read_text(encoding="utf-8")
     for heading in ("## A torque effect", "## An Euler-angle path", "## An output format",
-                    "## An integrator"):  # fmt: skip
+                    "## An integrator", "## A problem kind"):  # fmt: skip
         assert heading in text
     files, script = documented_steps()
-    assert list(files) == ["my_extensions.py"] and "import my_extensions" in script
+    assert list(files) == ["my_extensions.py", "my_motion.py"]
+    assert "import my_extensions" in script and "import my_motion" in script
+    assert files["my_motion.py"].count("integrators.register_kind(") == 1
     module = files["my_extensions.py"]
     assert module.count("integrators.TemplateIntegrator(") == 1  # the toy integrator
     for registration in ("effects.register(", "paths.register(", "formats.register("):
@@ -113,3 +122,9 @@ def test_toy_extensions_registered_as_documented_work_end_to_end(tmp_path):
     assert lines[2].startswith("heun: 8000 evaluations")
     assert abs(got["heun_order"] - 2.0) < 0.05 and got["heun_evaluations"] == [8000.0, 16000.0]
     assert 1e-10 < got["heun_simulate"] < 1e-5
+    # The new kind, run by RK4 on the new path: the centre moves by v t (RK4 is exact on
+    # a line: rounding only), and the rotation is the free body's on the quaternion path,
+    # bit for bit (the same arithmetic, component by component)
+    assert lines[3] == "after 2 s the centre is at [2.0, 0.0, 10.0]"
+    assert got["flight_position"] < 1e-12
+    assert got["flight_rotation_is_rk4s"] and got["flight_v"]

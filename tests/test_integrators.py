@@ -36,7 +36,7 @@ from ga_rotors.integrators import (
     get,
     names,
 )
-from ga_rotors.integrators.slots import TemplateSlotError
+from ga_rotors.integrators.slots import TemplateSlotError, torque
 
 ROOT = Path(__file__).resolve().parent.parent
 DISK = (0.0028125, 0.0028125, 0.005625)
@@ -348,3 +348,29 @@ def test_scipy_dop853_on_the_vector_field_reaches_the_exact_top():
     q = sol.y[:4, -1] / np.linalg.norm(sol.y[:4, -1])
     err = SymmetricTop(DISK, IDENTITY, w0).orientation_error([1.0], q[None, :])
     assert err[0] < 1e-9  # DOP853's error at rtol 1e-12 over 15 rad of turning
+
+
+def test_a_problem_of_an_unregistered_kind_is_refused_in_one_line():
+    with pytest.raises(InputError, match="kind: unknown problem kind 'nope'; expected one of"):
+        get("rk4").run(Problem(DISK, kind="nope"), "quaternion", IDENTITY, np.zeros(3), 0.0,
+                       0.1, 1, 1)  # fmt: skip
+    with pytest.raises(InputError, match="kind: these arguments make a 'free' problem"):
+        Problem(DISK, kind=KINEMATIC)
+
+
+def test_a_kind_that_lacks_a_slot_its_step_calls_is_refused_in_one_line():
+    # a free step that calls torque(), which only a torqued problem's kind generates
+    from ga_rotors.integrators.kinds import KINDS
+
+    assert "torque" not in KINDS[FREE].slots
+    mine = TemplateIntegrator(
+        name="torque_on_free", order=1, description="", conserves=frozenset(),
+        paths=frozenset({"quaternion"}), steps={FREE: _calls_torque}, evaluations=1,
+    )  # fmt: skip
+    with pytest.raises(InputError, match="its free step calls torque\\(\\), which free "
+                                         "problems do not have"):  # fmt: skip
+        _source.source(mine, Problem(DISK), "quaternion")
+
+
+def _calls_torque(t, x, w, h, inertia, params):
+    return x, torque(t, x, w, params)

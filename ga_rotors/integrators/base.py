@@ -392,6 +392,11 @@ class Integrator(ABC):
 
     def check(self, problem: Problem, path: str) -> None:
         """InputError naming what is unsupported, if anything."""
+        if problem.kind not in KINDS:
+            raise InputError(
+                f"unknown problem kind {problem.kind!r}; expected one of "
+                f"{', '.join(sorted(KINDS))} (register_kind adds one)", key="kind",
+            )  # fmt: skip
         if problem.kind not in self.problems:
             raise InputError(
                 f"{self.name} does not support {problem.kind} problems "
@@ -440,6 +445,8 @@ class Integrator(ABC):
         ga_rotors.errors.InputError: step: lgvi cannot step h·|ω| = 2 (limit 1): ...
         """
         if self.step_limit is None or problem.inertia is None or w0 is None:
+            return None
+        if not KINDS[problem.kind].judged:  # the limits are of ω and its wobble
             return None
         w = np.asarray(w0, dtype=np.float64)
         if w.shape != (3,):  # as a run says it (the limit's kernel reads three numbers)
@@ -500,6 +507,8 @@ class Integrator(ABC):
         (7.0, 0.16, True)
         """
         if self.step_limit is None or problem.inertia is None or len(w) == 0:
+            return None
+        if not KINDS[problem.kind].judged:
             return None
         w = np.ascontiguousarray(w, dtype=np.float64)
         candidates = watch_candidates(w, problem.inertia)

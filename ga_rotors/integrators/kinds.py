@@ -6,8 +6,10 @@ by declaration (:func:`register_kind`), not by a generator of its own:
 
 * the **state layout**: a run's state is the path's orientation state ``x`` (its size is
   the path's) and a *rate* part ``w`` of ``rate`` numbers (the body ω: 3), read and
-  written by the kernels ``rate_load``/``rate_store``; the loop templates are written
-  over them (slots ``r_load``/``r_store``), so they serve any rate size;
+  written by the kernels ``rate_load``/``rate_store`` and stepped by ``rate_axpy``
+  (w + h·k) and ``rate_rk4`` (RK4's weighted sum); the loop templates and the Runge–Kutta
+  steps are written over them (slots ``r_load``, ``r_store``, ``r_axpy``, ``r_rk4``), so
+  they serve any rate size;
 * the **slots it generates** (``slots``: slot name -> :class:`SlotSource`, the slot's
   source text made from the problem, and the other slots that text calls): ``accel``
   (Euler's equations, with or without ``torque``), ``torque`` (the sum of the declared
@@ -42,7 +44,7 @@ from typing import NamedTuple
 from .._kernels import euler_coefficients, euler_rates, free_euler_rates
 from ..errors import InputError
 from . import loops
-from ._arith import load3, store3
+from ._arith import axpy3, load3, rk4_sum3, store3
 from .problem import FREE, KINEMATIC, TORQUED
 
 __all__ = ["KINDS", "ProblemKind", "SlotSource", "register_kind"]
@@ -136,7 +138,8 @@ class ProblemKind:
         The batched chunk loop template; None: the kind has no batched runs.
     rate : int
         Numbers in the rate part of the state; ``rate_load``/``rate_store`` read and
-        write that many (tuples of floats, arrays of float64).
+        write that many (tuples of floats, arrays of float64), ``rate_axpy(w, h, k)`` and
+        ``rate_rk4(w, h, k1, k2, k3, k4)`` step them.
     body : function
         ``body(problem)``: the tuple a loop passes its step as ``inertia``.
     body_size : int
@@ -170,6 +173,8 @@ class ProblemKind:
     rate: int = 3
     rate_load: Callable = field(default=load3)
     rate_store: Callable = field(default=store3)
+    rate_axpy: Callable = field(default=axpy3)
+    rate_rk4: Callable = field(default=rk4_sum3)
     body: Callable = field(default=_moments)
     body_size: int = 3
     stored: Callable | None = None

@@ -146,18 +146,26 @@ class Problem:
     """What is integrated: a body with declared torques, or a prescribed ω(t).
 
     ``accept_lower_order=True`` lets a method that handles orientation-only torques run
-    with a torque that depends on ω, knowing it is then first-order accurate.
+    with a torque that depends on ω, knowing it is then first-order accurate. ``kind`` is
+    the problem's kind (:mod:`~ga_rotors.integrators.kinds`): by default what the
+    arguments say (``"kinematic"`` with an ω(t), ``"torqued"`` with torques, ``"free"``);
+    name a registered kind of your own to integrate another state (``docs/extending.md``).
 
     Examples
     --------
-    >>> Problem((1.0, 2.0, 3.0)).kind
-    'free'
+    >>> Problem((1.0, 2.0, 3.0)).kind, Problem((1.0, 2.0, 3.0), kind="free").kind
+    ('free', 'free')
+    >>> Problem((1.0, 2.0, 3.0), kind="torqued")
+    Traceback (most recent call last):
+    ...
+    ga_rotors.errors.InputError: kind: these arguments make a 'free' problem, not 'torqued'
     """
 
     inertia: tuple[float, float, float] | None = None
     torques: tuple[TorqueTerm, ...] = ()
     omega: PrescribedOmega | None = None
     accept_lower_order: bool = False
+    kind: str | None = None
     # Values derived from this (immutable) problem, computed once: see ``derived``.
     _derived: dict = field(default_factory=dict, init=False, repr=False, compare=False)
 
@@ -179,12 +187,14 @@ class Problem:
             raise InputError(
                 f"accept_lower_order: expected True or False, got {self.accept_lower_order!r}"
             )
-
-    @property
-    def kind(self) -> str:
-        if self.omega is not None:
-            return KINEMATIC
-        return TORQUED if self.torques else FREE
+        said = KINEMATIC if self.omega is not None else TORQUED if self.torques else FREE
+        if self.kind is None:
+            object.__setattr__(self, "kind", said)
+        elif not isinstance(self.kind, str):
+            raise InputError(f"expected the name of a problem kind, got {self.kind!r}", key="kind")
+        elif self.kind in (FREE, TORQUED, KINEMATIC) and self.kind != said:
+            raise InputError(f"these arguments make a {said!r} problem, not {self.kind!r}",
+                             key="kind")  # fmt: skip
 
     def params(self) -> np.ndarray:
         """The packed parameter array the generated ``torque``/``omega`` slices."""

@@ -19,10 +19,9 @@ the state. A run warns once N·|ln |R(ihν)|²| ≥ 1, the energy changed by a f
 
 from __future__ import annotations
 
-from ._arith import axpy3, rk4_sum3
 from .base import FREE, KINEMATIC, TORQUED, register
 from .limits import wobble_damping
-from .slots import accel, o_axpy, o_normalize, o_rate, o_rk4, omega
+from .slots import accel, o_axpy, o_normalize, o_rate, o_rk4, omega, r_axpy, r_rk4
 from .template import TemplateIntegrator
 
 # The step templates below are not in __all__: they are source the code generator
@@ -32,23 +31,24 @@ __all__ = ["RK4", "RK4_RENORM"]
 
 
 def rk4_step(t, x, w, h, inertia, params):
-    """One RK4 step of the dynamics (ω̇ from ``accel``, ẋ from the path's kinematics)."""
+    """One RK4 step of the dynamics (ẇ from ``accel``, ẋ from the path's kinematics),
+    on any problem kind's state layout (the rate's arithmetic is the kind's)."""
     half = 0.5 * h
     k1x = o_rate(x, w)
     k1w = accel(t, x, w, inertia, params)
     x2 = o_axpy(x, half, k1x)
-    w2 = axpy3(w, half, k1w)
+    w2 = r_axpy(w, half, k1w)
     k2x = o_rate(x2, w2)
     k2w = accel(t + half, x2, w2, inertia, params)
     x3 = o_axpy(x, half, k2x)
-    w3 = axpy3(w, half, k2w)
+    w3 = r_axpy(w, half, k2w)
     k3x = o_rate(x3, w3)
     k3w = accel(t + half, x3, w3, inertia, params)
     x4 = o_axpy(x, h, k3x)
-    w4 = axpy3(w, h, k3w)
+    w4 = r_axpy(w, h, k3w)
     k4x = o_rate(x4, w4)
     k4w = accel(t + h, x4, w4, inertia, params)
-    return o_rk4(x, h, k1x, k2x, k3x, k4x), rk4_sum3(w, h, k1w, k2w, k3w, k4w)
+    return o_rk4(x, h, k1x, k2x, k3x, k4x), r_rk4(w, h, k1w, k2w, k3w, k4w)
 
 
 def rk4_renorm_step(t, x, w, h, inertia, params):

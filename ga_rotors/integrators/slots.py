@@ -44,6 +44,8 @@ o_watch    o_watch(t, x, w, h, stats)            the path's own diagnostics (the
 r_load     r_load(array) -> w                    read the rate part of a state (the kind's
                                                  ``rate_load``: ω, 3 numbers)
 r_store    r_store(out, row, w)                  write it into a 2-D array
+r_axpy     r_axpy(w, h, k) -> w + h·k            tuple arithmetic of the rate's size
+r_rk4      r_rk4(w, h, k1, k2, k3, k4)           w + h/6 (k1 + 2k2 + 2k3 + k4)
 ========== ===================================== =========================================
 
 The batched loop (:func:`~ga_rotors.integrators.loops.batch_chunk`) reads and writes its
@@ -84,7 +86,9 @@ __all__ = [
     "omega",
     "param_get",
     "param_rows",
+    "r_axpy",
     "r_load",
+    "r_rk4",
     "r_store",
     "step",
     "torque",
@@ -111,7 +115,12 @@ PATH_SLOTS = {
 }
 
 #: Slot name -> the attribute of a problem kind that binds it.
-KIND_SLOTS = {"r_load": "rate_load", "r_store": "rate_store"}
+KIND_SLOTS = {
+    "r_load": "rate_load",
+    "r_store": "rate_store",
+    "r_axpy": "rate_axpy",
+    "r_rk4": "rate_rk4",
+}
 
 #: Slots of the batched loop, written for the sizes of one batch.
 BATCH_SLOTS = ("x_rows", "x_get", "x_put", "w_rows", "w_get", "w_put", "body_rows",
@@ -191,6 +200,8 @@ o_store = _slot("o_store", "o_store(out, row, x): write a state.")
 o_watch = _slot("o_watch", "o_watch(t, x, w, h, stats): path diagnostics.")
 r_load = _slot("r_load", "w = r_load(array): read the rate part of a state.")
 r_store = _slot("r_store", "r_store(out, row, w): write the rate part of a state.")
+r_axpy = _slot("r_axpy", "w + h·k on the rate part of the state.")
+r_rk4 = _slot("r_rk4", "w + h/6 (k1 + 2 k2 + 2 k3 + k4) on the rate part of the state.")
 x_rows = _slot("x_rows", "rows = x_rows(a, lo, hi): a batch's orientation rows for a chunk.")
 x_get = _slot("x_get", "x = x_get(rows, i): body i's orientation state.")
 x_put = _slot("x_put", "x_put(rows, i, x): write body i's orientation state.")
