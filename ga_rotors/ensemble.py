@@ -382,12 +382,12 @@ def scene_samples(scene, changes=None, n: int | None = None) -> SceneSamples:
         return SceneSamples(
             scene,
             moments,
-            _repeat(q_body, count),
+            np.tile(q_body, (count, 1)),  # by row: renormalised by row in run_samples
             omega,
             _repeat(base_params, count),
             _repeat(scene.principal_rotation, count),
         )
-    inertia, q0, w0 = _columns(count, 3), _columns(count, 4), _columns(count, 3)
+    inertia, q0, w0 = _columns(count, 3), np.empty((count, 4)), _columns(count, 3)
     params, principal = _columns(count, base_params.size), _columns(count, 4)
     names = [t.name for t in scene.torques()]
     sets: dict[tuple, int] = {}  # the samples' kernels (as a tuple) -> index in terms
@@ -520,20 +520,31 @@ def run_samples(
     marks = _marks(times, t0, h, nsteps, scene.file)
     principal = samples.principal
     turned = not np.all(principal == (1.0, 0.0, 0.0, 0.0))
-    # renormalised as a single run renormalises its start (row by row: a contiguous copy)
-    q0 = require_unit(np.ascontiguousarray(samples.orientation), "orientation")
+    # renormalised as a single run renormalises its start: by row (C-contiguous, as one
+    # quaternion's is), or once when every sample starts from the same one (the usual case)
+    q0 = np.ascontiguousarray(samples.orientation)
+    if len(q0) and (q0 == q0[0]).all():
+        q0 = np.broadcast_to(require_unit(q0[0], "orientation"), q0.shape)
+    else:
+        q0 = require_unit(q0, "orientation")
     w0 = samples.angular_velocity
     if turned:  # into the principal frame the loops integrate in: q ⊗ P, P* ω P
         q0, w0 = Q.multiply(q0, principal), Q.rotate(Q.conjugate(principal), w0)
     x0 = module.initial_state(q0)
-    n = len(samples)
-    out_x, out_w = np.empty((marks.size, n, x0.shape[1])), np.empty((marks.size, n, 3))
-    for k, terms in enumerate(samples.terms):  # one batch per set of kernels (usually one)
-        mine = slice(None) if len(samples.terms) == 1 else np.flatnonzero(samples.kernels == k)
-        batch = Batch(_problem(scene, terms), samples.inertia[mine], samples.params[mine])
-        run = method.run(batch, path, x0[mine], w0[mine], t0, h, nsteps, marks, chunk=chunk,
+    if len(samples.terms) == 1:
+        batch = Batch(_problem(scene, samples.terms[0]), samples.inertia, samples.params)
+        run = method.run(batch, path, x0, w0, t0, h, nsteps, marks, chunk=chunk,
                          parallel=parallel)  # fmt: skip
-        out_x[:, mine], out_w[:, mine] = run.x, run.w
+        out_x, out_w = run.x, run.w
+    else:  # one batch per set of kernels, their samples gathered and scattered back
+        n = len(samples)
+        out_x, out_w = np.empty((marks.size, n, x0.shape[1])), np.empty((marks.size, n, 3))
+        for k, terms in enumerate(samples.terms):
+            mine = np.flatnonzero(samples.kernels == k)
+            batch = Batch(_problem(scene, terms), samples.inertia[mine], samples.params[mine])
+            run = method.run(batch, path, x0[mine], w0[mine], t0, h, nsteps, marks,
+                             chunk=chunk, parallel=parallel)  # fmt: skip
+            out_x[:, mine], out_w[:, mine] = run.x, run.w
     q, w = module.quaternions(out_x), out_w
     if turned:  # back to the scene's body axes: q_P ⊗ P*, P ω_P P*
         q, w = Q.multiply(q, Q.conjugate(principal)), Q.rotate(principal, w)

@@ -269,6 +269,14 @@ def pieces(prep: _Prepared, x0, w0, t0, h, nsteps, every, chunk, progress=None):
     return generate()
 
 
+def _batch_state(value, shape: tuple[int, int], name: str) -> np.ndarray:
+    """``value`` as float64 of ``shape``, in whatever layout it has (the caller copies)."""
+    a = np.asarray(value, dtype=np.float64)
+    if a.shape != shape:
+        raise InputError(f"expected shape {shape}, got {a.shape}", key=name)
+    return a
+
+
 def sample_marks(every, nsteps: int) -> np.ndarray:
     """The step numbers a batch samples: ``every`` an int (the start, every ``every``-th
     step and the last, as a run samples), or the step numbers themselves (increasing,
@@ -334,8 +342,8 @@ def run_batch(integrator: Integrator, batch: Batch, path: str, x0, w0, t0, h, ns
                          f"{batch.inertia.shape[1]}", key="inertia")  # fmt: skip
     marks = sample_marks(every, nsteps)
     # copies, stored one row per component: the loop integrates them in place
-    x = np.array(_state(x0, (n, dim), "x0").T, order="C")
-    w = np.array(_state(w0, (n, kind.rate), "w0").T, order="C")
+    x = np.array(_batch_state(x0, (n, dim), "x0").T, order="C")
+    w = np.array(_batch_state(w0, (n, kind.rate), "w0").T, order="C")
     body = np.ascontiguousarray(batch.inertia.T)
     params = np.ascontiguousarray(batch.params.T)
     out_x, out_w = np.empty((marks.size, dim, n)), np.empty((marks.size, kind.rate, n))
