@@ -52,6 +52,7 @@ class _Prepared:
     dim: int
     shape: tuple[int]  # (dim,), the state's shape
     rate: int  # numbers in the rate part of the state
+    rate_shape: tuple[int]  # (rate,)
     stats: np.ndarray  # the path's initial watch statistics (copied per run)
     inertia: tuple
     params: np.ndarray
@@ -99,7 +100,7 @@ def _prepare(integrator: Integrator, problem: Problem, path: str) -> _Prepared:
               np.empty(1), np.empty((1, spec.dim)), np.empty((1, kind.rate)), stats, 0)  # fmt: skip
     return _Prepared(
         integrator, compiled.module.loop, _entry(compiled.module.run, sample), compiled.path,
-        spec.dim, (spec.dim,), kind.rate, stats, inertia, params, flags,
+        spec.dim, (spec.dim,), kind.rate, (kind.rate,), stats, inertia, params, flags,
         limited and not measured,
     )  # fmt: skip
 
@@ -174,9 +175,9 @@ def run_prepared(prep: _Prepared, x0, w0, t0, h, nsteps, every, flags: int = 0, 
     w = _NO_W.get(prep.rate) if w0 is None else _contiguous(w0, dtype=_F64)
     if w is None:
         w = _NO_W[prep.rate] = np.zeros(prep.rate)
-    if x.shape != prep.shape or w.shape != (prep.rate,):
+    if x.shape != prep.shape or w.shape != prep.rate_shape:
         _state(x, prep.shape, "x0")
-        _state(w, (prep.rate,), "w0")
+        _state(w, prep.rate_shape, "w0")
     if progress is None:  # the common case: one call of the compiled loop
         written, value, bound, crossing = prep.run(
             x, w, float(t0), float(h), nsteps, every, prep.inertia, prep.params,

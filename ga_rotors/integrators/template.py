@@ -102,28 +102,22 @@ class TemplateIntegrator(Integrator):
             else:
                 prep = _runner.prepared(self, problem, path, checked=True)
                 object.__setattr__(self, "_last", (problem, path, prep))
-            if not prep.python_limit:
-                return self._judged(prep, problem, x0, w0, t0, h, nsteps, every, where, watch,
-                                    stacklevel + 1)  # fmt: skip
+            if not prep.python_limit:  # one compiled call: the limit, the loop, the watch
+                flags = prep.flags | loops.WATCH if watch and prep.flags else prep.flags
+                result, value, bound, crossing = _runner.run_prepared(
+                    prep, x0, w0, t0, h, nsteps, every, flags
+                )
+                if not value < bound:  # past the limit: the words, the warning or the error
+                    self.check_step(problem, w0, h, nsteps, where, stacklevel + 1)
+                    if result is None:  # refused, yet check_step let it pass: run unjudged
+                        result = _runner.run_prepared(prep, x0, w0, t0, h, nsteps, every)[0]
+                elif crossing >= 0:
+                    self.watch_step(problem, result.t, result.w, h, nsteps, where, stacklevel + 1)
+                return result
         return super().run(
             problem, path, x0, w0, t0, h, nsteps, every, chunk=chunk, progress=progress,
             where=where, watch=watch, stacklevel=stacklevel + 1, parallel=parallel,
         )  # fmt: skip
-
-    def _judged(self, prep, problem, x0, w0, t0, h, nsteps, every, where, watch, stacklevel):
-        """One compiled call: the limit, the loop and (``watch``) the watch; the words only
-        past the limit."""
-        flags = prep.flags | loops.WATCH if watch and prep.flags else prep.flags
-        result, value, bound, crossing = _runner.run_prepared(
-            prep, x0, w0, t0, h, nsteps, every, flags
-        )
-        if not value < bound:  # past the limit: the words, and the warning or the error
-            self.check_step(problem, w0, h, nsteps, where, stacklevel + 1)
-            if result is None:  # refused, yet check_step let it pass: run it unjudged
-                result = _runner.run_prepared(prep, x0, w0, t0, h, nsteps, every)[0]
-        elif crossing >= 0:
-            self.watch_step(problem, result.t, result.w, h, nsteps, where, stacklevel + 1)
-        return result
 
     def _whole(self, problem, path, x0, w0, t0, h, nsteps, every, progress):
         prep = _runner.prepared(self, problem, path)
