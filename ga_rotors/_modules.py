@@ -1,8 +1,8 @@
 """Loading a module from a file by its import spec, or from its source text: registered,
 executed, unregistered if it fails. User torque modules (:mod:`ga_rotors.trust`) and
 generated loop modules (:mod:`ga_rotors.integrators._cache`) are all imported this way;
-the generated ones under :data:`GENERATED_LOCK`, their text kept in :mod:`linecache`
-(:func:`remember_source`) so tracebacks and :func:`inspect.getsource` show it.
+the generated ones under :data:`GENERATED_LOCK`, their text kept in ``linecache``
+(:func:`remember_source`) so tracebacks and ``inspect.getsource`` show it.
 """
 
 from __future__ import annotations
@@ -74,9 +74,9 @@ def load_source(name: str, text: str) -> types.ModuleType:
 
 
 def remember_source(filename: str, text: str) -> None:
-    """Keep ``text`` in :mod:`linecache` as the lines of ``filename`` (as kingdon does
+    """Keep ``text`` in ``linecache`` as the lines of ``filename`` (as kingdon does
     for its generated code): a traceback through a generated module, and
-    :func:`inspect.getsource` of its functions, show the generated text, even for a
+    ``inspect.getsource`` of its functions, show the generated text, even for a
     module compiled in memory or a file pruned from the cache since."""
     # mtime None: linecache.checkcache keeps the entry instead of looking for the file
     linecache.cache[filename] = (len(text), None, text.splitlines(True), filename)

@@ -267,7 +267,7 @@ def specialise(
     >>> spec.path is None or spec.path.name.startswith("gen_rk4_free_quaternion_loop_")
     True
 
-    Its text is kept for tracebacks and :mod:`inspect` (even for a module compiled in
+    Its text is kept for tracebacks and ``inspect`` (even for a module compiled in
     memory):
 
     >>> import inspect

@@ -89,7 +89,7 @@ torqued body ``torque`` as the sum of exactly the declared torque kernels, and
 under ``@jit`` (cache=True). :mod:`ga_rotors.integrators._cache` writes it atomically into
 a per-user cache directory, named by a hash of its text and of the sources it depends on,
 and imports it from there, so numba's on-disk cache applies; the text is kept in
-:mod:`linecache`, so tracebacks and ``inspect.getsource`` show it. Undeclared torques are
+``linecache``, so tracebacks and ``inspect.getsource`` show it. Undeclared torques are
 not in the source at all; free problems have no ``torque``. The same route gives a batch
 of bodies its loop (the same step, compiled inline in a batched loop template) and
 scipy-style integrators their vector field. A template that calls a plain Python function
