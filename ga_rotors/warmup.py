@@ -204,9 +204,40 @@ def _run_one(task: Task) -> tuple[float, str | None]:
     start = time.perf_counter()
     try:
         task.run()
-    except Exception as exc:  # reported, and the others go on
+    except Exception as exc:  # reported, and the others go on ...
+        stop = _interruption(exc)
+        if stop is not None:  # ... unless it is Ctrl-C or SIGTERM that a library wrapped
+            raise stop from None
         return time.perf_counter() - start, f"{type(exc).__name__}: {exc}"[:500]
     return time.perf_counter() - start, None
+
+
+def _interruption(exc: BaseException) -> BaseException | None:
+    """The interruption (Ctrl-C, SIGTERM as the command raises it: any BaseException that
+    is not an Exception) that caused ``exc``, if one did: a compiler or an import that
+    catches everything may hand it on wrapped in an error of its own, and a warm-up that
+    took it for a failed task went on to the next one.
+
+    Examples
+    --------
+    >>> try:
+    ...     try:
+    ...         raise KeyboardInterrupt
+    ...     except BaseException as inner:
+    ...         raise RuntimeError("while importing") from inner
+    ... except RuntimeError as exc:
+    ...     type(_interruption(exc)).__name__
+    'KeyboardInterrupt'
+    >>> _interruption(ValueError("a real failure")) is None
+    True
+    """
+    seen = set()
+    while exc is not None and id(exc) not in seen:
+        seen.add(id(exc))
+        if not isinstance(exc, Exception):
+            return exc
+        exc = exc.__cause__ or exc.__context__
+    return None
 
 
 def warm(tasks, stream=None, show: bool = True) -> list[tuple[Task, str]]:

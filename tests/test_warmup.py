@@ -217,3 +217,24 @@ def test_paper_and_run_compile_nothing_after_cache_warm(tmp_path):
         text = done.stdout + done.stderr
         compiled = [line for line in text.splitlines() if "data saved" in line]
         assert not compiled, "\n".join(compiled)
+
+
+class _WrappedInterrupt(warmup.Task):
+    """Ctrl-C arriving inside a library that hands it on wrapped in an error of its own."""
+
+    def run(self):
+        try:
+            raise KeyboardInterrupt
+        except BaseException as exc:
+            raise RuntimeError("interrupted while importing") from exc
+
+
+def test_an_interruption_wrapped_by_a_library_stops_the_warm_up(cache):
+    class Key:
+        def to_toml(self):
+            return "wrapped"
+
+    with pytest.raises(KeyboardInterrupt):
+        warmup.warm([_WrappedInterrupt("wrapped", Key()), *warmup.scene_tasks("spinning_disk")],
+                    stream=io.StringIO())  # fmt: skip
+    assert not (cache / "warm").exists() or not list((cache / "warm").iterdir())
