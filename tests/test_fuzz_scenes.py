@@ -293,6 +293,48 @@ def test_a_huge_file_is_not_read(tmp_path, monkeypatch):
     assert status == 2 and "a scene file is at most 1,000" in stderr
 
 
+def test_reading_a_file_costs_its_size_not_the_cap(tmp_path):
+    # A buffered read(limit + 1) allocated the whole 10 MB cap for every scene file read
+    # (found as the saved-result viewer's memory bound failing).
+    import tracemalloc
+
+    from ga_rotors.scene.toml_io import read_file
+
+    (tmp_path / "s.toml").write_text("x = 1\n")
+    tracemalloc.start()
+    try:
+        text = read_file(tmp_path / "s.toml", 10**7)
+        peak = tracemalloc.get_traced_memory()[1]
+    finally:
+        tracemalloc.stop()
+    assert text == "x = 1\n" and peak < 100_000, peak
+
+
+@pytest.mark.parametrize("limit, refused", [(1000, False), (999, True)])
+def test_the_cap_holds_at_its_edge(tmp_path, limit, refused):
+    from ga_rotors.errors import SceneError
+    from ga_rotors.scene.toml_io import read_file
+
+    (tmp_path / "s.toml").write_text("#" * 999 + "\n")  # 1000 bytes
+    if refused:
+        with pytest.raises(SceneError, match="1,000 bytes; a scene file is at most 999"):
+            read_file(tmp_path / "s.toml", limit)
+    else:
+        assert len(read_file(tmp_path / "s.toml", limit)) == 1000
+
+
+@pytest.mark.skipif(not os.path.isfile("/proc/self/status"), reason="no /proc")
+def test_a_file_whose_size_the_kernel_does_not_know_is_read_to_the_cap():
+    # /proc files are regular files of size 0 that hold text: read on past the stated size
+    from ga_rotors.errors import SceneError
+    from ga_rotors.scene.toml_io import read_file
+
+    assert os.stat("/proc/self/status").st_size == 0
+    assert "Name:" in read_file("/proc/self/status", 10**6)
+    with pytest.raises(SceneError, match="bytes; a scene file is at most 10$"):
+        read_file("/proc/self/status", 10)
+
+
 def test_a_long_run_whose_norm_drifts_keeps_its_quantities(tmp_path):
     # RK4 lets |q| drift (here 3.5e-5 over 12,000 steps): the angles, space-frame ω and L
     # come from the normalised orientation and the drift is reported; before, the run

@@ -53,7 +53,7 @@ def read_file(path, limit: int, what: str = "scene") -> str:
                 str(path), "", f"not a regular file ({_kind(mode)}); a {what} file is a text file"
             )
         size = os.fstat(fd).st_size
-        data = b"" if size > limit else f.read(limit + 1)
+        data = b"" if size > limit else _read_up_to(f, size, limit)
     if size > limit or len(data) > limit:
         size = max(size, len(data))
         raise SceneError(str(path), "", f"{size:,} bytes; a {what} file is at most {limit:,}")
@@ -61,6 +61,18 @@ def read_file(path, limit: int, what: str = "scene") -> str:
         return data.decode("utf-8")
     except UnicodeDecodeError as exc:
         raise SceneError(str(path), "", f"cannot read the file: {exc}") from None
+
+
+def _read_up_to(f, size: int, limit: int) -> bytes:
+    """The bytes of ``f``, whose size was ``size`` when opened, and at most ``limit + 1``
+    of them (one more than the limit shows a file that grew past it while read).
+
+    Read as ``size + 1`` bytes first, not ``limit + 1``: a buffered ``read(n)`` allocates
+    n bytes before it reads, so every scene file read would cost the limit in memory."""
+    data = f.read(size + 1)
+    if len(data) > size:  # grown since it was opened (or a size the kernel does not know)
+        data += f.read(limit + 1 - len(data))
+    return data
 
 
 def _kind(mode: int) -> str:
