@@ -27,6 +27,7 @@ distributed = pytest.importorskip("distributed")
 from ga_rotors import quaternion as Q  # noqa: E402
 from ga_rotors.cli import main  # noqa: E402
 from ga_rotors.ensemble import run_samples, scene_samples  # noqa: E402
+from ga_rotors.results.dataset import variable_attrs  # noqa: E402
 from ga_rotors.sweep import (  # noqa: E402
     BLOCK,
     histogram,
@@ -204,6 +205,7 @@ def test_the_store_follows_cf_and_quantifies_with_pint(store, tmp_path):
     assert ds.attrs["Conventions"] == "CF-1.10" and "body axes" in ds.attrs["body_frame"]
     assert ds.cf.axes["T"] == ["time"] and ds.cf["time"].name == "time"
     assert ds["time"].attrs["standard_name"] == "time" and ds["time"].attrs["units"] == "s"
+    assert ds["time"].attrs == variable_attrs("t")  # the results' one table, as a run's file
     quantified = ds.pint.quantify()
     assert str(quantified["w"].data.units) == "radian / second"
     assert pint_xarray  # imported for its accessor

@@ -36,7 +36,6 @@ BODY_FRAME = (
     "(v_space = q v_body q*), w is the angular velocity in them"
 )
 
-_TIME = {"units": "s", "standard_name": "time", "axis": "T", "long_name": "time"}
 _COMPONENTS = {"quaternion_component": ["w", "x", "y", "z"], "body_axis": ["1", "2", "3"]}
 
 
@@ -78,6 +77,7 @@ def template(sweep, nominal=None, lazy: bool = False):
     with ``dask.array.full``, since chunking a numpy array has Dask hash its values).
     """
     from ..results import provenance
+    from ..results.dataset import variable_attrs
 
     xr = require("xarray", "results")
     dims, shape, k = sweep.dims, sweep.shape, sweep.times.size
@@ -101,7 +101,7 @@ def template(sweep, nominal=None, lazy: bool = False):
         np.zeros(sweep.chunks, dtype=np.int8),
         {"long_name": "1 once the chunk's samples are written", "units": "1"},
     )
-    coords = {"time": ("time", sweep.times, _TIME), **_COMPONENTS}
+    coords = {"time": ("time", sweep.times, variable_attrs("t")), **_COMPONENTS}
     for key, values in sweep.grid:
         name = sweep.names[key]
         coords[name] = (name, values, {"scene_key": key, "long_name": f"scene key {key}"})
@@ -137,7 +137,6 @@ def template(sweep, nominal=None, lazy: bool = False):
     }
     attrs = provenance(meta, scene)
     attrs.update(
-        Conventions="CF-1.10",
         title=f"ga_rotors sweep of {scene.name}",
         body_frame=BODY_FRAME,
         sweep_format=FORMAT,
