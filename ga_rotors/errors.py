@@ -15,6 +15,7 @@ __all__ = [
     "PrecisionError",
     "SceneError",
     "StepLimitWarning",
+    "echoed",
     "first_line",
 ]
 
@@ -165,7 +166,7 @@ class SceneError(InputError):
 
     def __init__(self, file: str, key: str, message: str):
         self.file = str(file)
-        where = f"{self.file}: {_capped(key)}: " if key else f"{self.file}: "
+        where = f"{echoed(self.file)}: {_capped(key)}: " if key else f"{echoed(self.file)}: "
         ValueError.__init__(self, where + _capped(message))
         self.key = key
         self.detail = message
@@ -191,15 +192,36 @@ def first_line(exc: BaseException) -> str:
     return text.splitlines()[0] if text else type(exc).__name__
 
 
+def echoed(text, limit: int | None = None) -> str:
+    """``text`` as an error line echoes it: each control, format, surrogate or unassigned
+    character (Unicode category C: ESC, BEL, line breaks, bidirectional overrides, an
+    undecodable byte of a file name) as its Python escape, so nothing echoed can move the
+    cursor, clear or retitle a terminal, or break the line; text of more than ``limit``
+    characters cut in its middle, its length said.
+
+    Examples
+    --------
+    >>> print(echoed("out\\x1b]0;owned\\x07/top\\n\\u202e"))
+    out\\x1b]0;owned\\x07/top\\n\\u202e
+    >>> echoed("θ = 0.5 rad"), echoed("/tmp/" + "a" * 5000, 80)[-21:]
+    ('θ = 0.5 rad', 'aaa (5005 characters)')
+    """
+    import unicodedata
+
+    text = "".join(repr(c)[1:-1] if unicodedata.category(c)[0] == "C" else c for c in str(text))
+    if limit is None or len(text) <= limit:
+        return text
+    half = (limit - 3) // 2
+    return f"{text[:half]}...{text[-half:]} ({len(text)} characters)"
+
+
 def _capped(text: str) -> str:
-    """``text`` on one line with every long word cut to :data:`ECHO_LIMIT` characters."""
+    """``text`` :func:`echoed` (on one line, no control characters), with every run of
+    non-blank characters longer than :data:`ECHO_LIMIT` cut in its middle."""
     import re
 
-    text = str(text).replace("\r", "\\r").replace("\n", "\\n")
     return re.sub(
-        rf"\S{{{ECHO_LIMIT + 1},}}",
-        lambda m: f"{m.group()[: ECHO_LIMIT // 2]}...({len(m.group())} characters)",
-        text,
+        rf"\S{{{ECHO_LIMIT + 1},}}", lambda m: echoed(m.group(), ECHO_LIMIT), echoed(text)
     )
 
 

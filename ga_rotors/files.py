@@ -43,11 +43,10 @@ import signal
 import tempfile
 import threading
 import time
-import unicodedata
 from collections.abc import Callable, Iterator, Sequence
 from pathlib import Path
 
-from .errors import InputError
+from .errors import InputError, echoed
 
 __all__ = [
     "LOCK_TIMEOUT",
@@ -74,9 +73,10 @@ _COMPLETE = ".complete"  # inside a staging folder: every file is written, moves
 
 
 def shown_path(path) -> str:
-    """``path`` as an error line shows it: control characters (and undecodable bytes)
-    escaped, so nothing echoed can move the cursor or retitle a terminal, and a path of
-    more than :data:`SHOWN_CHARS` characters cut in its middle, its length said.
+    """``path`` as an error line shows it (:func:`ga_rotors.errors.echoed`): control
+    characters (and undecodable bytes) escaped, so nothing echoed can move the cursor or
+    retitle a terminal, and a path of more than :data:`SHOWN_CHARS` characters cut in its
+    middle, its length said.
 
     Examples
     --------
@@ -88,16 +88,7 @@ def shown_path(path) -> str:
     >>> len(shown), shown[:8], shown[-20:]
     (97, '/tmp/aaa', 'aa (5005 characters)')
     """
-    text = os.fsdecode(path)
-    if len(text) <= SHOWN_CHARS:
-        return _escaped(text)
-    half = (SHOWN_CHARS - 3) // 2
-    return f"{_escaped(text[:half])}...{_escaped(text[-half:])} ({len(text)} characters)"
-
-
-def _escaped(text: str) -> str:
-    """``text`` with each control, format or unassigned character as its Python escape."""
-    return "".join(repr(c)[1:-1] if unicodedata.category(c)[0] == "C" else c for c in text)
+    return echoed(os.fsdecode(path), SHOWN_CHARS)
 
 
 def _umask() -> int:

@@ -331,7 +331,7 @@ def test_a_file_whose_size_the_kernel_does_not_know_is_read_to_the_cap():
 
     assert os.stat("/proc/self/status").st_size == 0
     assert "Name:" in read_file("/proc/self/status", 10**6)
-    with pytest.raises(SceneError, match="bytes; a scene file is at most 10$"):
+    with pytest.raises(SceneError, match=r"bytes; a scene file is at most 10$"):
         read_file("/proc/self/status", 10)
 
 
