@@ -322,3 +322,19 @@ def test_scenes_format_without_figures_is_one_line(capsys):
     assert capsys.readouterr().err.strip() == (
         "ga-rotors: error: --format: only with --figures DIR (the figures' format)"
     )
+
+
+def test_scenes_figures_empty_is_one_line_not_the_current_folder(tmp_path, monkeypatch, capsys):
+    # Path("") is the current folder: every bundled scene's figure landed there.
+    monkeypatch.chdir(tmp_path)
+    assert main(["scenes", "--figures", ""]) == 2
+    assert capsys.readouterr().err == (
+        "ga-rotors: error: --figures: expected a file or folder name, got an empty one\n"
+    )
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_scenes_figures_names_a_missing_folder_escaped(tmp_path, capsys):
+    assert main(["scenes", "--figures", str(tmp_path / "no\x1b[2Jne")]) == 2
+    err = capsys.readouterr().err
+    assert err.endswith("no\\x1b[2Jne is not a directory\n") and "\x1b" not in err

@@ -42,16 +42,14 @@ def run(args: argparse.Namespace) -> int:
         for name, description in names.items():
             print(f"{name:<{width}}  {description}")
         return 0
-    from pathlib import Path
-
     from ..errors import InputError
-    from ..files import output_set
+    from ..files import checked_path, output_set, shown_path
     from ..scene import load_scene, run_scene
     from ..scene.figures import render
 
-    out = Path(args.figures)
+    out = checked_path(args.figures, "--figures")  # "" is no name, not the current folder
     if not out.is_dir():
-        raise InputError(f"--figures: {out} is not a directory")
+        raise InputError(f"{shown_path(out)} is not a directory", key="--figures")
     written = []
     with output_set(out, "--figures") as stage:  # every figure, or the previous ones
         for name in names:
