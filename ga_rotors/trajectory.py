@@ -59,7 +59,7 @@ class Trajectory:
     ('t', 'w')
     >>> tr.w.shape
     (2, 3)
-    >>> print(tr.to_csv().splitlines()[1])
+    >>> print(tr.to_csv().splitlines()[0])
     t [s],w_1 [rad/s],w_2 [rad/s],w_3 [rad/s]
     """
 
@@ -281,20 +281,21 @@ class Trajectory:
         return out
 
     def to_csv(self, path=None) -> str | Path:
-        """Write every array as CSV columns, the unit in each header, atomically.
+        """Write every array as CSV columns, the unit in each header, and the columns'
+        units and the run's attributes (the body frame among them) in a W3C CSVW metadata
+        file beside it (``<path>-metadata.json``): both, or neither, written.
 
-        The first line names the frame of the body-frame columns (``# body_frame: ...``),
-        the second holds the headers (``q_w [1]``, ``w_1 [rad/s]``...); each value is the
-        shortest text that reads back as the same float64; cells past the end of a
-        shorter array are empty. Without ``path``, return the text. This is
-        :func:`ga_rotors.results.write_csv` (read it back with
-        ``pandas.read_csv(path, comment="#")``).
+        The first line holds the headers (``q_w [1]``, ``w_1 [rad/s]``...), then a row per
+        sample; each value is the shortest text that reads back as the same float64;
+        cells past the end of a shorter array are empty. Without ``path``, return the CSV
+        text. This is :func:`ga_rotors.results.write_csv` (read it back with
+        ``pandas.read_csv(path)``, ``polars.read_csv(path)`` or ``numpy.loadtxt(path,
+        delimiter=",", skiprows=1)``).
 
         Examples
         --------
         >>> tr = Trajectory({"t": np.array([0.0, 0.1])}, meta={"integrator": "rk4"})
         >>> print(tr.to_csv().replace("0.0", "0"), end="")
-        # body_frame: the body axes the inertia was given in
         t [s]
         0
         0.1

@@ -76,9 +76,15 @@ def test_two_runs_into_one_new_out_give_one_complete_set(tmp_path):
     ]  # fmt: skip
     for p in procs:
         assert p.wait(timeout=300) == 0, p.stderr.read()
-    names = ["disk.csv", "disk.npz", "disk.scene.toml", "disk.summary.txt"]
+    names = [
+        "disk.csv",
+        "disk.csv-metadata.json",
+        "disk.npz",
+        "disk.scene.toml",
+        "disk.summary.txt",
+    ]
     assert _listing(out) == names
     # One run's set, not a mix: the scene file written with the data says which.
     duration = "0.1" if "duration = 0.1" in (out / "disk.scene.toml").read_text() else "0.2"
-    rows = (out / "disk.csv").read_text().count("\n") - 2  # the frame and the headers
+    rows = (out / "disk.csv").read_text().count("\n") - 1  # the headers
     assert rows == {"0.1": 11, "0.2": 21}[duration]

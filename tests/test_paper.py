@@ -33,17 +33,14 @@ def test_data_and_summary_are_written(tmp_path, capsys):
     out = capsys.readouterr().out
     assert "rotor-quat" in out and "disk_0.001deg" in out
     names = sorted(p.name for p in (tmp_path / "new").iterdir())
-    assert names == sorted(
-        ["summary.txt", "paper_15deg.csv", "paper_0.001deg.csv", "disk_15deg.csv",
-         "disk_0.001deg.csv"]
-    )  # fmt: skip
+    csvs = ["paper_15deg.csv", "paper_0.001deg.csv", "disk_15deg.csv", "disk_0.001deg.csv"]
+    assert names == sorted(["summary.txt", *csvs, *(f"{n}-metadata.json" for n in csvs)])
     text = (tmp_path / "new" / "paper_0.001deg.csv").read_text()
-    assert text.startswith("# body_frame: ")
-    header = text.splitlines()[1].split(",")
+    header = text.splitlines()[0].split(",")
     assert header[:4] == ["t [s]", "w_1 [rad/s]", "w_2 [rad/s]", "w_3 [rad/s]"]
     assert "error_euler [rad]" in header
     assert "nan" not in text.lower()
-    data = np.loadtxt(tmp_path / "new" / "disk_15deg.csv", delimiter=",", skiprows=2)
+    data = np.loadtxt(tmp_path / "new" / "disk_15deg.csv", delimiter=",", skiprows=1)
     assert data.shape == (10001, len(header))
     # docs/gyroscope.md shows this table; its rotor, quaternion and |R| columns (set by
     # RK4's error, not by rounding) must be what the command prints. The rounding-level
@@ -68,7 +65,7 @@ def test_full_command_draws_every_figure_in_its_worker(tmp_path):
         env=env, capture_output=True, text=True, timeout=300,
     )  # fmt: skip
     assert proc.returncode == 0, proc.stderr
-    assert "wrote 15 files" in proc.stdout
+    assert "wrote 19 files" in proc.stdout  # 10 figures, summary, 4 CSV and their metadata
     for stem in paper_figures.FIGURES:
         assert paper_figures.read_digest(tmp_path / f"{stem}.png") == DIGEST
     assert not list(tmp_path.glob(".*.tmp"))

@@ -342,10 +342,10 @@ def trajectories(draw):
 
 
 def _cells(text):
-    """Data rows of a results CSV, split into cells (the comment and header left out)."""
+    """Data rows of a results CSV, split into cells (the header row left out)."""
     lines = text.splitlines()
-    assert lines[0].startswith("# body_frame: ")
-    return [line.split(",") for line in lines[2:]]
+    assert lines[0].startswith("t [s]")
+    return [line.split(",") for line in lines[1:]]
 
 
 @pytest.mark.parametrize("engine", ENGINES)
@@ -374,33 +374,110 @@ def test_csv_text_is_the_shortest_that_reads_back(engine):
     assert float(cells[3]) == 1e-7 and len(cells[3]) <= 5 and cells[4] == "5e-324"
 
 
+HEADERS = ["t [s]", "w_1 [rad/s]", "w_2 [rad/s]", "w_3 [rad/s]",
+           "euler_psi [rad]", "euler_theta [rad]", "euler_phi [rad]"]  # fmt: skip
+
+
 @pytest.mark.parametrize("engine", ENGINES)
-def test_csv_has_the_frame_then_units_in_headers_and_reads_as_documented(engine, tmp_path):
+def test_csv_opens_in_every_reader_with_no_options(engine, tmp_path):
+    """The header row first, then the data: what pandas, polars, numpy's loadtxt and a
+    spreadsheet's header detection expect (before, a '# body_frame' line came first)."""
+    pd = pytest.importorskip("pandas")
+    pl = pytest.importorskip("polars")
+    stopped = ragged()
+    full = stopped.extended({"euler": np.ones((5, 3)) / 3})  # every path complete
+    path = results.write_csv(full, tmp_path / "run.csv", engine=engine)
+    assert path.read_text().splitlines()[0] == ",".join(HEADERS)
+    expected = np.column_stack([full.t, full.w, full.euler])
+    read = {
+        "pandas": pd.read_csv(path).to_numpy(),
+        "polars": pl.read_csv(path).to_numpy(),
+        "numpy": np.loadtxt(path, delimiter=",", skiprows=1),
+    }
+    assert list(pd.read_csv(path).columns) == HEADERS == pl.read_csv(path).columns
+    for reader, values in read.items():
+        assert np.array_equal(values.astype(float), expected), reader
+    assert results.write_csv(full, engine=engine) == path.read_text()
+
+
+@pytest.mark.parametrize("engine", ENGINES)
+def test_a_stopped_path_reads_as_missing_values(engine, tmp_path):
     pd = pytest.importorskip("pandas")
     pl = pytest.importorskip("polars")
     tr = ragged()
     path = results.write_csv(tr, tmp_path / "run.csv", engine=engine)
-    lines = path.read_text().splitlines()
-    assert lines[0] == "# body_frame: the body axes the inertia was given in"
-    headers = ["t [s]", "w_1 [rad/s]", "w_2 [rad/s]", "w_3 [rad/s]",
-               "euler_psi [rad]", "euler_theta [rad]", "euler_phi [rad]"]  # fmt: skip
-    assert lines[1] == ",".join(headers)
     expected = np.column_stack([tr.t, tr.w, np.vstack([tr.euler, np.full((2, 3), np.nan)])])
     read = {
-        "pandas": pd.read_csv(path, comment="#").to_numpy(),
-        "polars": pl.read_csv(path, comment_prefix="#").to_numpy(),
-        "numpy": np.genfromtxt(path, delimiter=",", skip_header=2),
+        "pandas": pd.read_csv(path).to_numpy(),
+        "polars": pl.read_csv(path).to_numpy(),
+        "numpy": np.genfromtxt(path, delimiter=",", skip_header=1),
     }
-    assert list(pd.read_csv(path, comment="#").columns) == headers
     for reader, values in read.items():
         assert np.array_equal(values.astype(float), expected, equal_nan=True), reader
-    assert results.write_csv(tr, engine=engine) == path.read_text()
+
+
+def _sidecar(csv_path) -> dict:
+    return json.loads((csv_path.parent / (csv_path.name + "-metadata.json")).read_text())
+
+
+def _properties(document) -> dict:
+    return {p["schema:name"]: p["schema:value"] for p in document["schema:additionalProperty"]}
+
+
+def test_the_csvw_sidecar_describes_every_column_and_the_run(tmp_path):
+    tr = ragged().extended({}, meta={"body_frame": "disk axes\n,t [s]\r\nmore"})
+    path = results.write_csv(tr, tmp_path / "run.csv")
+    assert path.read_text().splitlines()[0] == ",".join(HEADERS)  # the frame is not there
+    text = (tmp_path / "run.csv-metadata.json").read_text()
+    document = json.loads(text)  # valid JSON, and the JSON-LD context CSVW requires
+    assert document["@context"] == "http://www.w3.org/ns/csvw"
+    assert document["url"] == "run.csv" and str(tmp_path) not in text  # relative, no machine
+    columns = document["tableSchema"]["columns"]
+    assert [c["titles"] for c in columns] == HEADERS
+    assert [c["name"] for c in columns] == [h.split(" [")[0] for h in HEADERS]
+    assert {c["datatype"] for c in columns} == {"double"}
+    assert [c["schema:unitText"] for c in columns] == ["s"] + ["rad/s"] * 3 + ["rad"] * 3
+    assert columns[5]["dc:description"].endswith("; zyz_angle theta")
+    attrs = _properties(document)
+    assert attrs["body_frame"] == "disk axes\n,t [s]\r\nmore"  # as given: JSON escapes it
+    assert attrs == json.loads(json.dumps(results.provenance(tr.meta)))  # one source
+
+
+def test_a_csvw_processor_validates_the_pair_and_reads_the_values(tmp_path):
+    csvw = pytest.importorskip("csvw")  # the CSVW reference library (cldf), an oracle
+    tr = ragged().extended({"my gain": np.arange(5.0)})  # a user's array: no unit, no name
+    path = results.write_csv(tr, tmp_path / "run.csv")
+    columns = _sidecar(path)["tableSchema"]["columns"]
+    assert columns[-1] == {"titles": "my gain", "datatype": "double"}
+    described = csvw.CSVW(str(tmp_path / "run.csv-metadata.json"), validate=True)
+    assert described.is_valid, [str(w.message) for w in described.warnings]
+    rows = list(described.tables[0].iterdicts())
+    assert [row["t"] for row in rows] == tr.t.tolist()
+    assert [row["w_2"] for row in rows] == tr.w[:, 1].tolist()
+    assert [row["euler_phi"] for row in rows] == [*tr.euler[:, 2].tolist(), None, None]
+    assert [list(row.values())[-1] for row in rows] == tr["my gain"].tolist()
+    assert path.name in str(described.tables[0].url)
+
+
+def test_write_csv_leaves_the_previous_pair_when_the_sidecar_fails(tmp_path, monkeypatch):
+    path = results.write_csv(ragged(), tmp_path / "run.csv")
+    before = {p.name: p.read_bytes() for p in tmp_path.iterdir()}
+    assert sorted(before) == ["run.csv", "run.csv-metadata.json"]
+
+    def fails(*args, **kwargs):
+        raise OSError(28, "No space left on device")
+
+    monkeypatch.setattr(table, "metadata_text", fails)
+    longer = Trajectory({"t": np.arange(9.0)}, meta={"integrator": "rk4"})
+    with pytest.raises(InputError, match=r"path: cannot write .*: No space left on device"):
+        results.write_csv(longer, path)
+    assert {p.name: p.read_bytes() for p in tmp_path.iterdir()} == before  # no debris either
 
 
 def test_csv_engines_write_the_same_values(heavy):
     _, tr = heavy
-    tables = [np.genfromtxt(io.StringIO(results.write_csv(tr, engine=e)), delimiter=",",
-                            skip_header=2) for e in ENGINES]  # fmt: skip
+    tables = [np.loadtxt(io.StringIO(results.write_csv(tr, engine=e)), delimiter=",",
+                         skiprows=1) for e in ENGINES]  # fmt: skip
     for values in tables:
         assert values.shape == (len(tr), len(tr.columns()))
         assert np.array_equal(values, tables[0])
@@ -409,15 +486,12 @@ def test_csv_engines_write_the_same_values(heavy):
         assert np.array_equal(tables[0][:, j], a), name
 
 
-def test_a_frame_with_a_line_break_stays_one_comment_line():
-    tr = ragged().extended({}, meta={"body_frame": "disk axes\n,t [s]\r\nmore"})
-    lines = results.write_csv(tr).splitlines()
-    assert lines[0] == "# body_frame: disk axes ,t [s] more" and lines[1].startswith("t [s],")
-
-
-def test_an_unknown_engine_is_one_line():
+def test_an_unknown_engine_is_one_line(tmp_path):
     with pytest.raises(InputError, match="engine: expected one of polars, pyarrow, numpy"):
         results.write_csv(ragged(), engine="excel")
+    with pytest.raises(InputError, match="engine: expected one of polars, pyarrow, numpy"):
+        results.write_csv(ragged(), tmp_path / "run.csv", engine="excel")
+    assert list(tmp_path.iterdir()) == []
 
 
 def test_a_scene_declaring_netcdf_and_csv_writes_both_readable(tmp_path):
@@ -428,10 +502,17 @@ def test_a_scene_declaring_netcdf_and_csv_writes_both_readable(tmp_path):
     )
     tr = run_scene(scene)
     written = write_outputs(scene, tr, tmp_path / "run")
-    assert [p.name for p in written] == ["heavy_top.nc", "heavy_top.csv", "heavy_top.scene.toml"]
+    assert [p.name for p in written] == [
+        "heavy_top.nc", "heavy_top.csv", "heavy_top.csv-metadata.json", "heavy_top.scene.toml"
+    ]  # fmt: skip
     back = results.read(tmp_path / "run" / "heavy_top.nc")
     xr.testing.assert_identical(back, results.to_dataset(tr, scene))  # with the bound
     assert back.attrs["scene_toml"] == scene.to_toml()  # the run records its scene
     csv_lines = (tmp_path / "run" / "heavy_top.csv").read_text().splitlines()
-    assert csv_lines[0] == f"# body_frame: {back.attrs['body_frame']}"
-    assert csv_lines[1].startswith("t [s],w_1 [rad/s]")
+    assert csv_lines[0].startswith("t [s],w_1 [rad/s]")
+    # the sidecar carries the netCDF file's attributes, the body frame and the bound included
+    attrs = _properties(_sidecar(tmp_path / "run" / "heavy_top.csv"))
+    assert attrs.keys() == back.attrs.keys()
+    for key, value in back.attrs.items():
+        assert np.array_equal(attrs[key], value), key
+    assert attrs["body_frame"] == back.attrs["body_frame"] and attrs["exact_error_bound"] > 0

@@ -59,8 +59,8 @@ def test_run_writes_what_the_scene_declares(short, tmp_path, capsys):
     printed = capsys.readouterr().out
     assert "rotor vs quaternion" in printed and "exact solution (symmetric_top)" in printed
     names = sorted(p.name for p in out.iterdir())
-    assert names == ["short.csv", "short.npz", "short.png", "short.scene.toml",
-                     "short.summary.txt"]  # fmt: skip
+    assert names == ["short.csv", "short.csv-metadata.json", "short.npz", "short.png",
+                     "short.scene.toml", "short.summary.txt"]  # fmt: skip
     assert Scene.from_toml((out / "short.scene.toml").read_text()).data == load_scene(short).data
     data = np.load(out / "short.npz")
     assert data["t"].shape == (21,) and data["rotor_blades"].shape == (21, 4)

@@ -133,7 +133,8 @@ def _compare_files(scene, streamed, whole):
     from ga_rotors.results import read
 
     name = scene.name
-    assert (streamed / f"{name}.csv").read_bytes() == (whole / f"{name}.csv").read_bytes()
+    for csv_file in (f"{name}.csv", f"{name}.csv-metadata.json"):  # the CSV and its CSVW
+        assert (streamed / csv_file).read_bytes() == (whole / csv_file).read_bytes()
     a, b = np.load(streamed / f"{name}.npz"), np.load(whole / f"{name}.npz")
     assert a.files == b.files
     for key in a.files:
@@ -247,13 +248,17 @@ def test_csv_streamed_in_pieces_is_the_text_written_whole(tmp_path, engine):
     pytest.importorskip(engine)
     from ga_rotors.results import write_csv
     from ga_rotors.results.streams import CsvStream
+    from ga_rotors.results.table import metadata_path
 
     tr = _ragged()
     out = CsvStream(tmp_path / "run.csv", engine=engine)
     for lo, hi in [(0, 1), (1, 300), (300, 300), (300, 333), (333, 334), (334, 1001)]:
         out.append(_rows(tr, lo, hi))
-    out.close({})
+    out.close(tr.meta)
     assert (tmp_path / "run.csv").read_text() == write_csv(tr, engine=engine)
+    (tmp_path / "whole").mkdir()
+    whole = metadata_path(write_csv(tr, tmp_path / "whole" / "run.csv", engine=engine))
+    assert (tmp_path / "run.csv-metadata.json").read_bytes() == whole.read_bytes()
 
 
 def _ragged(n=1001):
@@ -612,7 +617,8 @@ def test_a_run_with_its_summary_off_measures_nothing_but_still_says_incomplete(
     )
     files, rep = stream_scene(scene, tmp_path / "ok", chunk_steps=128)
     assert [p.name for p in files] == [
-        "spinning_disk.csv", "spinning_disk.png", "spinning_disk.scene.toml"
+        "spinning_disk.csv", "spinning_disk.csv-metadata.json", "spinning_disk.png",
+        "spinning_disk.scene.toml"
     ]  # fmt: skip
     assert rep.lines == [] and rep.values == {}
     stopped = scene.replace({"initial.orientation.euler": [0.0, 0.0, 0.0]})

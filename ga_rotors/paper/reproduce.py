@@ -73,7 +73,8 @@ def reproduce(
     figures : bool
         Write the PNG figures (``fig03_…png`` to ``fig10_…png``, ``errors.png``).
     data : bool
-        Write ``summary.txt`` and one CSV per scene (``paper_15deg.csv``, ...).
+        Write ``summary.txt`` and one CSV per scene (``paper_15deg.csv``, ...), each with
+        its CSVW metadata (``paper_15deg.csv-metadata.json``).
     parallel : bool
         Draw the figures in a process pool while the data are computed and written, and
         first compile the loops not cached yet with a progress line on stderr
@@ -91,8 +92,10 @@ def reproduce(
     --------
     >>> import tempfile
     >>> runs, written = reproduce(tempfile.mkdtemp(), figures=False)
-    >>> [p.name for p in written]
+    >>> [p.name for p in written if p.suffix != ".json"]
     ['summary.txt', 'paper_15deg.csv', 'paper_0.001deg.csv', 'disk_15deg.csv', 'disk_0.001deg.csv']
+    >>> sum(p.name.endswith(".csv-metadata.json") for p in written)
+    4
     >>> max(s.rotor_vs_quaternion for s in runs) < 1e-12
     True
     """
@@ -117,6 +120,7 @@ def _write_all(stage: Path, figures: bool, data: bool, parallel: bool, fmt: str 
 
             warm(paper_tasks())
         from ..files import write_text
+        from ..results.table import write_csv_files
         from . import figures as paper_figures
         from .digest import data_digest
         from .runs import run_all, summary
@@ -132,7 +136,8 @@ def _write_all(stage: Path, figures: bool, data: bool, parallel: bool, fmt: str 
         if data:
             text = summary(runs) + "\n"
             written.append(write_text(stage / "summary.txt", text))
-            written += [s.trajectory.to_csv(stage / f"{s.key}.csv") for s in runs]
+            for s in runs:  # each CSV with its CSVW metadata, moved in with the set
+                written += write_csv_files(s.trajectory, stage / f"{s.key}.csv")
         if figures and pool is None:
             written += paper_figures.draw_all(*job, fmt=fmt)
         by_name = {}

@@ -6,7 +6,8 @@
 * :func:`write` / :func:`read` — a ``.nc`` or ``.zarr`` file, written atomically and read
   back as the same Dataset;
 * :func:`write_npz` — an NPZ archive of the arrays, their labels and attributes;
-* :func:`write_csv` — CSV for spreadsheets, with units in the headers.
+* :func:`write_csv` — CSV for spreadsheets, with units in the headers, described by a
+  W3C CSVW metadata sidecar (``<file>.csv-metadata.json``: units, the run's attributes).
 
 xarray, h5netcdf and zarr come with ``pip install "ga-rotors[results]"``; a function that
 needs a missing one says so in one line (:class:`ga_rotors.optional.MissingExtraError`).

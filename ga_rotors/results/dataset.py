@@ -27,7 +27,14 @@ from ..optional import require
 from .provenance import provenance
 from .variables import COMPONENT_DIMS, STANDARD, describe
 
-__all__ = ["EXACT_BOUND_TIMES", "exact_bound_at", "time_rows", "to_dataset", "variable_attrs"]
+__all__ = [
+    "EXACT_BOUND_TIMES",
+    "exact_bound_at",
+    "run_attributes",
+    "time_rows",
+    "to_dataset",
+    "variable_attrs",
+]
 
 #: At most this many sample times (evenly spread, the last included) are evaluated to find
 #: the exact reference's largest error bound; the bounds grow smoothly with time.
@@ -137,10 +144,27 @@ def to_dataset(trajectory, scene=None):
             coords.setdefault(dim, (dim, list(labels)))
             dims = ("time", dim)
         variables[name] = (dims, a, attrs)
+    return xr.Dataset(variables, coords=coords, attrs=run_attributes(trajectory, scene))
+
+
+def run_attributes(trajectory, scene=None) -> dict:
+    """What a run's files say about it: its :func:`~.provenance.provenance` and, for a scene
+    with an exact solution, that reference's largest rounding-error bound over the samples
+    (``exact_error_bound``, in rad). The Dataset's global attributes, the CSV sidecar's
+    properties.
+
+    Examples
+    --------
+    >>> from ga_rotors.scene import load_scene, run_scene
+    >>> scene = load_scene("heavy_top").replace({"time.duration": 0.01})
+    >>> attrs = run_attributes(run_scene(scene), scene)
+    >>> attrs["integrator"], attrs["exact_error_bound"] < 1e-12, attrs["exact_error_bound_units"]
+    ('rk4', True, 'rad')
+    """
     attrs = provenance(trajectory.meta, scene)
     if scene is not None:
-        bound = _exact_bound(scene, t)
+        bound = _exact_bound(scene, trajectory.t)
         if bound is not None:
             attrs["exact_error_bound"] = bound
             attrs["exact_error_bound_units"] = "rad"
-    return xr.Dataset(variables, coords=coords, attrs=attrs)
+    return attrs

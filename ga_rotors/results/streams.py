@@ -8,7 +8,7 @@ which paths completed, how many samples each has). The file is the one the whole
 trajectory would give, written in one go:
 
 * :class:`CsvStream` — CSV with units in the headers (:class:`~.table.CsvRows`), through
-  one buffered file;
+  one buffered file, and its CSVW metadata sidecar (:func:`~.table.csv_metadata`);
 * :class:`~.npz.NpzStream` — the ``.npz`` archive of :func:`~.npz.write_npz`;
 * :class:`NetcdfStream` — netCDF along an unlimited ``time`` dimension (h5netcdf),
   extended per piece;
@@ -57,52 +57,12 @@ def sample_count(meta: dict) -> int:
     return steps // every + 1 + (1 if steps % every else 0)
 
 
-class CsvStream:
-    """CSV written piece by piece: the text of :func:`ga_rotors.results.write_csv`.
-
-    Examples
-    --------
-    >>> import tempfile, pathlib
-    >>> from ga_rotors.trajectory import Trajectory
-    >>> path = pathlib.Path(tempfile.mkdtemp()) / "run.csv"
-    >>> out = CsvStream(path)
-    >>> out.append(Trajectory({"t": np.array([0.0, 0.5]), "energy": np.array([1.0, 2.0])}))
-    >>> out.append(Trajectory({"t": np.array([1.0]), "energy": np.array([3.0])}))
-    >>> out.close({})
-    >>> print(path.read_text().replace(".0,", ",").replace(".0\\n", "\\n"), end="")
-    # body_frame: not recorded
-    t [s],energy [J]
-    0,1
-    0.5,2
-    1,3
-    """
-
-    def __init__(self, path, scene=None, *, engine: str | None = None):
-        from .table import CsvRows
-
-        self.path = Path(path)
-        self._fh = open(self.path, "wb", buffering=CSV_BUFFER)
-        self._rows = CsvRows(self._fh, engine)
-
-    def append(self, piece) -> None:
-        """Write the rows of ``piece`` (the comment and header lines first, with the first
-        piece)."""
-        self._rows.write(piece)
-
-    def close(self, meta: dict) -> None:
-        """Finish the file."""
-        self._fh.close()
-
-    def abort(self) -> None:
-        """Stop writing (the run failed; the staging folder goes away with the file)."""
-        self._fh.close()
-
-
-class _DatasetStream:
-    """What the netCDF and zarr writers share: per-piece Datasets, attributes at the end."""
+class _RunStream:
+    """What every streamed writer keeps of a run's pieces: their rows, each array's rows
+    (short for a stopped path), the exact reference's bound times; the run's attributes
+    at the end."""
 
     def __init__(self, path, scene=None):
-        require("xarray", "results")
         self.path = Path(path)
         self.scene = scene
         self.rows = 0
@@ -127,7 +87,8 @@ class _DatasetStream:
         self.rows += len(piece)
 
     def _attrs(self, meta: dict) -> tuple[dict, dict]:
-        """The run's attributes, and each time variable's ``valid_samples`` (or None)."""
+        """The run's attributes (those :func:`~.dataset.run_attributes` gives the whole
+        run), and each time variable's ``valid_samples`` (or None)."""
         from .provenance import provenance
 
         attrs = provenance(meta, self.scene)
@@ -142,6 +103,70 @@ class _DatasetStream:
             if name != "t"
         }
         return attrs, valid
+
+
+class CsvStream(_RunStream):
+    """CSV written piece by piece, and its CSVW metadata at :meth:`close`: the files of
+    :func:`ga_rotors.results.table.write_csv_files`.
+
+    Examples
+    --------
+    >>> import json, tempfile, pathlib
+    >>> from ga_rotors.trajectory import Trajectory
+    >>> path = pathlib.Path(tempfile.mkdtemp()) / "run.csv"
+    >>> out = CsvStream(path)
+    >>> out.append(Trajectory({"t": np.array([0.0, 0.5]), "energy": np.array([1.0, 2.0])}))
+    >>> out.append(Trajectory({"t": np.array([1.0]), "energy": np.array([3.0])}))
+    >>> out.close({"integrator": "rk4"})
+    >>> print(path.read_text().replace(".0,", ",").replace(".0\\n", "\\n"), end="")
+    t [s],energy [J]
+    0,1
+    0.5,2
+    1,3
+    >>> json.loads(path.with_name("run.csv-metadata.json").read_text())["url"]
+    'run.csv'
+    """
+
+    def __init__(self, path, scene=None, *, engine: str | None = None):
+        from .table import CsvRows
+
+        super().__init__(path, scene)
+        self._fh = open(self.path, "wb", buffering=CSV_BUFFER)
+        self._rows = CsvRows(self._fh, engine)
+        self._columns = None  # the first piece's arrays, no rows: what the columns are
+
+    def append(self, piece) -> None:
+        """Write the rows of ``piece`` (the header line first, with the first piece)."""
+        from ..trajectory import Trajectory
+
+        if self._columns is None:
+            arrays = {name: piece[name][:0] for name in piece.names}
+            self._columns = Trajectory(arrays, piece.components)
+        self._take(piece)
+        self._rows.write(piece)
+
+    def close(self, meta: dict) -> None:
+        """Finish the file; write its metadata, with the run's attributes (the final
+        ``meta``)."""
+        from ..trajectory import Trajectory
+        from .table import metadata_path, metadata_text
+
+        self._fh.close()
+        columns = self._columns if self._columns is not None else Trajectory({"t": np.zeros(0)})
+        text = metadata_text(columns, self.path.name, self._attrs(meta)[0])
+        metadata_path(self.path).write_text(text, encoding="utf-8")
+
+    def abort(self) -> None:
+        """Stop writing (the run failed; the staging folder goes away with the file)."""
+        self._fh.close()
+
+
+class _DatasetStream(_RunStream):
+    """What the netCDF and zarr writers share: xarray, per-piece Datasets."""
+
+    def __init__(self, path, scene=None):
+        require("xarray", "results")
+        super().__init__(path, scene)
 
 
 class _BoundTimes:

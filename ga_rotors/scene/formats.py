@@ -14,13 +14,15 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 
 from ..errors import InputError
+from ..results.table import METADATA_SUFFIX
 
 __all__ = ["FORMATS", "DataFormat", "default_data", "register", "require_formats"]
 
 
 @dataclass(frozen=True)
 class DataFormat:
-    """One data format: ``write(trajectory, path)`` writes the whole file at ``path``;
+    """One data format: ``write(trajectory, path)`` writes the whole file at ``path`` (and
+    its ``companions`` beside it);
     ``stream(path, scene)``, if given, opens a writer taking the run piece by piece
     (``append(piece)``, then ``close(meta)``; ``abort()`` on failure).
 
@@ -30,8 +32,8 @@ class DataFormat:
 
     Examples
     --------
-    >>> FORMATS["csv"].suffix, FORMATS["csv"].doc
-    ('.csv', 'every array as CSV columns, full precision')
+    >>> FORMATS["csv"].suffix, FORMATS["csv"].companions
+    ('.csv', ('-metadata.json',))
     """
 
     name: str
@@ -41,6 +43,20 @@ class DataFormat:
     stream: Callable | None = field(default=None, repr=False)
     #: (module, extra) pairs the format imports: checked before a run starts
     needs: tuple[tuple[str, str], ...] = ()
+    #: what the data file's name gets for each other file its writers write beside it
+    #: (CSV: its CSVW metadata, ``<name>.csv-metadata.json``)
+    companions: tuple[str, ...] = ()
+
+    def files(self, name: str) -> list[str]:
+        """The names of the files this format writes for a run named ``name``.
+
+        Examples
+        --------
+        >>> FORMATS["csv"].files("top"), FORMATS["npz"].files("top")
+        (['top.csv', 'top.csv-metadata.json'], ['top.npz'])
+        """
+        data = f"{name}{self.suffix}"
+        return [data, *(data + companion for companion in self.companions)]
 
     def open(self, path, scene=None):
         """A writer of this format at ``path`` for the pieces of a run.
@@ -55,7 +71,7 @@ class DataFormat:
         >>> out.append(Trajectory({"t": np.array([0.0, 1.0])}))
         >>> out.close({})
         >>> lines = path.read_text().splitlines()
-        >>> lines[1], [float(x) for x in lines[2:]]
+        >>> lines[0], [float(x) for x in lines[1:]]
         ('t [s]', [0.0, 1.0])
         """
         if self.stream is not None:
@@ -125,7 +141,9 @@ class _Whole:
 
 
 def _csv(trajectory, path):
-    return trajectory.to_csv(path)
+    from ..results.table import write_csv_files  # in the staging folder: both files
+
+    return write_csv_files(trajectory, path)
 
 
 def _npz(trajectory, path):
@@ -173,8 +191,8 @@ def register(fmt: DataFormat) -> DataFormat:
 
 
 register(
-    DataFormat("csv", ".csv", "every array as CSV columns, full precision", _csv,
-               _stream("CsvStream"))
+    DataFormat("csv", ".csv", "every array as CSV columns, full precision, and their CSVW "
+               "metadata", _csv, _stream("CsvStream"), companions=(METADATA_SUFFIX,))
 )  # fmt: skip
 register(
     DataFormat("npz", ".npz", "every array in one NumPy .npz archive", _npz,

@@ -3,8 +3,9 @@
 :func:`stream_scene` runs a scene and writes, into one directory, exactly what ``output``
 declares, as the run goes on:
 
-* ``<name>.csv`` / ``.npz`` / ``.nc`` / ``.zarr`` (any registered format) for
-  ``output.data``, each appended piece by piece (:mod:`ga_rotors.results.streams`);
+* ``<name>.csv`` (with its CSVW metadata ``<name>.csv-metadata.json``) / ``.npz`` /
+  ``.nc`` / ``.zarr`` (any registered format) for ``output.data``, each appended piece by
+  piece (:mod:`ga_rotors.results.streams`);
 * ``<name>.png`` (or ``.svg``, ``.pdf``: ``output.figure_format``), one panel per entry
   of ``output.plots`` (drawn with matplotlib, carrying a digest of the data it shows),
   drawn from a bounded thinned copy of the run
@@ -47,7 +48,7 @@ def _declared(scene: Scene) -> bool:
 
 def _names(scene: Scene, summary: bool) -> list[str]:
     out, name = scene.data["output"], scene.name
-    names = [f"{name}{FORMATS[fmt].suffix}" for fmt in out["data"]]
+    names = [file for fmt in out["data"] for file in FORMATS[fmt].files(name)]
     if out["plots"]:
         names.append(f"{name}.{out['figure_format']}")
     if summary:
@@ -224,7 +225,8 @@ def stream_scene(scene, out_dir, *, progress=None, budget=None, chunk_steps: int
     >>> out = pathlib.Path(tempfile.mkdtemp()) / "run"
     >>> files, rep = stream_scene(s, out, chunk_steps=1000)
     >>> [p.name for p in files]
-    ['heavy_top.csv', 'heavy_top.png', 'heavy_top.summary.txt', 'heavy_top.scene.toml']
+    ['heavy_top.csv', 'heavy_top.csv-metadata.json', 'heavy_top.png', 'heavy_top.summary.txt',
+     'heavy_top.scene.toml']
     >>> rep.values["drift_total_energy"] < 1e-9
     True
     """
@@ -263,7 +265,7 @@ def write_outputs(scene: Scene, trajectory: Trajectory, out_dir, summary: str | 
     >>> s = load_scene("spinning_disk").replace({"time.duration": 0.1, "output.plots": []})
     >>> out = pathlib.Path(tempfile.mkdtemp()) / "run"
     >>> [p.name for p in write_outputs(s, run_scene(s), out)]
-    ['spinning_disk.csv', 'spinning_disk.scene.toml']
+    ['spinning_disk.csv', 'spinning_disk.csv-metadata.json', 'spinning_disk.scene.toml']
     """
     from ..files import output_set
 
