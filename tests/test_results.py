@@ -516,3 +516,28 @@ def test_a_scene_declaring_netcdf_and_csv_writes_both_readable(tmp_path):
     for key, value in back.attrs.items():
         assert np.array_equal(attrs[key], value), key
     assert attrs["body_frame"] == back.attrs["body_frame"] and attrs["exact_error_bound"] > 0
+
+
+@pytest.mark.skipif(not hasattr(os, "fork"), reason="POSIX fork")
+def test_a_forked_process_writes_csv_after_its_parent_used_polars(tmp_path):
+    """polars' thread pool does not survive fork: a forked worker writing a scene's CSV
+    with it after the parent had used it waited forever (seen as a forked warm-up worker
+    hanging behind test_stream's polars CSVs). A forked process writes with the next
+    engine."""
+    import signal
+
+    pytest.importorskip("polars")
+    pytest.importorskip("pyarrow")
+    results.write_csv(ragged(), engine="polars")  # the parent's pool is in use
+    pid = os.fork()
+    if pid == 0:  # pragma: no cover - the child reports by its exit status
+        signal.alarm(60)  # a hang ends the child, which the parent sees as a failure
+        try:
+            results.write_csv(ragged(), tmp_path / "child.csv")
+            os._exit(0 if table.csv_engine() != "polars" else 3)
+        finally:
+            os._exit(1)
+    _, status = os.waitpid(pid, 0)
+    assert os.WIFEXITED(status) and os.WEXITSTATUS(status) == 0, status
+    assert (tmp_path / "child.csv").read_text() == results.write_csv(ragged(), engine="pyarrow")
+    assert table.csv_engine() in ("polars", "pyarrow")  # the parent keeps its default

@@ -32,6 +32,7 @@ import importlib
 import io
 import json
 import math
+import os
 import re
 import urllib.parse
 from pathlib import Path
@@ -69,9 +70,25 @@ _COLUMN_NAME = re.compile(r"[A-Za-z0-9][A-Za-z0-9_]*")
 ENGINES = ("polars", "pyarrow", "numpy")
 
 
+#: True in a process made by ``os.fork`` (a ``multiprocessing`` pool's workers on Linux):
+#: polars' thread pool does not survive a fork, and a child writing with it waits forever
+#: once the parent has used it, so the default writer there is the next one (pyarrow
+#: re-makes its pool).
+_FORKED = False
+
+
+def _forked() -> None:
+    global _FORKED
+    _FORKED = True
+
+
+if hasattr(os, "register_at_fork"):
+    os.register_at_fork(after_in_child=_forked)
+
+
 def csv_engine(engine: str | None = None) -> str:
     """The CSV writer to use: ``engine`` if given, else the first of :data:`ENGINES` that
-    is installed (numpy always is).
+    is installed (numpy always is), polars left out in a forked process.
 
     Examples
     --------
@@ -89,6 +106,8 @@ def csv_engine(engine: str | None = None) -> str:
             raise InputError(f"expected one of {', '.join(ENGINES)}, got {engine!r}", key="engine")
         return engine
     for name in ENGINES:
+        if name == "polars" and _FORKED:
+            continue
         try:
             importlib.import_module(name)
             return name
