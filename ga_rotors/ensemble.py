@@ -414,16 +414,10 @@ def scene_samples(scene, changes=None, n: int | None = None) -> SceneSamples:
 
 
 def _body_frame(scene) -> tuple[np.ndarray, np.ndarray]:
-    """The scene's initial orientation and body ω in the frame it gives the body in.
-
-    A Scene holds them in the principal frame it integrates in (q_P = q ⊗ P, ω_P = P* ω P,
-    P its ``principal_rotation``): turned back here, as a run turns its results back."""
-    from . import quaternion as Q
-
-    turn = scene.principal_rotation
-    if turn == (1.0, 0.0, 0.0, 0.0):
-        return scene.orientation, scene.angular_velocity
-    return Q.multiply(scene.orientation, Q.conjugate(turn)), Q.rotate(turn, scene.angular_velocity)
+    """The scene's initial orientation and body ω in the frame it gives the body in: as
+    the Scene holds them (its ``principal_orientation`` and ``principal_angular_velocity``
+    are the principal frame's, which run_samples converts to as simulate does)."""
+    return scene.orientation, scene.angular_velocity
 
 
 def _repeat(values, n: int) -> np.ndarray:

@@ -11,6 +11,7 @@ from scipy.spatial.transform import Rotation
 
 from ga_rotors import quaternion as Q
 from ga_rotors import shapes
+from ga_rotors.body import RigidBody
 from ga_rotors.errors import InputError, SceneError
 from ga_rotors.scene import Scene, bundled, dumps_toml, load_scene
 
@@ -99,8 +100,11 @@ def test_full_tensor_body_is_diagonalised_and_its_frame_recorded():
     # P takes principal axes to the scene's body axes: M(P) diag(I) M(P)ᵀ = tensor.
     M = Q.to_matrix(s.principal_rotation)
     assert np.allclose(M @ np.diag(s.body.moments) @ M.T, tensor, atol=1e-14)
-    # The integration frame's orientation is q_user ⊗ P (identity user orientation here).
-    assert np.allclose(s.orientation, s.principal_rotation, atol=0)
+    # The scene's orientation is the one it wrote (its body frame); the loops start from
+    # q_user ⊗ P (identity user orientation here), and the body carries P.
+    assert np.array_equal(s.orientation, [1.0, 0.0, 0.0, 0.0])
+    assert np.allclose(s.principal_orientation, s.principal_rotation, atol=0)
+    assert s.body.principal_rotation == s.principal_rotation
 
 
 def test_body_angular_velocity_is_carried_into_the_principal_frame():
@@ -111,11 +115,16 @@ def test_body_angular_velocity_is_carried_into_the_principal_frame():
                       initial={"angular_velocity": {"body": w_user.tolist(),
                                                     "units": "rad/s"}}))  # fmt: skip
     M = Q.to_matrix(s.principal_rotation)
-    assert np.allclose(M @ s.angular_velocity, w_user, atol=1e-15)
+    assert np.array_equal(s.angular_velocity, w_user)  # the scene's body frame, as written
+    assert np.allclose(M @ s.principal_angular_velocity, w_user, atol=1e-15)
     # Same kinetic energy and the same space angular momentum in both descriptions.
     assert np.isclose(s.body.energy(s.angular_velocity), 0.5 * w_user @ tensor @ w_user)
+    principal = RigidBody(s.body.moments)
+    assert np.isclose(principal.energy(s.principal_angular_velocity), s.body.energy(w_user))
     L_space = Q.rotate(s.orientation, s.body.momentum(s.angular_velocity))
     assert np.allclose(L_space, tensor @ w_user, atol=1e-15)
+    L_principal = Q.rotate(s.principal_orientation, principal.momentum(s.principal_angular_velocity))
+    assert np.allclose(L_principal, tensor @ w_user, atol=1e-15)
 
 
 # ---------------------------------------------------------------------------- orientations

@@ -13,6 +13,7 @@ import numpy as np
 import pytest
 
 from ga_rotors import effects
+from ga_rotors.body import RigidBody
 from ga_rotors.errors import SceneError
 from ga_rotors.integrators import Problem, TemplateIntegrator, _runner, _source, get
 from ga_rotors.scene import Scene, load_scene, run_scene
@@ -225,13 +226,20 @@ def test_energy_columns_are_the_array_formulas_bit_for_bit(case):
         })  # fmt: skip
         assert s.principal_rotation != (1.0, 0.0, 0.0, 0.0)
     tr = run_scene(s.replace({"output.quantities": ["potential_energy", "total_energy"]}))
-    q = Q.normalize(tr.quaternions())
     if case != "heavy top":
         assert np.abs(np.linalg.norm(tr.quaternions(), axis=1) - 1.0).max() > 1e-9
+    # the samples are the scene's body frame's; the lever s.gravity is principal, where
+    # the body's own conversion takes them
+    q, w = s.body.to_principal(tr.quaternions(), tr.w)
     weight, r = s.gravity
-    potential = -(Q.rotate(q, r) @ weight)
+    potential = -(Q.rotate(Q.normalize(q), r) @ weight)
     assert np.array_equal(tr.potential_energy, potential)
-    assert np.array_equal(tr.total_energy, s.body.energy(tr.w) + potential)
+    assert np.array_equal(tr.total_energy, RigidBody(s.body.moments).energy(w) + potential)
+    # and the same energies as the scene's body frame has them (to rounding)
+    lever = Q.rotate(s.principal_rotation, r)
+    assert np.allclose(tr.potential_energy, -(Q.rotate(Q.normalize(tr.quaternions()), lever)
+                                               @ weight), rtol=0, atol=1e-14)  # fmt: skip
+    assert np.allclose(tr.total_energy - tr.potential_energy, s.body.energy(tr.w), rtol=1e-14)
 
 
 def test_chunked_loops_give_the_same_samples(monkeypatch):
@@ -341,3 +349,88 @@ def test_a_run_longer_than_the_references_default_span_reports_its_bound():
     assert f"rounding bound {rep.values['exact_bound']:.1e} rad" in str(rep)
     assert rep.values["error_rotor"] == tr.error_rotor.max()
     assert exact_bound_at(s, tr.t) == pytest.approx(rep.values["exact_bound"], rel=0.05)
+
+
+# ---------------------------------------------------------------------------- one frame
+
+#: A tensor whose principal axes are turned from the axes it is written in (issue 30).
+TURNED_TENSOR = [[2.0, 0.3, 0.1], [0.3, 1.5, -0.2], [0.1, -0.2, 1.0]]
+
+
+def turned_scene(**changes) -> Scene:
+    return Scene({
+        "body": {"tensor": TURNED_TENSOR},
+        "initial": {"angular_velocity": {"body": [0.0, 0.0, 1.0], "units": "rad/s"}},
+        "time": {"duration": 1.0},
+        "integrator": {"step": 0.01, "paths": ["rotor", "quaternion"]},
+        "output": {"quantities": ["angles", "energy", "L", "L_space"], "data": ["csv"]},
+        **changes,
+    })  # fmt: skip
+
+
+def test_a_tensor_scene_answers_in_the_frame_it_is_written_in(tmp_path):
+    """Issue 30 item 1: a tensor body's run gave q, ω, L, the angles and the files in the
+    principal frame (a scene started at the identity with ω = (0, 0, 1) wrote a first CSV
+    row with ω = (0.086, −0.156, 0.984), 0.91 rad from simulate's answer), while
+    simulate(RigidBody.from_tensor(...)) answers in the tensor's frame. Now every output
+    is in the frame the scene writes the body in, and says so."""
+    from ga_rotors import quaternion as Q
+    from ga_rotors import simulate
+    from ga_rotors.errors import GimbalLockWarning
+    from ga_rotors.scene import stream_scene
+
+    scene = turned_scene()
+    assert scene.principal_rotation != (1.0, 0.0, 0.0, 0.0)
+    assert np.array_equal(scene.orientation, [1.0, 0.0, 0.0, 0.0])
+    assert np.array_equal(scene.angular_velocity, [0.0, 0.0, 1.0])
+    with pytest.warns(GimbalLockWarning, match="at 1 of 101"):  # θ = 0 at the identity
+        tr = run_scene(scene)
+    assert "not its principal axes" in tr.meta["body_frame"]
+    # (0, 0, 1) to the frame change's rounding, there and back (a few ulps)
+    assert np.allclose(tr.w[0], [0.0, 0.0, 1.0], rtol=0, atol=1e-15)
+    assert np.allclose(tr.quaternions()[0], [1.0, 0.0, 0.0, 0.0], rtol=0, atol=1e-15)
+    body = RigidBody.from_tensor(TURNED_TENSOR)
+    with pytest.warns(GimbalLockWarning, match="at 1 of 101"):
+        alone = simulate(body, [1.0, 0.0, 0.0, 0.0], [0.0, 0.0, 1.0], duration=1.0,
+                         step=0.01, paths=("rotor", "quaternion"), outputs=("L", "angles"))
+    for path in ("rotor", "quaternion"):
+        assert Q.distance(tr.quaternions(path), alone.quaternions(path)).max() < 1e-14
+    assert np.allclose(tr.w, alone.w, rtol=0, atol=1e-14)
+    assert np.allclose(tr.L, alone.L, rtol=0, atol=1e-14)
+    assert np.allclose(tr.L, tr.w @ np.array(TURNED_TENSOR).T, rtol=0, atol=1e-14)  # L = T ω
+    assert np.allclose(tr.angles[1:], alone.angles[1:], rtol=0, atol=1e-12)
+    # the data file says the same from its first row
+    files, _ = stream_scene(scene.replace({"output.quantities": ["L"]}), tmp_path / "run")
+    header, first = [line for line in files[0].read_text().splitlines()
+                     if line and not line.startswith("#")][:2]  # fmt: skip
+    at = [i for i, name in enumerate(header.split(",")) if name.startswith("w_")]
+    row = np.array(first.split(","), dtype=float)
+    assert np.allclose(row[at], [0.0, 0.0, 1.0], rtol=0, atol=1e-15)
+
+
+def test_a_turned_scene_starts_where_the_scene_says_and_its_summary_holds():
+    """A scene's orientation given as Euler angles with a turned tensor: the run's first
+    sample is that orientation (not q ⊗ P), and the summary's invariants and exact error
+    are read in that frame (they would show a frame mismatch as a large drift)."""
+    from ga_rotors import euler
+    from ga_rotors.scene.summary import report
+
+    scene = turned_scene(initial={
+        "orientation": {"euler": [20.0, 40.0, 10.0], "sequence": "ZYZ", "units": "deg"},
+        "angular_velocity": {"body": [0.5, -1.0, 2.0], "units": "rad/s"},
+    })  # fmt: skip
+    tr = run_scene(scene.replace({"output.quantities": ["angles", "error"]}))
+    assert np.allclose(tr.angles[0], np.radians([20.0, 40.0, 10.0]), rtol=0, atol=1e-14)
+    assert np.allclose(tr.quaternions()[0], euler.to_quaternion("ZYZ", np.radians(
+        [20.0, 40.0, 10.0])), rtol=0, atol=1e-15)  # fmt: skip
+    rep = report(scene, tr)
+    assert rep.values["drift_space_momentum"] < 1e-9 and rep.values["error_rotor"] < 1e-8
+
+
+def test_a_turned_body_cannot_take_the_euler_angle_path():
+    """The Euler-angle path integrates the principal frame's angles, which are not the
+    scene's body frame's: refused at the key, in one line, as simulate refuses it."""
+    with pytest.raises(SceneError) as info:
+        turned_scene(integrator={"step": 0.01, "paths": ["rotor", "euler"]})
+    assert info.value.key == "integrator.paths"
+    assert "body.tensor is not diagonal" in info.value.detail and "\n" not in str(info.value)

@@ -243,13 +243,14 @@ def build(name: str | None, body, q0, w0, t0: float, gravity=None, damping=None)
     ----------
     name : {"symmetric_top", "asymmetric_top", "heavy_top", "damped_symmetric_top"} or None
     body : RigidBody
-        Principal moments of the integration frame.
+        The scene's body (:attr:`Scene.body`, with its principal rotation: the reference
+        takes and gives states in the scene's body frame, and solves in the principal one).
     q0, w0 : array_like
-        Initial orientation (4,) and body angular velocity (3,), integration frame.
+        Initial orientation (4,) and body angular velocity (3,), the scene's body frame.
     t0 : float
         Initial time (s).
     gravity : (weight, r), optional
-        The heavy top's weight m g (space) and pivot -> centre of mass (body).
+        The heavy top's weight m g (space) and pivot -> centre of mass (principal frame).
     damping : float, optional
         The damped top's isotropic coefficient c.
 
@@ -296,7 +297,7 @@ def applicable(body, effects, gravity=None) -> tuple[str | None, str]:
     Parameters
     ----------
     body : RigidBody
-        Principal moments of the integration frame.
+        The body (its principal moments decide).
     effects : list of dict
         The scene's resolved effects.
     gravity : (weight, r), optional

@@ -18,12 +18,16 @@ angular rates are ambiguous, so they carry explicit ``units``; a missing ``units
 error, never a guess. Every error is a :class:`ga_rotors.errors.SceneError` naming the file,
 the key (dotted path) and what was expected.
 
-The integration frame is the body's *principal* frame (about the pivot when the scene
-has gravity). It is the body frame the scene is written in whenever the inertia is
-diagonal there (moments, shapes, a pivot on a principal axis); otherwise (a full tensor,
-an off-axis pivot) :attr:`Scene.principal_rotation` P takes principal axes to the scene's
-body axes, the trajectory holds the principal frame's orientation q, and the scene's body
-frame is at q ⊗ P*.
+Frames. Every value a scene gives and every output of its run (orientations, ω, L, the
+angles, the summary, the figure, the data files) is in the *scene's body frame*: the axes
+the scene writes its body in, as :func:`ga_rotors.simulation.simulate` answers for a
+:class:`~ga_rotors.body.RigidBody` built from a tensor. The loops integrate in the body's
+principal frame (about the pivot with gravity); it differs from the scene's body frame
+when the inertia is not diagonal there (a full ``tensor``, an off-axis pivot):
+:attr:`Scene.principal_rotation` P then takes principal axes to the scene's body axes,
+and :attr:`Scene.body` carries P, so ``simulate(scene.body, scene.orientation,
+scene.angular_velocity, ...)`` is the scene's run. :attr:`Scene.body_frame` names the
+frame in a sentence (``Trajectory.meta["body_frame"]``, written into the data files).
 
 Examples
 --------
@@ -109,13 +113,17 @@ class Scene:
         The resolved scene: every key, defaults filled in (what ``ga-rotors show``
         prints, as TOML; loading it again gives the same scene).
     body : RigidBody
-        Principal moments of the integration frame (about the pivot with gravity).
+        The scene's body: its principal moments (about the pivot with gravity) and P,
+        its ``principal_rotation``; it takes and gives values in the scene's body frame.
     principal_rotation : tuple
         P: principal axes -> the scene's body axes (identity when the inertia is diagonal).
     orientation : ndarray (4,)
-        Initial orientation of the integration frame (unit quaternion).
+        Initial orientation of the scene's body frame (unit quaternion, body to space).
     angular_velocity : ndarray (3,)
-        Initial body angular velocity in the integration frame (rad/s).
+        Initial body angular velocity in the scene's body frame (rad/s).
+    principal_orientation, principal_angular_velocity : ndarray
+        The same initial state in the principal frame the loops integrate in (q ⊗ P and
+        P* ω P, converted as :func:`~ga_rotors.simulation.simulate` converts them).
     euler_angles : ndarray (3,) or None
         The initial ZYZ angles (rad) when the scene gives them directly (passed to the
         Euler-angle path exactly, rather than extracted from the quaternion).
@@ -128,8 +136,8 @@ class Scene:
         The resolved integrator (an adaptive one at the scene's tolerance), checked
         against the scene's effects and paths.
     gravity : tuple of ndarray or None
-        (weight m g in space, r = pivot -> centre of mass in the integration frame), or
-        None without gravity.
+        (weight m g in space, r = pivot -> centre of mass in the principal frame the
+        torque kernels act in), or None without gravity.
     frame : ga_rotors.effects.Frame
         What building the effects' torques needs (principal rotation, mass, base_dir).
 
@@ -200,16 +208,21 @@ class Scene:
         if self.gravity_index is not None:
             tensor = self._about_pivot(reader, tensor, mass)
             key = join(join("effects", self.gravity_index), "pivot_to_com")
-        self.body, self.principal_rotation = self._principal(reader, tensor, key)
+        self.body = self._principal(reader, tensor, key)
+        self.principal_rotation = self.body.principal_rotation
         self.mass = mass
         self.frame = _effects.Frame(self.principal_rotation, mass, self.base_dir, self.file)
 
-        q_user = self._orientation(reader, d["initial"]["orientation"])
         from .. import quaternion as Q
 
-        self.orientation = Q.multiply(q_user, self.principal_rotation)
-        w_user = self._angular_velocity(reader, d["initial"], q_user)
-        self.angular_velocity = np.array(self.frame.to_principal(w_user))
+        self.orientation = self._orientation(reader, d["initial"]["orientation"])
+        self.angular_velocity = np.asarray(
+            self._angular_velocity(reader, d["initial"], self.orientation), dtype=np.float64
+        )
+        # the integration frame's start, as simulate converts it (the ensemble starts there)
+        p = np.array(self.principal_rotation)
+        self.principal_orientation = Q.multiply(self.orientation, p)
+        self.principal_angular_velocity = Q.rotate(Q.conjugate(p), self.angular_velocity)
         self.euler_angles = None
         o = d["initial"]["orientation"]
         if "euler" in o and o["sequence"] == "ZYZ" and self.principal_rotation == _IDENTITY:
@@ -319,17 +332,14 @@ class Scene:
         return tensor
 
     @staticmethod
-    def _principal(reader: Reader, tensor: np.ndarray, key: str):
-        if np.count_nonzero(tensor - np.diag(np.diag(tensor))) == 0:
-            try:
-                return RigidBody(tuple(np.diag(tensor))), _IDENTITY
-            except InputError as exc:
-                raise reader.error(key, exc.detail) from None
+    def _principal(reader: Reader, tensor: np.ndarray, key: str) -> RigidBody:
+        """The body of ``tensor`` (scene body axes): its principal moments and P."""
         try:
-            body = RigidBody.from_tensor(tensor)
+            if np.count_nonzero(tensor - np.diag(np.diag(tensor))) == 0:
+                return RigidBody(tuple(np.diag(tensor)))
+            return RigidBody.from_tensor(tensor)
         except InputError as exc:
             raise reader.error(key, exc.detail) from None
-        return RigidBody(body.moments), body.principal_rotation
 
     @staticmethod
     def _orientation(reader: Reader, o: dict) -> np.ndarray:
@@ -415,6 +425,19 @@ class Scene:
             except InputError as exc:
                 key = "integrator.paths" if exc.key == "paths" else "integrator.method"
                 raise reader.error(key, exc.detail) from None
+        from .. import paths as _paths
+
+        turned = [p for p in integ["paths"] if _paths.get(p).sequence]
+        if turned and self.principal_rotation != _IDENTITY:
+            # its state is the principal frame's angles, which are not the scene's body
+            # frame's: every output is in the latter (simulate refuses it the same way)
+            raise reader.error(
+                "integrator.paths",
+                f"the {turned[0]} path integrates the Euler angles of the principal frame, "
+                f"and this body's principal axes are not its scene axes ({self._turned_by()}); "
+                "use the rotor or quaternion path (the angles quantity gives ZYZ angles of "
+                "the scene's body frame)",
+            )
 
     def _check_outputs(self, reader: Reader) -> None:
         out = self.data["output"]
@@ -463,6 +486,34 @@ class Scene:
             )
         except (InputError, PrecisionError) as exc:
             raise _exact.refusal(self.file, self.exact, exc) from None
+
+    def _turned_by(self) -> str:
+        """What makes the principal axes differ from the scene's body axes."""
+        if "tensor" in self.data["body"]:
+            return "body.tensor is not diagonal"
+        return f"the pivot {join('effects', self.gravity_index)}.pivot_to_com is off them"
+
+    @property
+    def body_frame(self) -> str:
+        """The frame every output of the scene is in, as a short sentence (what
+        ``Trajectory.meta["body_frame"]`` and the data files record).
+
+        Examples
+        --------
+        >>> from ga_rotors.scene import load_scene
+        >>> load_scene("heavy_top").body_frame
+        'body axes of the scene (body.shape), its principal axes about the pivot'
+        >>> s = load_scene("heavy_top").replace({"body": {"tensor": [[1, 0.1, 0], [0.1, 2, 0],
+        ...                                                          [0, 0, 2.5]], "mass": 1}})
+        >>> s.body_frame
+        'body axes of the scene (body.tensor), not its principal axes (principal_rotation)'
+        """
+        given = next(k for k in ("moments", "tensor", "shape") if k in self.data["body"])
+        where = f"body axes of the scene (body.{given})"
+        if self.principal_rotation != _IDENTITY:
+            return f"{where}, not its principal axes (principal_rotation)"
+        return where + (", its principal axes" if self.gravity_index is None
+                        else ", its principal axes about the pivot")  # fmt: skip
 
     @property
     def exact_has_orientation(self) -> bool:
@@ -540,14 +591,17 @@ class Scene:
         Examples
         --------
         >>> from ga_rotors.scene import load_scene
-        >>> print(load_scene("heavy_top").describe().splitlines()[0])
-        # integration frame: principal moments (0.002225, 0.002225, 0.00125) kg·m² about the pivot
+        >>> print("\n".join(load_scene("heavy_top").describe().splitlines()[:2]))
+        # body frame of every output: body axes of the scene (body.shape), its principal axes about the pivot
+        # principal moments (0.002225, 0.002225, 0.00125) kg·m² about the pivot (the loops integrate in the principal frame)
         """
         q, w = self.orientation, self.angular_velocity
         method = self.method
         lines = [
-            f"integration frame: principal moments {_fmt(self.body.moments)} kg·m²"
-            + (" about the pivot" if self.gravity_index is not None else ""),
+            f"body frame of every output: {self.body_frame}",
+            f"principal moments {_fmt(self.body.moments)} kg·m²"
+            + (" about the pivot" if self.gravity_index is not None else "")
+            + " (the loops integrate in the principal frame)",
             f"principal rotation P (principal -> scene body axes): {_fmt(self.principal_rotation)}",
             f"initial orientation q0 (w, x, y, z): {_fmt(q)}",
             f"initial body angular velocity: {_fmt(w)} rad/s",

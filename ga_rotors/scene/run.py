@@ -7,6 +7,11 @@ that nobody listed are not computed. Everything the scene implies (the integrato
 tolerance, the gravity terms, the exact solution) comes from the :class:`Scene`, which
 computed it once; the orientation comes from the trajectory, which converts it once.
 
+Every array is in the scene's body frame (:attr:`Scene.body_frame`, recorded as
+``meta["body_frame"]``): the scene's body, which carries its principal rotation, goes to
+:func:`ga_rotors.simulation.simulate` with the initial state as the scene writes it, and
+simulate integrates in the principal frame and answers in the body's.
+
 Examples
 --------
 >>> from ga_rotors.scene import load_scene
@@ -23,6 +28,7 @@ import numpy as np
 
 from .._jit import jit
 from .._kernels import gravity_potential, kinetic_energy, qnormalize, qunit
+from ..body import RigidBody
 from ..trajectory import Trajectory
 from .loading import load_scene
 from .model import Scene
@@ -63,7 +69,8 @@ def run_scene(scene, *, progress=None, budget=None) -> Trajectory:
         ``t``, ``w``, one array per path (``rotor_blades``, ``q``, ``euler``; the
         orientation of any of them is ``quaternions(path)``) and the scene's
         ``output.quantities`` (``error`` becomes ``error_rotor``, ``error_quaternion``,
-        ``error_euler``); ``meta["scene"]`` is the scene's name.
+        ``error_euler``); ``meta["scene"]`` is the scene's name, ``meta["body_frame"]``
+        the frame of every array (:attr:`Scene.body_frame`).
 
     Examples
     --------
@@ -120,7 +127,8 @@ def _pieces(scene: Scene, chunk_steps, progress):
     )
     extra = [name for name in wanted if name not in _sim.OUTPUTS]
     meta = {"scene": scene.name, "principal_rotation": scene.principal_rotation,
-            "exact": scene.exact, "scene_toml": scene.to_toml()}  # fmt: skip
+            "body_frame": scene.body_frame, "exact": scene.exact,
+            "scene_toml": scene.to_toml()}  # fmt: skip
     try:
         if chunk_steps is None:
             source = iter([_sim.simulate(*args, **options)])
@@ -191,20 +199,24 @@ def _energies_loop(q, w, moments, r, weight, tol, potential_out, total_out):
 
 def _gravity_energies(body, q, w, gravity) -> tuple[np.ndarray, np.ndarray]:
     """(potential, total) energies (each (n,)) of samples with orientations ``q`` (n, 4)
-    (their norms the path's own: each is normalised) and body rates ``w`` (n, 3), in the
-    principal frame, under ``gravity`` = (weight, lever) (:attr:`Scene.gravity`).
+    (their norms the path's own: each is normalised) and body rates ``w`` (n, 3) of the
+    scene's body frame, under ``gravity`` = (weight, lever) (:attr:`Scene.gravity`, its
+    lever in the principal frame, where the samples are taken by ``body.to_principal``).
 
     The operations and their order are those of ``-(quaternion.rotate(
-    quaternion.normalize(q), r) @ weight)`` and ``body.energy(w)``, the same numbers, in
-    one compiled pass instead of five array passes (a streamed heavy top computes its
-    total energy in every piece, on the thread that integrates: 0.06 s less CPU over
-    10⁷ steps). A zero, non-finite or overflowing sample raises what those functions
-    raise for it.
+    quaternion.normalize(q), r) @ weight)`` and ``body.energy(w)`` on the principal
+    frame's samples, the same numbers, in one compiled pass instead of five array passes
+    (a streamed heavy top computes its total energy in every piece, on the thread that
+    integrates: 0.06 s less CPU over 10⁷ steps). A zero, non-finite or overflowing sample
+    raises what those functions raise for it.
     """
     from .. import quaternion as Q
     from .._validate import UNIT_TOLERANCE
 
     weight, lever = gravity
+    if not body.is_principal:
+        q, w = body.to_principal(q[: w.shape[0]], w)
+        body = RigidBody(body.moments)
     q, w = (np.ascontiguousarray(a, dtype=np.float64) for a in (q, w))
     n = w.shape[0]
     v, total = np.empty(n), np.empty(n)

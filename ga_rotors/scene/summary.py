@@ -214,10 +214,11 @@ def invariant_series(scene: Scene, tr: Trajectory, q: np.ndarray, start=None) ->
             ("space_momentum", "space-frame L", dev(L_space, L_first, L0), "relative to |L₀|"),
         ]
     elif types == ["gravity"]:
-        weight, r = scene.gravity
+        weight, r = scene.gravity  # r in the principal frame, where the samples go
         scale = float(body.energy(w_first[0]) + np.linalg.norm(weight) * np.linalg.norm(r))
         up = -weight / np.linalg.norm(weight)
-        total, vertical, axial = _gravity_deviations(body, w, q, w_first, q_first, weight, r, up,
+        states = (*_principal(body, q, w), *_principal(body, q_first, w_first))
+        total, vertical, axial = _gravity_deviations(body.moments, *states, weight, r, up,
                                                      scale, L0)  # fmt: skip
         rows += [
             ("total_energy", "total energy", total, "relative to E_kin,0 + m|g||r|"),
@@ -261,11 +262,20 @@ def _gravity_loop(q, w, moments, r, weight, up, first, scale, l0, tol, out):
     return bad == 0.0
 
 
-def _gravity_deviations(body, w, q, w_first, q_first, weight, r, up, scale, l0):
-    """total energy, vertical L and body L₃ deviations (each (n,)) for :func:`invariant_series`
-    from one compiled pass (:func:`_gravity_loop`); the first sample through the same pass."""
-    from .. import quaternion as Q
+def _principal(body, q, w):
+    """Orientations and body rates of the scene's body frame in the principal frame the
+    body's moments are diagonal in (as given when they are the same)."""
+    return (q, w) if body.is_principal else body.to_principal(q, w)
 
+
+def _gravity_deviations(moments, q, w, q_first, w_first, weight, r, up, scale, l0):
+    """total energy, vertical L and body L₃ deviations (each (n,)) for :func:`invariant_series`
+    from one compiled pass (:func:`_gravity_loop`) over principal-frame samples; the first
+    sample through the same pass."""
+    from .. import quaternion as Q
+    from ..body import RigidBody
+
+    body = RigidBody(moments)
     args = (np.asarray(body.moments, dtype=np.float64), *(np.asarray(a, dtype=np.float64)
             for a in (r, weight, up)))  # fmt: skip
     first = np.empty((3, 1))
@@ -492,12 +502,14 @@ class RunSummary:
             from .._kernels import free_euler_rates
 
             b = sorted(range(3), key=lambda k: scene.body.moments[k])[1]
+            _, w = _principal(scene.body, None, w)  # the middle principal axis's rate
             rates = free_euler_rates.py_func(scene.body.moments, (w[:, 0], w[:, 1], w[:, 2]))
             self.found["flips"].append(zero_crossings(t, w[:, b], rates[b]))
 
     def _heavy_top(self, exact, t, w, q) -> None:
         # the model's space frame (gravity along −z): cos θ, its exact rate, the axis's
-        # azimuth (as x, y) and ψ̇, in one compiled pass
+        # azimuth (as x, y) and ψ̇, in one compiled pass; the symmetry axis is principal z
+        q, w = _principal(self.scene.body, q, w)
         u, du, x, y, dpsi = _axis_readouts(exact.frame, q, w)
         when, value, is_max = extrema(t, u, du)
         for key, found in (("when", when), ("value", value), ("is_max", is_max)):
@@ -660,15 +672,16 @@ class RunSummary:
         model = exact.model
         b = sorted(range(3), key=lambda k: self.scene.body.moments[k])[1]
         flips = np.concatenate(self.found["flips"]) if self.found["flips"] else np.empty(0)
+        axis = f"ω{b + 1}" if self.scene.body.is_principal else f"principal ω{b + 1}"
         if flips.size < 2 or not np.isfinite(model.flip_period):
-            rep.lines.append(f"  flips of ω{b + 1}: {flips.size} in the run; period not measured")
+            rep.lines.append(f"  flips of {axis}: {flips.size} in the run; period not measured")
             return
         gaps = np.diff(flips)
         rep.values["flip_period"] = float(gaps.mean())
         rep.values["flip_period_exact"] = model.flip_period
         rep.values["flip_period_error"] = float(np.abs(gaps - model.flip_period).max())
         rep.lines.append(
-            f"  flips of ω{b + 1}: {flips.size}, mean interval {gaps.mean():.10g} s "
+            f"  flips of {axis}: {flips.size}, mean interval {gaps.mean():.10g} s "
             f"(exact 2K(m)/λ = {model.flip_period:.10g} s, m = {model.m:.6g}; largest "
             f"difference {rep.values['flip_period_error']:.1e} s)"
         )
