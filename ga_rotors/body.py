@@ -26,6 +26,7 @@ the exact solution says.
 
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -121,6 +122,41 @@ def _equal_within_rounding(values: np.ndarray) -> tuple[float, float, float]:
     return tuple(out)
 
 
+def _rotation_exactly(q) -> list[list]:
+    """The rotation matrix of the float quaternion ``q`` in rational arithmetic: the
+    formula of :func:`ga_rotors.matrix.from_quaternion` divided by |q|², so it is exactly
+    orthogonal whatever q's rounding."""
+    from fractions import Fraction
+
+    w, x, y, z = (Fraction(float(c)) for c in q)
+    n = w * w + x * x + y * y + z * z
+    return [
+        [(w * w + x * x - y * y - z * z) / n, 2 * (x * y - w * z) / n, 2 * (x * z + w * y) / n],
+        [2 * (x * y + w * z) / n, (w * w - x * x + y * y - z * z) / n, 2 * (y * z - w * x) / n],
+        [2 * (x * z - w * y) / n, 2 * (y * z + w * x) / n, (w * w - x * x - y * y + z * z) / n],
+    ]
+
+
+def _residual(tensor: np.ndarray, moments, p) -> float:
+    """‖M(P) diag(I) M(P)ᵀ − ½(T + Tᵀ)‖_F, exactly, then rounded up: what the body of
+    moments I and principal rotation P misses of the tensor T (the eigensolver's error,
+    the conversion of its axes to P, the merging of equal moments)."""
+    from fractions import Fraction
+
+    m = _rotation_exactly(p)
+    inertia = [Fraction(v) for v in moments]
+    square = Fraction(0)
+    for i in range(3):
+        for j in range(3):
+            given = (Fraction(float(tensor[i, j])) + Fraction(float(tensor[j, i]))) / 2
+            made = sum(m[i][k] * inertia[k] * m[j][k] for k in range(3))
+            square += (made - given) ** 2
+    return float(np.nextafter(np.sqrt(float(square)) * (1.0 + 4.0 * _EPS), np.inf))
+
+
+_EPS = float(np.finfo(np.float64).eps)
+
+
 def _representable(values: np.ndarray, name: str, what: str) -> None:
     """InputError when ``values`` overflowed (the inputs were finite: as_float_array)."""
     if not np.all(np.isfinite(values)):
@@ -156,6 +192,9 @@ class RigidBody:
 
     moments: tuple[float, float, float]
     principal_rotation: tuple[float, float, float, float] = field(default=(1.0, 0.0, 0.0, 0.0))
+    #: The symmetric tensor :meth:`from_tensor` diagonalised (None for a body given by
+    #: its moments): what :attr:`tensor_residual` measures the body against.
+    tensor: tuple | None = field(default=None, compare=False, repr=False)
 
     def __post_init__(self):
         m = as_float_array(self.moments, "moments", last=3)
@@ -171,6 +210,11 @@ class RigidBody:
             )
         p = require_unit(p, "principal_rotation")
         object.__setattr__(self, "principal_rotation", tuple(float(x) for x in p))
+        if self.tensor is not None:
+            t = as_float_array(self.tensor, "tensor")
+            if t.shape != (3, 3):
+                raise InputError(f"expected a 3x3 matrix, got shape {t.shape}", key="tensor")
+            object.__setattr__(self, "tensor", tuple(tuple(float(v) for v in r) for r in t))
 
     @classmethod
     def from_tensor(cls, tensor) -> RigidBody:
@@ -212,7 +256,30 @@ class RigidBody:
             vectors[:, 2] *= -1.0
         from .matrix import to_quaternion  # the one matrix -> quaternion formula
 
-        return cls(_equal_within_rounding(values), tuple(to_quaternion(vectors)))
+        moments, p = _equal_within_rounding(values), tuple(to_quaternion(vectors))
+        return cls(moments, p, tensor=tuple(tuple(float(v) for v in row) for row in t))
+
+    @functools.cached_property
+    def tensor_residual(self) -> float:
+        """How far the inertia this body stands for, M(P) diag(moments) M(P)ᵀ, is from
+        the tensor it was diagonalised from (Frobenius norm, kg·m², computed exactly and
+        rounded up; 0 for a body given by its moments). The body's moments are that
+        tensor's eigenvalues to within it (Weyl), its principal axes that tensor's to
+        within it over the gap between moments, in radians (Davis–Kahan): how much an
+        answer that depends sensitively on them may be off (the asymmetric top next to
+        its separatrix, :mod:`ga_rotors.reference.asymmetric_top`).
+
+        Examples
+        --------
+        >>> c, s = np.cos(0.3), np.sin(0.3)
+        >>> R = np.array([[c, -s, 0], [s, c, 0], [0, 0, 1]])
+        >>> body = RigidBody.from_tensor(R @ np.diag([1.0, 2.0, 2.5]) @ R.T)
+        >>> 0 < body.tensor_residual < 1e-14, RigidBody((1.0, 2.0, 2.5)).tensor_residual
+        (True, 0.0)
+        """
+        if self.tensor is None:
+            return 0.0
+        return _residual(np.array(self.tensor), self.moments, self.principal_rotation)
 
     @property
     def is_principal(self) -> bool:

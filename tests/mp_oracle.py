@@ -72,3 +72,51 @@ def integrate(inertia, q0, w0, times, mgl=0.0, digits=DIGITS, order=ORDER):
                 t += h
             out.append(tuple(y))
         return out
+
+
+def _quaternion_of(m):
+    """The unit quaternion of the rotation matrix ``m`` (mpmath), Shepperd's branches."""
+    trace = m[0, 0] + m[1, 1] + m[2, 2]
+    k = max(range(4), key=lambda i: (trace, m[0, 0], m[1, 1], m[2, 2])[i])
+    if k == 0:
+        w = mp.sqrt(1 + trace) / 2
+        return [w, (m[2, 1] - m[1, 2]) / (4 * w), (m[0, 2] - m[2, 0]) / (4 * w),
+                (m[1, 0] - m[0, 1]) / (4 * w)]  # fmt: skip
+    i, j, l = ((0, 1, 2), (1, 2, 0), (2, 0, 1))[k - 1]
+    a = mp.sqrt(1 + m[i, i] - m[j, j] - m[l, l]) / 2
+    out = [None] * 4
+    out[0] = (m[l, j] - m[j, l]) / (4 * a)
+    out[1 + i] = a
+    out[1 + j] = (m[i, j] + m[j, i]) / (4 * a)
+    out[1 + l] = (m[i, l] + m[l, i]) / (4 * a)
+    return out
+
+
+def _qmul(a, b):
+    aw, ax, ay, az = a
+    bw, bx, by, bz = b
+    return [aw * bw - ax * bx - ay * by - az * bz, aw * bx + ax * bw + ay * bz - az * by,
+            aw * by - ax * bz + ay * bw + az * bx, aw * bz + ax * by - ay * bx + az * bw]  # fmt: skip
+
+
+def integrate_tensor(tensor, q0, w0, times, digits=40, order=ORDER):
+    """Orientations (unit quaternions, mpf 4-lists) at ``times`` of the body whose inertia is
+    the symmetric ``tensor`` (in the frame q0 and w0 are given in), diagonalised here in
+    ``digits`` digits (mpmath's eigsy), integrated by :func:`integrate` in its principal
+    frame and answered in the tensor's."""
+    with mp.workdps(digits):
+        t = mp.matrix([[(mp.mpf(tensor[i][j]) + mp.mpf(tensor[j][i])) / 2 for j in range(3)]
+                       for i in range(3)])  # fmt: skip
+        values, vectors = mp.eigsy(t)
+        order_ = sorted(range(3), key=lambda i: values[i])
+        values = [values[i] for i in order_]
+        axes = mp.matrix([[vectors[r, c] for c in order_] for r in range(3)])
+        if mp.det(axes) < 0:
+            for r in range(3):
+                axes[r, 2] = -axes[r, 2]
+        p = _quaternion_of(axes)  # principal axes -> the tensor's frame
+        w = [sum(axes[r, c] * mp.mpf(w0[r]) for r in range(3)) for c in range(3)]
+        q = _qmul([mp.mpf(x) for x in q0], p)
+        back = [p[0], -p[1], -p[2], -p[3]]
+        states = integrate(values, q, w, times, digits=digits, order=order)
+        return [_qmul(list(y[:4]), back) for y in states]

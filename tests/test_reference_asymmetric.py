@@ -195,3 +195,32 @@ def test_a_middle_rate_of_1e_167_is_solved_not_nan():
     s = top.state(tr.t)
     assert top.orientation_error(tr.t, tr.quaternions()).max() < 1e-12
     assert np.abs(s.w - tr.w).max() < 1e-13
+
+
+def test_a_tensor_body_next_to_the_separatrix_bounds_its_sensitivity_or_refuses():
+    """Issue 30 item 3: for a body given by a turned tensor 1e-9 (in 1 − m) from the
+    separatrix, the answer was 1e-11 rad from a 40-digit integration of the tensor's motion
+    after one flip, against a stated bound of 1e-12: the diagonalisation's and the frame
+    change's rounding of the initial state, amplified by the flow at the flip. The bound
+    now includes the answer's own sensitivity to them; past the default max_error the
+    reference refuses instead of answering."""
+    from mp_oracle import integrate_tensor
+    from scipy.spatial.transform import Rotation
+
+    from ga_rotors.body import RigidBody
+
+    turn = Rotation.from_rotvec([0.3, -0.2, 0.5]).as_matrix()
+    tensor = turn @ np.diag([1.0, 2.0, 3.0]) @ turn.T
+    w0 = turn @ np.array([2.2e-5, 1.0, 2.2e-5])  # next to the middle principal axis
+    q0 = (1.0, 0.0, 0.0, 0.0)
+    top = AsymmetricTop(RigidBody.from_tensor(tensor), q0, w0)
+    assert 5e-10 < top.m1 < 2e-9
+    times = [5.0, 15.0, 18.0, 20.0, 21.0, 23.0, 30.0]  # the first flip is near 20.4 s
+    s = top.state(times, max_error=1.0)
+    errors = []
+    for i, ref in enumerate(integrate_tensor(tensor.tolist(), q0, w0, times)):
+        errors.append(K.geodesic_angle(tuple(float(x) for x in ref), tuple(s.q[i])))
+        assert errors[-1] <= s.error[i], (times[i], errors[-1], s.error[i])
+    assert max(errors) > 5e-12  # the amplification is there to be bounded
+    with pytest.raises(PrecisionError, match="exceeds max_error"):
+        top.state([21.0])  # beyond the default 1e-10: refused, not answered

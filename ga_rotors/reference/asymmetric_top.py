@@ -49,8 +49,17 @@ separatrix, off it): a subnormal or zero 1 − m would give a wrong flip period.
 
 Frames. A body given by a rotated tensor (:meth:`ga_rotors.body.RigidBody.from_tensor`) is
 solved in its principal frame and answered in the user's body frame, as ``simulate``
-integrates it (:meth:`~ga_rotors.body.RigidBody.to_principal`); the two frame changes
-add a few ulps to the error bound.
+integrates it (:meth:`~ga_rotors.body.RigidBody.to_principal`). Its principal moments and
+axes are the tensor's only to within the diagonalisation's residual
+(:attr:`~ga_rotors.body.RigidBody.tensor_residual`), and carrying ω into the principal frame
+rounds it by a few ulps. The flow amplifies such a change of the initial state, next to
+the separatrix by orders of magnitude at each flip (1e-16 of ω moved the answer by 3e-12
+rad after one flip of a motion 1e-9 from it), so the error bound of such a body adds the
+answer's own sensitivity: the state is solved again from ω moved by that radius along each
+principal axis and from each moment moved by the residual, and the distances to those
+answers (summed in quadrature for ω, in full for the moments, doubled for the second
+order) are added to the bound, with the axes' own error. A body given by its principal
+moments has no such term (its inputs are exact).
 """
 
 from __future__ import annotations
@@ -178,6 +187,37 @@ class AsymmetricTop:
         self._q0 = tuple(float(x) for x in qp)  # the principal frame's, solved below
         self._w0 = tuple(float(x) for x in wp)
         self._setup()
+        self._axes_error, self._neighbours = 0.0, ()
+        if not self.body.is_principal or self.body.tensor_residual > 0.0:
+            self._neighbours = self._neighbouring_tops()
+
+    def _neighbouring_tops(self) -> tuple:
+        """The principal frame's motion from states as far from this one as the body's
+        rounding may put it: ω moved along each principal axis by the axes' error and the
+        frame change's rounding, each moment moved by the diagonalisation's residual (the
+        moments' tops last). Their distances from this answer measure its sensitivity."""
+        from ..body import FRAME_CHANGE_ULPS
+
+        inertia, w = np.array(self.moments), np.array(self._w0)
+        residual = self.body.tensor_residual
+        gap = min(abs(inertia[i] - inertia[j]) for i, j in ((0, 1), (1, 2), (0, 2)))
+        self._axes_error = residual / gap  # rad (Davis–Kahan)
+        radius = float(np.linalg.norm(w)) * (self._axes_error + FRAME_CHANGE_ULPS * _EPS)
+        states = [(inertia, w + radius * np.eye(3)[k]) for k in range(3) if radius > 0.0]
+        self._moved_rates = len(states)
+        states += [(inertia + residual * np.eye(3)[k], w) for k in range(3) if residual > 0.0]
+        tops = []
+        for moments, rates in states:
+            try:
+                tops.append(AsymmetricTop(moments, self._q0, rates))
+            except (InputError, PrecisionError):
+                raise PrecisionError(
+                    "asymmetric top reference: the body's own rounding (its diagonalisation "
+                    f"{residual:.2g} kg·m², the frame change of ω) reaches a state this "
+                    "reference cannot solve: the motion is too close to the separatrix for "
+                    "the body as given (give it by its principal moments)"
+                ) from None
+        return tuple(tops)
 
     # -- invariants, exactly ------------------------------------------------------------
 
@@ -315,13 +355,25 @@ class AsymmetricTop:
         True
         """
         t = _times(t)
+        state = self._principal_state(t)
+        if self._neighbours:
+            # the answer's sensitivity to the body's rounding (module notes: Frames)
+            moved = [Q.distance(state.q, top._principal_state(t).q) for top in self._neighbours]
+            rates = np.sqrt(sum(d * d for d in moved[: self._moved_rates]))
+            moments = sum(moved[self._moved_rates :], np.zeros(t.size))
+            error = state.error + 2.0 * (rates + moments) + self._axes_error
+            state = State(state.q, state.w, error)
+        return self._checked(self._user_frame(state), max_error)
+
+    def _principal_state(self, t) -> State:
+        """:meth:`state` in the principal frame, with its own rounding bound, unchecked."""
         if self._steady:
             w = self._angular_velocity(t)
             half = 0.5 * t[:, None] * np.asarray(self._w0)
             rot = Q.exp(np.concatenate([np.zeros((t.size, 1)), half], axis=1))
             q = Q.multiply(self._q0, rot)
             err = 8.0 * _EPS * (1.0 + np.abs(t) * np.abs(self._w0).max())
-            return self._checked(self._user_frame(State(q, w, err)), max_error)
+            return State(q, w, err)
         u = self.rate * t + self._u0
         arg = self._argument(u)  # reduced once for ω and Π
         w = self._angular_velocity(t, arg)
@@ -333,8 +385,7 @@ class AsymmetricTop:
             Q.multiply(self._nutation_spin(e), self._relabel),
         )
         q = q * np.where(q[:, :1] < 0.0, -1.0, 1.0)
-        err = self._rounding_bound(t, u, pi, e)
-        return self._checked(self._user_frame(State(q, w, err)), max_error)
+        return State(q, w, self._rounding_bound(t, u, pi, e))
 
     def _user_frame(self, state: State) -> State:
         """``state`` (principal frame) in the user's body frame; q ⊗ P* adds a few ulps."""
