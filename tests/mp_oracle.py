@@ -95,8 +95,12 @@ def _quaternion_of(m):
 def _qmul(a, b):
     aw, ax, ay, az = a
     bw, bx, by, bz = b
-    return [aw * bw - ax * bx - ay * by - az * bz, aw * bx + ax * bw + ay * bz - az * by,
-            aw * by - ax * bz + ay * bw + az * bx, aw * bz + ax * by - ay * bx + az * bw]  # fmt: skip
+    return [
+        aw * bw - ax * bx - ay * by - az * bz,
+        aw * bx + ax * bw + ay * bz - az * by,
+        aw * by - ax * bz + ay * bw + az * bx,
+        aw * bz + ax * by - ay * bx + az * bw,
+    ]
 
 
 def integrate_tensor(tensor, q0, w0, times, digits=40, order=ORDER):

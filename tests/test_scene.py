@@ -123,7 +123,8 @@ def test_body_angular_velocity_is_carried_into_the_principal_frame():
     assert np.isclose(principal.energy(s.principal_angular_velocity), s.body.energy(w_user))
     L_space = Q.rotate(s.orientation, s.body.momentum(s.angular_velocity))
     assert np.allclose(L_space, tensor @ w_user, atol=1e-15)
-    L_principal = Q.rotate(s.principal_orientation, principal.momentum(s.principal_angular_velocity))
+    L_body = principal.momentum(s.principal_angular_velocity)
+    L_principal = Q.rotate(s.principal_orientation, L_body)
     assert np.allclose(L_principal, tensor @ w_user, atol=1e-15)
 
 

@@ -385,14 +385,21 @@ def test_a_tensor_scene_answers_in_the_frame_it_is_written_in(tmp_path):
     assert np.array_equal(scene.angular_velocity, [0.0, 0.0, 1.0])
     with pytest.warns(GimbalLockWarning, match="at 1 of 101"):  # θ = 0 at the identity
         tr = run_scene(scene)
-    assert "not its principal axes" in tr.meta["body_frame"]
+    assert "not principal" in tr.meta["body_frame"]
     # (0, 0, 1) to the frame change's rounding, there and back (a few ulps)
     assert np.allclose(tr.w[0], [0.0, 0.0, 1.0], rtol=0, atol=1e-15)
     assert np.allclose(tr.quaternions()[0], [1.0, 0.0, 0.0, 0.0], rtol=0, atol=1e-15)
     body = RigidBody.from_tensor(TURNED_TENSOR)
     with pytest.warns(GimbalLockWarning, match="at 1 of 101"):
-        alone = simulate(body, [1.0, 0.0, 0.0, 0.0], [0.0, 0.0, 1.0], duration=1.0,
-                         step=0.01, paths=("rotor", "quaternion"), outputs=("L", "angles"))
+        alone = simulate(
+            body,
+            [1.0, 0.0, 0.0, 0.0],
+            [0.0, 0.0, 1.0],
+            duration=1.0,
+            step=0.01,
+            paths=("rotor", "quaternion"),
+            outputs=("L", "angles"),
+        )
     for path in ("rotor", "quaternion"):
         assert Q.distance(tr.quaternions(path), alone.quaternions(path)).max() < 1e-14
     assert np.allclose(tr.w, alone.w, rtol=0, atol=1e-14)

@@ -246,14 +246,11 @@ def energy_balance(scene: Scene, tr: Trajectory, q: np.ndarray) -> tuple[np.ndar
     w = tr.w
     t = tr.t[: w.shape[0]]
     q = q[: w.shape[0]]
-    power = np.zeros(t.shape[0])
+    from ..effects import torque_power
+
     # the kernels act in the principal frame (τ·ω is the same number in any frame)
     qp, wp = (q, w) if scene.body.is_principal else scene.body.to_principal(q, w)
-    for term in scene.torques():
-        params = np.asarray(term.params, dtype=np.float64)
-        for i in range(t.shape[0]):
-            tau = term.kernel(float(t[i]), tuple(qp[i]), tuple(wp[i]), params)
-            power[i] += tau[0] * wp[i, 0] + tau[1] * wp[i, 1] + tau[2] * wp[i, 2]
+    power = torque_power(scene.torques(), t, qp, wp)
     work = np.concatenate([[0.0], np.cumsum(0.5 * (power[1:] + power[:-1]) * np.diff(t))])
     energy = scene.body.energy(w)
     return energy - energy[0], work

@@ -502,18 +502,16 @@ class Scene:
         --------
         >>> from ga_rotors.scene import load_scene
         >>> load_scene("heavy_top").body_frame
-        'body axes of the scene (body.shape), its principal axes about the pivot'
-        >>> s = load_scene("heavy_top").replace({"body": {"tensor": [[1, 0.1, 0], [0.1, 2, 0],
-        ...                                                          [0, 0, 2.5]], "mass": 1}})
-        >>> s.body_frame
-        'body axes of the scene (body.tensor), not its principal axes (principal_rotation)'
+        "the scene's body axes (body.shape): principal about the pivot"
+        >>> turned = {"tensor": [[1.0, 0.1, 0.0], [0.1, 2.0, 0.0], [0.0, 0.0, 2.5]]}
+        >>> load_scene("intermediate_axis_flip").replace({"body": turned}).body_frame
+        "the scene's body axes (body.tensor): not principal (principal_rotation turns them)"
         """
         given = next(k for k in ("moments", "tensor", "shape") if k in self.data["body"])
-        where = f"body axes of the scene (body.{given})"
+        where = f"the scene's body axes (body.{given})"
         if self.principal_rotation != _IDENTITY:
-            return f"{where}, not its principal axes (principal_rotation)"
-        return where + (", its principal axes" if self.gravity_index is None
-                        else ", its principal axes about the pivot")  # fmt: skip
+            return f"{where}: not principal (principal_rotation turns them)"
+        return f"{where}: principal" + ("" if self.gravity_index is None else " about the pivot")
 
     @property
     def exact_has_orientation(self) -> bool:
@@ -591,17 +589,16 @@ class Scene:
         Examples
         --------
         >>> from ga_rotors.scene import load_scene
-        >>> print("\n".join(load_scene("heavy_top").describe().splitlines()[:2]))
-        # body frame of every output: body axes of the scene (body.shape), its principal axes about the pivot
-        # principal moments (0.002225, 0.002225, 0.00125) kg·m² about the pivot (the loops integrate in the principal frame)
+        >>> print("\\n".join(load_scene("heavy_top").describe().splitlines()[:2]))
+        # every output is in the scene's body axes (body.shape): principal about the pivot
+        # principal moments (0.002225, 0.002225, 0.00125) kg·m² about the pivot
         """
         q, w = self.orientation, self.angular_velocity
         method = self.method
         lines = [
-            f"body frame of every output: {self.body_frame}",
+            f"every output is in {self.body_frame}",
             f"principal moments {_fmt(self.body.moments)} kg·m²"
-            + (" about the pivot" if self.gravity_index is not None else "")
-            + " (the loops integrate in the principal frame)",
+            + (" about the pivot" if self.gravity_index is not None else ""),
             f"principal rotation P (principal -> scene body axes): {_fmt(self.principal_rotation)}",
             f"initial orientation q0 (w, x, y, z): {_fmt(q)}",
             f"initial body angular velocity: {_fmt(w)} rad/s",
