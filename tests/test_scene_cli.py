@@ -338,3 +338,86 @@ def test_scenes_figures_names_a_missing_folder_escaped(tmp_path, capsys):
     assert main(["scenes", "--figures", str(tmp_path / "no\x1b[2Jne")]) == 2
     err = capsys.readouterr().err
     assert err.endswith("no\\x1b[2Jne is not a directory\n") and "\x1b" not in err
+
+
+# ---------------------------------------------------------------------------- Ctrl-C
+
+
+def _command(run):
+    """main's inner part (parsing and all: ``cli._main``) replaced by ``run``."""
+    return lambda argv: run()
+
+
+def _sigint():
+    import signal
+
+    os.kill(os.getpid(), signal.SIGINT)
+
+
+def test_an_interrupt_a_library_swallows_still_exits_130(monkeypatch, capsys):
+    """Issue 30 item 6: a Ctrl-C that lands where Python drops the exception (a weakref
+    callback, a lookup) let a sweep finish and exit 0. The handler records it: the command
+    that goes on to finish exits 130 with one line."""
+    import ga_rotors.cli as cli
+
+    def swallowed():
+        try:
+            _sigint()
+        except KeyboardInterrupt:
+            pass  # as a callback's caller would drop it
+        return 0
+
+    monkeypatch.setattr(cli, "_main", _command(swallowed))
+    assert main(["scenes"]) == 130
+    assert capsys.readouterr().err == "ga-rotors: interrupted\n"
+
+
+def test_an_interrupt_turned_into_another_error_exits_130_with_one_line(monkeypatch, capsys):
+    """Ctrl-C during a lazy import gave a 41-line traceback: the half-imported module raised
+    a RuntimeError when imported again. Whatever the interrupt becomes, one line, 130."""
+    import ga_rotors.cli as cli
+
+    def wrapped():
+        try:
+            _sigint()
+        except KeyboardInterrupt:
+            raise RuntimeError("CPU dispatcher tracer already initialized") from None
+
+    monkeypatch.setattr(cli, "_main", _command(wrapped))
+    assert main(["scenes"]) == 130
+    assert capsys.readouterr().err == "ga-rotors: interrupted\n"
+
+
+def test_no_interrupt_no_130(monkeypatch):
+    import ga_rotors.cli as cli
+
+    def broken():
+        raise RuntimeError("a bug")
+
+    monkeypatch.setattr(cli, "_main", _command(broken))
+    with pytest.raises(RuntimeError, match="a bug"):  # a bug stays a traceback
+        main(["scenes"])
+
+
+@pytest.mark.parametrize("delay", [0.02, 0.05, 0.1, 0.3])
+def test_ctrl_c_while_the_command_starts_is_one_line_and_130(tmp_path, delay):
+    """Once main has started, Ctrl-C while it imports the commands' modules (the first
+    half second of a cold start) ends with one line and 130, never a traceback."""
+    import signal
+    import time
+
+    script = (
+        "import sys\nfrom ga_rotors.cli import main\nprint('ready', flush=True)\n"
+        "sys.exit(main(['run', 'spinning_disk', '--out', sys.argv[1], '--no-progress']))\n"
+    )
+    child = subprocess.Popen(
+        [sys.executable, "-c", script, str(tmp_path / "out")],
+        stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+    )  # fmt: skip
+    assert child.stdout.readline() == "ready\n"
+    time.sleep(delay)
+    child.send_signal(signal.SIGINT)
+    _, err = child.communicate(timeout=120)
+    assert child.returncode == 130, err
+    assert err.splitlines() == ["ga-rotors: interrupted"], err
+    assert not (tmp_path / "out").exists()  # nothing half-written

@@ -11,14 +11,20 @@ set once in pyproject.toml). A bare ``ga-rotors`` prints the usage and the comma
 on stdout and exits 0.
 
 Errors a user can cause (:class:`ga_rotors.errors.GaRotorsError`) are printed as one line
-on stderr with exit code 2, never as a traceback.
+on stderr with exit code 2, never as a traceback. Ctrl-C at any moment after ``main``
+starts, importing a command's modules included, ends with one line and exit 130, even
+when the interrupt lands where Python cannot raise it (a callback, a lookup that drops
+exceptions) or where a library turns it into another error: the handler records it, and
+a command that goes on to finish still exits 130.
 """
 
 from __future__ import annotations
 
 import argparse
 import importlib
+import signal
 import sys
+import threading
 
 from ..errors import GaRotorsError
 
@@ -128,29 +134,81 @@ def main(argv: list[str] | None = None) -> int:
     >>> status, err.getvalue().split(";")[0]
     (2, 'ga-rotors: error: no_such_scene: no such file, and no bundled scene of that name')
     """
-    parser = build_parser()
+    _INTERRUPTED.clear()
+    previous = _on_sigterm(_terminated), _on_sigint(_interrupted), sys.unraisablehook
+    sys.unraisablehook = _unraisable
+    try:
+        status = _main(argv)
+    except GaRotorsError as exc:
+        if _INTERRUPTED:
+            return _interrupt_status()
+        print(f"ga-rotors: error: {_one_line(exc)}", file=sys.stderr)
+        return 2
+    except OSError as exc:  # a file the command was pointed at, and the system refused it
+        if _INTERRUPTED:
+            return _interrupt_status()
+        where = f"{exc.filename}: " if exc.filename else ""
+        print(f"ga-rotors: error: {_one_line(where + str(exc.strerror or exc))}",
+              file=sys.stderr)  # fmt: skip
+        return 2
+    except KeyboardInterrupt:
+        return _interrupt_status()
+    except _Terminated:
+        print("ga-rotors: terminated (SIGTERM); no output was changed", file=sys.stderr)
+        return 143
+    except Exception:
+        if _INTERRUPTED:  # Ctrl-C inside a library that raised something else for it
+            return _interrupt_status()
+        raise
+    finally:
+        _on_sigterm(previous[0])
+        _on_sigint(previous[1])
+        sys.unraisablehook = previous[2]
+    if _INTERRUPTED:  # the interrupt was swallowed, and the command went on to finish
+        return _interrupt_status()
+    return status
+
+
+def _main(argv) -> int:
+    parser = build_parser()  # imports every command's module: interruptible like the rest
     args = parser.parse_args(argv)
     if args.command is None:
         parser.print_help()
         return 0
-    previous = _on_sigterm(_terminated)
-    try:
-        return int(args._run(args) or 0)
-    except GaRotorsError as exc:
-        print(f"ga-rotors: error: {exc}", file=sys.stderr)
-        return 2
-    except OSError as exc:  # a file the command was pointed at, and the system refused it
-        where = f"{exc.filename}: " if exc.filename else ""
-        print(f"ga-rotors: error: {where}{exc.strerror or exc}", file=sys.stderr)
-        return 2
-    except KeyboardInterrupt:
-        print("ga-rotors: interrupted", file=sys.stderr)
-        return 130
-    except _Terminated:
-        print("ga-rotors: terminated (SIGTERM); no output was changed", file=sys.stderr)
-        return 143
-    finally:
-        _on_sigterm(previous)
+    return int(args._run(args) or 0)
+
+
+def _one_line(text) -> str:
+    """What an error message prints: one line, no control character, bounded."""
+    from ..errors import MESSAGE_LIMIT, printable
+
+    text = printable(str(text))
+    if len(text) > MESSAGE_LIMIT:
+        text = f"{text[: MESSAGE_LIMIT - 100]} ...({len(text)} characters)... {text[-80:]}"
+    return text
+
+
+#: Set by the SIGINT handler: a Ctrl-C arrived during this ``main``.
+_INTERRUPTED: list = []
+
+
+def _interrupted(signum, frame):
+    _INTERRUPTED.append(signum)
+    raise KeyboardInterrupt
+
+
+def _unraisable(info) -> None:
+    """Python's report of an exception it had to drop (raised in a callback), except the
+    interrupt, which the handler has recorded and the command reports in one line: a
+    Ctrl-C inside numba's compiler callback printed a traceback before that line."""
+    if isinstance(info.exc_value, KeyboardInterrupt) and _INTERRUPTED:
+        return
+    sys.__unraisablehook__(info)
+
+
+def _interrupt_status() -> int:
+    print("ga-rotors: interrupted", file=sys.stderr)
+    return 130
 
 
 class _Terminated(BaseException):
@@ -164,12 +222,18 @@ def _terminated(signum, frame):
 
 def _on_sigterm(handler):
     """Install ``handler`` for SIGTERM (main thread only); return the previous one."""
-    import signal
-    import threading
+    return _on_signal(signal.SIGTERM, handler)
 
+
+def _on_sigint(handler):
+    """Install ``handler`` for SIGINT (main thread only); return the previous one."""
+    return _on_signal(signal.SIGINT, handler)
+
+
+def _on_signal(signum, handler):
     if handler is None or threading.current_thread() is not threading.main_thread():
         return None
-    return signal.signal(signal.SIGTERM, handler)
+    return signal.signal(signum, handler)
 
 
 if __name__ == "__main__":  # pragma: no cover

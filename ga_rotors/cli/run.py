@@ -203,7 +203,7 @@ def run(args: argparse.Namespace) -> int:
     from ..errors import GimbalLockWarning, IntegrationStoppedWarning, StepLimitWarning
     from ..files import checked_path
     from ..scene import load_scene, stream_scene
-    from ..scene.budget import check
+    from ..scene.budget import COMPILE_NOTICE_SECONDS, check
     from ..scene.formats import require_formats
     from ..warmup import scene_tasks, warm
 
@@ -215,7 +215,7 @@ def run(args: argparse.Namespace) -> int:
         scene = scene.replace({"output.figure_format": args.format})
     budget = budget_from_args(args)
     estimate = check(scene, budget, streamed=True)
-    if estimate.steps > SHOW_ESTIMATE_STEPS:
+    if estimate.steps > SHOW_ESTIMATE_STEPS or estimate.compile_seconds >= COMPILE_NOTICE_SECONDS:
         print(f"{scene.name}: {estimate} (streamed)", file=sys.stderr)
     require_formats(scene)  # before the warm-up and the run: one line, nothing compiled
     if not any(e["type"] == "user" for e in scene.data["effects"]):
@@ -261,9 +261,11 @@ def run(args: argparse.Namespace) -> int:
 
 def _warn(caught, own) -> None:
     """The run's warnings: the package's own about the scene, one line each (no source
-    excerpt); any other as Python shows it."""
+    excerpt, no control character); any other as Python shows it."""
+    from ..errors import printable
+
     for w in caught:
         if issubclass(w.category, own):
-            print(f"ga-rotors: warning: {w.message}", file=sys.stderr)
+            print(f"ga-rotors: warning: {printable(w.message)}", file=sys.stderr)
         else:
             warnings.warn_explicit(w.message, w.category, w.filename, w.lineno)
