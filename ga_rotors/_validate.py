@@ -43,9 +43,11 @@ def as_float_array(x, name: str, *, last: int | None = None, finite: bool = True
     ...
     ga_rotors.errors.InputError: q: expected an array of shape (..., 4), got shape (3,)
     """
-    if isinstance(x, np.ndarray):
+    if type(x) is np.ndarray:
         raw = x
-    else:
+    elif isinstance(x, np.ma.MaskedArray) and np.ma.is_masked(x):
+        raise InputError("expected real numbers, got a masked array with masked values", key=name)
+    else:  # an ndarray subclass (np.matrix: indexing one gives 2-d rows) becomes an ndarray
         try:
             raw = np.asarray(x)
         except (ValueError, TypeError, OverflowError):  # ragged nesting, odd sequences

@@ -68,6 +68,7 @@ __all__ = [
     "Key",
     "gravity_kernel",
     "inertia_about_pivot",
+    "listed",
     "load_user_kernel",
     "register",
     "torque_power",
@@ -367,6 +368,10 @@ class EffectType:
     build: Callable = field(repr=False)
     #: Whether the torque reads ω; None: the entry's own ``depends_on_omega`` key says.
     depends_on_omega: bool | None = None
+    #: ``largest_torque(entry, mass, |ω|)``: a bound on |τ| (N·m) of a resolved entry at a
+    #: state turning at |ω|, which a scene checks its first step against; None: unknown
+    #: (a user's kernel).
+    largest_torque: Callable | None = field(default=None, repr=False)
 
     def reads_omega(self, entry: dict) -> bool:
         """Whether the torque of a resolved ``entry`` of this type depends on ω.
@@ -414,6 +419,27 @@ def _coefficient(reader, value, key):
         values = reader.vector(value, key)
         return [reader.number(v, join(key, i), nonnegative=True) for i, v in enumerate(values)]
     return reader.number(value, key, nonnegative=True, unit="N·m·s")
+
+
+def _norm(v) -> float:
+    """|v| of a few numbers, inf when it overflows (no floating-point warning)."""
+    try:
+        return math.hypot(*v)
+    except OverflowError:
+        return math.inf
+
+
+def _gravity_bound(entry, mass, w):
+    return mass * _norm(entry["g"]) * _norm(entry["pivot_to_com"])
+
+
+def _damping_bound(entry, mass, w):
+    c = entry["coefficient"]
+    return (max(c) if isinstance(c, list) else c) * w
+
+
+def _constant_bound(entry, mass, w):
+    return _norm(entry["torque"])
 
 
 def _inertia_about(reader, value, key):
@@ -515,6 +541,7 @@ EFFECTS: dict[str, EffectType] = {
             ),
             _build_gravity,
             depends_on_omega=False,
+            largest_torque=_gravity_bound,
         ),
         EffectType(
             "damping",
@@ -522,6 +549,7 @@ EFFECTS: dict[str, EffectType] = {
             (Key("coefficient", _coefficient, doc="N·m·s: one number or three (per axis)"),),
             _build_damping,
             depends_on_omega=True,
+            largest_torque=_damping_bound,
         ),
         EffectType(
             "body_torque",
@@ -529,6 +557,7 @@ EFFECTS: dict[str, EffectType] = {
             (Key("torque", _vector, doc="N·m, body frame"),),
             _build_body_torque,
             depends_on_omega=False,
+            largest_torque=_constant_bound,
         ),
         EffectType(
             "space_torque",
@@ -536,6 +565,7 @@ EFFECTS: dict[str, EffectType] = {
             (Key("torque", _vector, doc="N·m, space frame"),),
             _build_space_torque,
             depends_on_omega=False,
+            largest_torque=_constant_bound,
         ),
         EffectType(
             "user",
@@ -549,6 +579,23 @@ EFFECTS: dict[str, EffectType] = {
         ),
     )
 }
+
+
+def listed(names) -> str:
+    """Effect (or torque) names for a message: each once, in order, with how many times it
+    appears, so a line stays short whatever the scene declares.
+
+    Examples
+    --------
+    >>> listed(["gravity", "body_torque", "body_torque", "damping", "body_torque"])
+    'gravity, body_torque ×3, damping'
+    >>> listed([])
+    ''
+    """
+    from collections import Counter
+
+    counts = Counter(names)
+    return ", ".join(n if counts[n] == 1 else f"{n} ×{counts[n]}" for n in counts)
 
 
 def register(effect: EffectType) -> EffectType:

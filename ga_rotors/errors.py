@@ -67,7 +67,7 @@ class InputError(GaRotorsError, ValueError):
     def __init__(self, detail: str, key: str | None = None):
         self.key = key
         self.detail = detail
-        super().__init__(f"{key}: {detail}" if key else detail)
+        super().__init__(echoed(f"{key}: {detail}" if key else detail, MESSAGE_LIMIT))
 
 
 class PrecisionError(GaRotorsError, ArithmeticError):
@@ -87,7 +87,14 @@ class PrecisionError(GaRotorsError, ArithmeticError):
     Traceback (most recent call last):
     ...
     ga_rotors.errors.PrecisionError: heavy top reference: rounding-error bound ... exceeds ...
+
+    ``bound`` is that bound (rad) when the error is a bound beyond a limit (None otherwise):
+    what a caller with its own limit, such as a scene, reports in its own terms.
     """
+
+    def __init__(self, message: str, bound: float | None = None):
+        super().__init__(message)
+        self.bound = bound
 
 
 class GimbalLockWarning(UserWarning):
@@ -166,11 +173,19 @@ class SceneError(InputError):
 
     def __init__(self, file: str, key: str, message: str):
         self.file = str(file)
-        where = f"{echoed(self.file)}: {_capped(key)}: " if key else f"{echoed(self.file)}: "
-        ValueError.__init__(self, where + _capped(message))
+        shown = echoed(self.file, FILE_LIMIT)  # a long path keeps its two ends
+        where = f"{shown}: {_capped(key)}: " if key else f"{shown}: "
+        ValueError.__init__(self, echoed(where + _capped(message), MESSAGE_LIMIT))
         self.key = key
         self.detail = message
 
+
+#: Longest file name a scene error echoes whole.
+FILE_LIMIT = 200
+
+#: Longest message an error carries: beyond it the middle is left out (2,000 names of
+#: effects made a 31 kB line), so an error is one readable line whatever it lists.
+MESSAGE_LIMIT = 600
 
 #: Longest run of non-blank characters a scene error echoes (a value, a key) before it is
 #: cut: a 10,000-character name in a scene gives a readable line, not a screenful.

@@ -3,8 +3,9 @@
 Every public function of the core modules is called with arguments drawn from
 :func:`hostile`: arrays of every dtype and of wrong, empty or broadcast-breaking shapes,
 NaN, ±inf, ±0, subnormals, numbers near the float64 limits, integers beyond float64,
-ragged and deeply nested lists, strings, bytes, None, dicts, and quaternions at the hard
-places (identity, rotations by π, non-unit, near-singular Euler angles). Each call must
+ragged and deeply nested lists, strings, bytes, None, dicts, ndarray subclasses (``np.matrix``,
+masked arrays), and quaternions at the hard places (identity, rotations by π, non-unit,
+near-singular Euler angles). Each call must
 
 * return finite numbers (every float in the result, recursively), or
 * raise :class:`~ga_rotors.errors.InputError` with a message, or a ``TypeError`` with one
@@ -72,8 +73,17 @@ def _float_values():
 @st.composite
 def _arrays(draw):
     shape = draw(st.sampled_from(_SHAPES))
-    kind = draw(st.sampled_from(["f8", "f8", "f8", "f4", "i8", "u1", "?", "c16", "O", "U"]))
+    kind = draw(st.sampled_from(["f8", "f8", "f8", "f4", "i8", "u1", "?", "c16", "O", "U",
+                                 "matrix", "masked"]))  # fmt: skip
     size = int(np.prod(shape))
+    if kind == "matrix":  # an ndarray subclass whose rows are 2-d (a numba TypingError)
+        values = draw(st.lists(_float_values(), min_size=size, max_size=size))
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", PendingDeprecationWarning)
+            return np.matrix(np.array(values, dtype=float).reshape(shape or (1,)))
+    if kind == "masked":
+        values = np.ones(shape)
+        return np.ma.masked_array(values, mask=np.arange(size).reshape(shape) % 2 == 0)
     if kind in ("f8", "f4"):
         values = draw(st.lists(_float_values(), min_size=size, max_size=size))
         with warnings.catch_warnings():
@@ -277,6 +287,29 @@ def test_found_cases_are_refused_by_name():
     # Cases the fuzzer found, kept as named tests (issue 11).
     with pytest.raises(InputError, match="energy overflows"):
         body.RigidBody((1e300, 1e300, 1e300)).energy([1e10, 0.0, 0.0])
+
+
+@pytest.mark.filterwarnings("ignore::PendingDeprecationWarning")  # np.matrix's own
+def test_an_ndarray_subclass_is_an_array():
+    """Issue 30 item 12: np.matrix input to matrix.to_quaternion or RigidBody.from_tensor was
+    a numba TypingError (a matrix's rows are 2-d); a masked array's mask was dropped."""
+    eye = np.matrix(np.eye(3))
+    assert np.array_equal(matrix.to_quaternion(eye), [1.0, 0.0, 0.0, 0.0])
+    found = body.RigidBody.from_tensor(np.matrix(np.diag([1.0, 2.0, 3.0])))
+    assert found.moments == (1.0, 2.0, 3.0)
+    assert np.array_equal(Q.normalize(np.matrix([[2.0, 0.0, 0.0, 0.0]])), [[1.0, 0, 0, 0]])
+    with pytest.raises(InputError, match="masked"):
+        Q.normalize(np.ma.masked_array([1.0, 0, 0, 0], mask=[0, 1, 0, 0]))
+
+
+def test_the_public_kernel_checks_its_parameters():
+    """reference.coning.coning_rate is a compiled kernel for loops, and public: p with fewer
+    than two values read past its end (issue 30 item 12)."""
+    from ga_rotors.reference.coning import coning_rate
+
+    with pytest.raises(InputError, match=r"p: coning_rate takes p = \(a, b\)"):
+        coning_rate(0.0, np.array([]))
+    assert coning_rate(0.0, np.array([0.2, 2.0])) == (2.0, 0.0, 0.2)
 
 
 def teardown_module():

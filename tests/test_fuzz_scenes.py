@@ -7,11 +7,15 @@ process, through :func:`ga_rotors.cli.main`, with a small step and memory budget
 scene that asks for too much is refused rather than run). Hostile values: wrong types,
 0, negatives, 1e300, 1e-320, ±inf, NaN, integers beyond 64 bits, a Unix timestamp as a
 time, 10⁹ samples, empty and 10,000-character strings, names with slashes, NUL and
-non-ASCII, deep arrays and tables, TOML dates. Each run must end in one of three ways:
+non-ASCII, deep arrays and tables, TOML dates, integers beyond float64 (10⁴⁰⁰), strings
+and keys with control characters (escape sequences, a bidirectional override, newlines),
+effects declared thousands of times, and the file saved with a UTF-8 byte-order mark.
+Each run must end in one of three ways:
 
 * exit 0, with a summary free of NaN and inf;
 * exit 2, with exactly one line on stderr (``ga-rotors: error: FILE: KEY: ...``) of at
-  most :data:`MAX_LINE` characters, and no output folder;
+  most :data:`MAX_LINE` characters, none of them a control character, and no output
+  folder;
 * exit 3, with ``INCOMPLETE`` as the summary's first line (a path stopped early);
 
 within :data:`HANG_SECONDS`, with no exception escaping ``main`` (a traceback) and no
@@ -58,7 +62,14 @@ _HOSTILE = [
     "../../escape", "a/b", "ü", "\u0000", "rk4", "gravity", "quaternion", "deg", "rad/s",
     [], [1], [1, 2, 3], [0.0, 0.0, 0.0], [1e300, 1e300, 1e300], [math.nan, 0, 0],
     ["a", "b", "c"], [[1, 2], [3]], {}, {"x": 1}, "1979-05-27T07:32:00Z",
+    10**400, -(10**400), [1, 2, 10**400], "\x1b]0;title\x07\x1b[2J", "top\n", "a\u202eb",
 ]  # fmt: skip
+
+#: Keys that would act on a terminal if echoed raw.
+_HOSTILE_KEYS = ["\x1b]0;title\x07", "\x1b[2J", "a\nb", "\u202eevil", "\x00", "\x7f"]
+
+#: How many times the effects list repeats one entry: the cap, and far beyond it.
+_EFFECT_COUNTS = [0, 1, 2, 3, 65, 2000]
 
 
 class Hang(Exception):
@@ -141,7 +152,7 @@ def mutated(draw) -> dict:
     for _ in range(draw(st.integers(1, 3))):
         paths = [p for p, _ in _leaves(data) if p]
         op = draw(st.sampled_from(["replace", "replace", "replace", "delete", "add", "deep",
-                                   "effects"]))  # fmt: skip
+                                   "effects", "many", "key"]))  # fmt: skip
         if op == "effects":
             data["effects"] = [
                 {
@@ -150,6 +161,10 @@ def mutated(draw) -> dict:
                 }
                 for _ in range(draw(st.integers(0, 3)))
             ]
+            continue
+        if op == "many":
+            entry = {"type": "body_torque", "torque": [0.0, 0.0, 1e-4]}
+            data["effects"] = [dict(entry) for _ in range(draw(st.sampled_from(_EFFECT_COUNTS)))]
             continue
         if not paths:
             break
@@ -167,6 +182,12 @@ def mutated(draw) -> dict:
                 parent = parent[p]
             if isinstance(parent, dict):
                 parent[draw(st.sampled_from(["extra", "x" * 300, "durations", ""]))] = 1
+        elif op == "key":
+            tables = [p for p, v in _leaves(data) if isinstance(v, dict)]
+            parent = data
+            for p in draw(st.sampled_from(tables)):
+                parent = parent[p]
+            parent[draw(st.sampled_from(_HOSTILE_KEYS))] = 1
         else:  # last: walking a 500-deep value again would exhaust this test's stack
             _set(data, path, _deep(draw(st.sampled_from([5, 50, 500])),
                                    draw(st.sampled_from(["array", "table"]))))  # fmt: skip
@@ -215,6 +236,7 @@ def check_scene(text: str, folder: Path) -> str:
         lines = stderr.strip().splitlines()
         assert len(lines) == 1 and lines[0].startswith("ga-rotors: error: "), (stderr, shown)
         assert len(lines[0]) <= MAX_LINE, f"{len(lines[0])}-character error: {lines[0][:200]}"
+        assert lines[0].isprintable(), f"raw control characters in {lines[0]!r}"
         assert not out.exists(), f"exit 2 but {out} was written:\n{shown}"
         return "refused"
     assert status in (0, 3), f"exit {status}: {stderr[-500:]}\n{shown}"
@@ -232,11 +254,11 @@ def check_scene(text: str, folder: Path) -> str:
     suppress_health_check=list(HealthCheck),
     database=None,
 )
-@given(mutated())
-def test_mutated_scenes_run_or_are_refused_in_one_line(tmp_path_factory, data):
+@given(mutated(), st.sampled_from(["", "", "", "\ufeff"]))
+def test_mutated_scenes_run_or_are_refused_in_one_line(tmp_path_factory, data, mark):
     folder = tmp_path_factory.mktemp("fuzz")
     try:
-        outcome = check_scene(to_toml(data), folder)
+        outcome = check_scene(mark + to_toml(data), folder)
     except AssertionError as exc:
         if not LONG:
             raise
@@ -396,3 +418,75 @@ def test_a_heavy_top_too_weak_for_its_reference_is_one_line(tmp_path):
     data["effects"] = [{"type": "gravity", "pivot_to_com": [0, 0, 1e-320]}]
     text = to_toml(data)
     assert check_scene(text, tmp_path) in ("refused", "ran")
+
+
+#: Issue 30's scene files, each one line naming its key (or the file), exit 2, no traceback,
+#: no warning: (TOML text after the spinning disk's, the key, a fragment of the message).
+ISSUE_30 = {
+    "int-beyond-float": ('[body]\nmoments = [1, 2, 1' + "0" * 400 + ']\n', "body.moments[2]",
+                         "an integer of 401 digits, beyond float64"),
+    "int-of-5000-digits": ('[body]\nmoments = [1, 2, ' + "9" * 5000 + ']\n', None,
+                           "Exceeds the limit (4300 digits)"),
+    "headers-2000-deep": ("[" + ".".join(["a"] * 2000) + "]\nx = 1\n", None,
+                          "arrays or tables nested too deeply"),
+    "tolerance-5e-324": ('[integrator]\nmethod = "dop853"\ntolerance = 5e-324\nstep = 1e-3\n',
+                         "integrator.tolerance", "100 ulps"),
+    "moments-1e300": ("[body]\nmoments = [1e300, 2e300, 2.5e300]\n",
+                      "initial.angular_velocity", "its square overflows float64"),
+    "box-of-1e308-kg": ('[body]\nshape = "box"\nmass = 1e308\na = 0.1\nb = 0.06\nc = 0.02\n',
+                        "initial.angular_velocity", "its square overflows float64"),
+    "start-1.8e308": ("[time]\nduration = 0.1\nstart = -1.8e308\n", "time.start", "finite"),
+    "g-1e308": ('[body]\nshape = "disk"\nmass = 1.0\nradius = 0.1\n[[effects]]\n'
+                'type = "gravity"\ng = [1e308, 0, 0]\npivot_to_com = [0, 0, 0.1]\n',
+                "effects[0]", "would turn the body by"),
+    "space-torque-1e200": ('[[effects]]\ntype = "space_torque"\ntorque = [1e200, 0, 0]\n',
+                           "effects[0]", "would turn the body by"),
+    "2000-effects": ('[[effects]]\ntype = "body_torque"\ntorque = [0, 0, 1e-4]\n' * 2000,
+                     "effects", "2,000 entries; a scene declares at most 64"),
+    "2000-user-effects": ("".join(f'[[effects]]\ntype = "user"\nfunction = "m{i}:f"\n'
+                                  for i in range(2000)), "effects", "at most 64"),
+    "escape-in-a-key": ('[body]\nmoments = [1, 2, 3]\n"\\u001b]0;pwned\\u0007\\u001b[2J" = 1\n',
+                        "body.\\x1b]0;pwned\\x07\\x1b[2J", "unknown key"),
+    "name-with-a-newline": ('[scene]\nname = "top\\n"\n', "scene.name", "a file name"),
+}  # fmt: skip
+
+
+def _issue_30_scene(tail: str) -> str:
+    """The spinning disk, 0.1 s of it, with ``tail``'s tables in place of its own."""
+    data = json.loads(json.dumps(BASES["spinning_disk"]))
+    data["time"] = {"duration": 0.1}
+    for section in re.findall(r"^\[\[?(\w+)", tail, re.M):
+        data.pop(section, None)
+    return to_toml(data) + tail
+
+
+@pytest.mark.parametrize("case", list(ISSUE_30))
+def test_issue_30_scenes_are_one_line(tmp_path, case):
+    tail, key, fragment = ISSUE_30[case]
+    (tmp_path / "s.toml").write_text(_issue_30_scene(tail), encoding="utf-8")
+    status, _, stderr, caught = run_file(tmp_path / "s.toml", tmp_path / "out")
+    assert status == 2, (status, stderr[-500:])
+    line = stderr.strip()
+    assert "\n" not in line and len(line) <= MAX_LINE and line.isprintable(), line[:300]
+    assert (f": {key}: " in line) if key else ("s.toml: " in line), line
+    assert fragment in line, line
+    assert not [w for w in caught if issubclass(w.category, RuntimeWarning)]
+
+
+def test_a_scene_saved_with_a_byte_order_mark_runs(tmp_path):
+    """Issue 30 item 12: a scene saved with a UTF-8 byte-order mark (as Windows editors do)
+    was refused as "not valid TOML"."""
+    text = bundled_path("spinning_disk").read_text(encoding="utf-8")
+    (tmp_path / "s.toml").write_text("\ufeff" + text, encoding="utf-8")
+    from ga_rotors.scene import load_scene
+
+    assert load_scene(tmp_path / "s.toml").data == load_scene("spinning_disk").data | {
+        "scene": load_scene(tmp_path / "s.toml").data["scene"]
+    }
+
+
+def test_a_file_name_too_long_is_one_line(capsys):
+    """load_scene("a" * 5000) raised the system's OSError (issue 30 item 12)."""
+    assert cli.main(["show", "a" * 5000]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "File name too long" in err and len(err) < 400

@@ -441,3 +441,17 @@ def test_a_turned_body_cannot_take_the_euler_angle_path():
         turned_scene(integrator={"step": 0.01, "paths": ["rotor", "euler"]})
     assert info.value.key == "integrator.paths"
     assert "body.tensor is not diagonal" in info.value.detail and "\n" not in str(info.value)
+
+
+def test_a_reference_beyond_the_scenes_bound_says_what_the_scene_can_change():
+    """Issue 30 item 12: a scene's exact reference past its 1e-6 rad bound said "shorten the
+    time span or raise max_error", and no scene key or flag raises it. It now names the
+    bound, the time and time.duration."""
+    from ga_rotors.errors import PrecisionError
+
+    exact = load_scene("heavy_top").exact_solution
+    with pytest.raises(PrecisionError) as info:
+        exact.state([0.0, 1e8])
+    message = str(info.value)
+    assert "max_error" not in message and "shorten time.duration" in message
+    assert "by t = 1e+08 s" in message and info.value.bound > 1e-6

@@ -180,12 +180,9 @@ def _main(argv) -> int:
 
 def _one_line(text) -> str:
     """What an error message prints: one line, no control character, bounded."""
-    from ..errors import MESSAGE_LIMIT, printable
+    from ..errors import MESSAGE_LIMIT, echoed
 
-    text = printable(str(text))
-    if len(text) > MESSAGE_LIMIT:
-        text = f"{text[: MESSAGE_LIMIT - 100]} ...({len(text)} characters)... {text[-80:]}"
-    return text
+    return echoed(text, MESSAGE_LIMIT)
 
 
 #: Set by the SIGINT handler: a Ctrl-C arrived during this ``main``.

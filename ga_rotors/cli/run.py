@@ -262,10 +262,10 @@ def run(args: argparse.Namespace) -> int:
 def _warn(caught, own) -> None:
     """The run's warnings: the package's own about the scene, one line each (no source
     excerpt, no control character); any other as Python shows it."""
-    from ..errors import printable
+    from ..errors import echoed
 
     for w in caught:
         if issubclass(w.category, own):
-            print(f"ga-rotors: warning: {printable(w.message)}", file=sys.stderr)
+            print(f"ga-rotors: warning: {echoed(w.message)}", file=sys.stderr)
         else:
             warnings.warn_explicit(w.message, w.category, w.filename, w.lineno)

@@ -468,7 +468,8 @@ class AsymmetricTop:
             raise PrecisionError(
                 f"asymmetric top reference: rounding-error bound {worst:.3g} rad exceeds "
                 f"max_error={max_error:.3g} rad at these times; shorten the time span or "
-                "raise max_error"
+                "raise max_error",
+                bound=worst,
             )
         return state
 

@@ -21,6 +21,7 @@ import numpy as np
 
 from .._jit import jit
 from .._validate import as_float_array, require_unit
+from ..errors import InputError
 
 __all__ = ["Coning", "coning_rate"]
 
@@ -35,7 +36,13 @@ def coning_rate(t, p):
     (2.0, 0.0, 0.2)
     >>> [round(c, 12) for c in coning_rate(np.pi / 4, (0.2, 2.0))]  # b t = π/2
     [2.0, 0.2, 0.0]
+    >>> coning_rate(0.0, np.array([]))
+    Traceback (most recent call last):
+    ...
+    ga_rotors.errors.InputError: p: coning_rate takes p = (a, b); got fewer values
     """
+    if len(p) < 2:  # a compiled kernel reads no bounds: this one is public
+        raise InputError("coning_rate takes p = (a, b); got fewer values", "p")
     a, b = p[0], p[1]
     return (b, a * sin(b * t), a * cos(b * t))
 

@@ -528,6 +528,7 @@ class HeavyTop:
         if not (worst <= max_error) or not finite:
             raise PrecisionError(
                 f"heavy top reference: rounding-error bound {worst:.3g} rad exceeds "
-                f"max_error={max_error:.3g} rad; shorten the time span or raise max_error"
+                f"max_error={max_error:.3g} rad; shorten the time span or raise max_error",
+                bound=worst,
             )
         return State(q, w, err)

@@ -57,6 +57,9 @@ SUMMARY_DELAY = 12
 #: copy's rows (COLUMNS x (2 + 2 x columns)).
 _STREAM_COPIES = 4 + SUMMARY_LAG + SUMMARY_DELAY
 
+#: Compilation estimates from this many seconds on are shown (``ga-rotors run``).
+COMPILE_NOTICE_SECONDS = 10.0
+
 #: Columns a path's state occupies per sample.
 _PATH_COLUMNS = {"rotor": 4, "quaternion": 4, "euler": 3}
 #: Columns of each quantity per sample (per path for ``error``).
@@ -107,11 +110,19 @@ class Estimate:
     samples: int
     bytes: int
     disk: int = 0
+    #: CPU seconds numba takes to compile the run's loops when none is cached yet
+    #: (:func:`ga_rotors.scene.schema.compile_seconds`, per path).
+    compile_seconds: float = 0.0
 
     def __str__(self) -> str:
+        compiling = (
+            f", about {self.compile_seconds:.0f} s to compile its loops on a first run"
+            if self.compile_seconds >= COMPILE_NOTICE_SECONDS
+            else ""
+        )
         return (
             f"{self.steps:.3g} steps, {self.samples:.3g} samples: about "
-            f"{_size(self.bytes)} of memory, {_size(self.disk)} of files"
+            f"{_size(self.bytes)} of memory, {_size(self.disk)} of files{compiling}"
         )
 
 
@@ -152,11 +163,15 @@ def estimate(scene, streamed: bool = False) -> Estimate:
         memory = (piece * _STREAM_COPIES + thinned) * columns * 8
     else:
         memory = samples * columns * 8 * WORKING_COPIES
+    from .schema import compile_seconds
+
+    effects = len(scene.data["effects"])
     return Estimate(
         steps=scene.steps * len(paths),
         samples=samples,
         bytes=memory,
         disk=samples * columns * per_value,
+        compile_seconds=len(paths) * compile_seconds(effects, scene.method.evaluations),
     )
 
 

@@ -18,7 +18,7 @@ from .. import quaternion as Q
 from .._jit import jit
 from .._quaternion_loops import largest_distance_loop
 from .._validate import UNIT_TOLERANCE
-from ..errors import SceneError
+from ..errors import PrecisionError, SceneError
 
 __all__ = ["MAX_BOUND", "Exact", "applicable", "build", "refusal"]
 
@@ -91,7 +91,19 @@ class Exact:
         """
         t = np.asarray(t, dtype=np.float64) - self.t0
         if hasattr(self.model, "state"):
-            s = self.model.state(t, max_error=MAX_BOUND)
+            try:
+                s = self.model.state(t, max_error=MAX_BOUND)
+            except PrecisionError as exc:
+                if exc.bound is None:
+                    raise
+                # a scene has no max_error to raise: say what the scene can change
+                later = t[np.argmax(np.abs(t))] + self.t0 if t.size else self.t0
+                raise PrecisionError(
+                    f"the {self.name} reference's rounding-error bound reaches "
+                    f"{exc.bound:.3g} rad by t = {later:g} s, beyond the {MAX_BOUND:g} rad a "
+                    "scene measures its error to; shorten time.duration to have it",
+                    bound=exc.bound,
+                ) from None
             q, w, bound = s.q, s.w, s.error
         elif self.has_orientation:
             (q, w), bound = self.model.at(t), None
@@ -329,7 +341,9 @@ def applicable(body, effects, gravity=None) -> tuple[str | None, str]:
             "gravity has an exact (Lagrange) solution only for I1 = I2 about the pivot "
             "with the centre of mass on the body +z axis"
         )
-    return None, f"no exact solution is known to ga_rotors for effects {types}"
+    from ..effects import listed
+
+    return None, f"no exact solution is known to ga_rotors for effects {listed(types)}"
 
 
 #: The scene key an exact reference's refused argument comes from (the state otherwise).

@@ -70,11 +70,21 @@ def load_scene(path_or_name) -> Scene:
     Traceback (most recent call last):
     ...
     ga_rotors.errors.SceneError: spining_disk: no such file, and no bundled scene of that name ...
+    >>> load_scene("a" * 5000)
+    Traceback (most recent call last):
+    ...
+    ga_rotors.errors.SceneError: aaa...aaa (5000 characters): cannot read the file: File name ...
     """
     if isinstance(path_or_name, Scene):
         return path_or_name
     path = Path(path_or_name)
-    if not path.is_file():
+    try:
+        is_file = path.is_file()
+    except OSError as exc:  # a name too long for the system, a loop of links
+        raise SceneError(str(path_or_name), "", f"cannot read the file: {exc.strerror}") from None
+    except ValueError:  # an embedded NUL
+        raise SceneError(str(path_or_name), "", "not a file name (it holds a NUL)") from None
+    if not is_file:
         # the names only: parsing every bundled scene for its description took 2-3 ms,
         # paid before each sweep's chunks start
         names = [p.name[:-5] for p in _files()]

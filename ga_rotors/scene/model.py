@@ -51,7 +51,9 @@ from __future__ import annotations
 
 import copy
 import functools
+import math
 import re
+import sys
 from collections.abc import Mapping
 from pathlib import Path
 
@@ -72,7 +74,7 @@ from .schema import (
     adaptive,
     resolve,
 )
-from .toml_io import dumps_toml, parse_toml
+from .toml_io import check_nesting, dumps_toml, parse_toml
 
 __all__ = ["MAX_TURN_PER_STEP", "TIME_RESOLUTION", "Scene"]
 
@@ -155,9 +157,10 @@ class Scene:
         self.file = str(file)
         self.base_dir = None if base_dir is None else Path(base_dir)
         reader = Reader(self.file)
+        check_nesting(data, self.file)  # before the copy, which recurses
         self._given = copy.deepcopy(dict(data)) if isinstance(data, Mapping) else data
         default = Path(self.file).stem if self.file != "<dict>" else "scene"
-        if not NAME.match(default):
+        if not NAME.fullmatch(default):
             default = "scene"
         self.data = resolve(reader, self._given, default)
         self._derive(reader)
@@ -255,21 +258,46 @@ class Scene:
         self._check_outputs(reader)
 
     def _check_magnitudes(self, reader: Reader) -> None:
-        """Refuse an initial state whose energy float64 cannot hold, or that turns more
-        than :data:`MAX_TURN_PER_STEP` radians in one step (no fixed-step method resolves
-        it; the step-limit estimate itself overflowed on ω = 1e150 rad/s)."""
+        """Refuse an initial state whose energy or squared angular momentum float64
+        cannot hold (the references and summaries form L² and 2E·I: moments of 1e300 gave
+        a NaN summary), or that turns more than :data:`MAX_TURN_PER_STEP` radians in one
+        step, by its own rate (no fixed-step method resolves it; the step-limit estimate
+        itself overflowed on ω = 1e150 rad/s) or spun up by its torques' bound in that
+        step (a torque of 1e200 N·m, g = 1e308 m/s² ran into overflow warnings)."""
         key = "initial.angular_velocity"
         try:
             self.body.energy(self.angular_velocity)
         except InputError as exc:
             raise reader.error(key, exc.detail) from None
-        turn = float(np.linalg.norm(self.angular_velocity)) * self.data["integrator"]["step"]
+        rate = math.hypot(*self.angular_velocity)
+        momentum = max(self.body.moments) * rate  # (2E·I ≤ |Iω|² with I the largest)
+        if not momentum * momentum * 16.0 < sys.float_info.max:
+            raise reader.error(
+                key,
+                f"|Iω| = {momentum:.3g} kg·m²/s: its square overflows float64 (beyond "
+                f"{sys.float_info.max:.3g}); rescale the units",
+            )
+        h = self.data["integrator"]["step"]
+        turn = rate * h
         if not turn <= MAX_TURN_PER_STEP:
             raise reader.error(
                 key,
                 f"|ω|·integrator.step = {turn:.3g} rad per step, beyond {MAX_TURN_PER_STEP:g}: "
                 "no method resolves that; take a smaller step",
             )
+        for i, entry in enumerate(self.data["effects"]):
+            bound = _effects.EFFECTS[entry["type"]].largest_torque
+            if bound is None:
+                continue
+            torque = bound(entry, self.mass, rate)
+            turn = (rate + torque * h / min(self.body.moments)) * h
+            if not turn <= MAX_TURN_PER_STEP:
+                raise reader.error(
+                    join("effects", i),
+                    f"its torque (up to {torque:.3g} N·m) would turn the body by {turn:.3g} "
+                    f"rad in its first step, beyond {MAX_TURN_PER_STEP:g}: no method resolves "
+                    "that; check the units, or take a smaller step",
+                )
 
     def _check_time_grid(self, reader: Reader) -> None:
         """Refuse times float64 cannot place to :data:`TIME_RESOLUTION` of a step: with
@@ -603,7 +631,7 @@ class Scene:
             f"initial orientation q0 (w, x, y, z): {_fmt(q)}",
             f"initial body angular velocity: {_fmt(w)} rad/s",
             f"problem: {self.kind}; torques: "
-            + (", ".join(e["type"] for e in self.data["effects"]) or "none (torque-free)"),
+            + (_effects.listed(e["type"] for e in self.data["effects"]) or "none (torque-free)"),
             f"integrator: {method.name} (order {method.order}), "
             + (
                 f"adaptive at tolerance {self.data['integrator']['tolerance']:g}, "

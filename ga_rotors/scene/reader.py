@@ -56,6 +56,9 @@ def _describe(value) -> str:
         return "a table"
     if isinstance(value, list | tuple):
         return f"an array of {len(value)} items"
+    if isinstance(value, int) and abs(value).bit_length() > 256:
+        # its digits are not echoed (Python refuses to write more than 4,300 of them)
+        return f"an integer of {int(abs(value).bit_length() * 0.30103) + 1} digits"
     if isinstance(value, int | float):
         return repr(value)
     return type(value).__name__
@@ -129,7 +132,11 @@ class Reader:
             what += f" ({unit})"
         if isinstance(value, bool) or not isinstance(value, int | float):
             raise self.error(key, f"expected {what}, got {_describe(value)}")
-        x = float(value)
+        try:
+            x = float(value)
+        except OverflowError:  # an integer beyond float64 (TOML integers have any size)
+            raise self.error(key, f"expected {what}, got {_describe(value)}, beyond "
+                             "float64") from None  # fmt: skip
         if not math.isfinite(x) or (positive and x <= 0) or (nonnegative and x < 0):
             raise self.error(key, f"expected {what}, got {value!r}")
         return x

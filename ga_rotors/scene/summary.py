@@ -35,6 +35,7 @@ import numpy as np
 from .._jit import jit
 from .._kernels import gravity_potential, kinetic_energy, qmul, qrotate, qunit
 from .._validate import UNIT_TOLERANCE
+from ..effects import listed
 from ..trajectory import Trajectory
 from .model import Scene
 
@@ -756,7 +757,7 @@ class RunSummary:
         """The :class:`Report` of the pieces taken so far (all of them: the run's)."""
         scene, meta = self.scene, self.meta
         rep = Report(scene.name)
-        torques = ", ".join(meta["torques"]) or "none (torque-free)"
+        torques = listed(meta["torques"]) or "none (torque-free)"
         spec = scene.data["integrator"]
         how = (
             f"adaptive at tolerance {spec['tolerance']:g}, sampled every {meta['step']:g} s"
@@ -806,7 +807,7 @@ class RunSummary:
     def _accuracy_line(self, rep: Report) -> None:
         """Which accuracy figures this run has, and which it cannot have and why."""
         scene = self.scene
-        types = ", ".join(e["type"] for e in scene.data["effects"])
+        types = listed(e["type"] for e in scene.data["effects"])
         has, lacks = [], []
         if self.labels:
             has.append("the drift of its conserved quantities")
@@ -850,7 +851,7 @@ class RunSummary:
 
     def _invariants(self, rep: Report) -> None:
         if not self.labels:
-            types = ", ".join(e["type"] for e in self.scene.data["effects"])
+            types = listed(e["type"] for e in self.scene.data["effects"])
             rep.lines.append(f"  none simple under {types}")
             return
         for key, (label, scale) in self.labels.items():

@@ -22,7 +22,7 @@ from collections.abc import Mapping
 
 from ..errors import SceneError
 
-__all__ = ["MAX_NESTING", "dumps_toml", "parse_toml", "read_file"]
+__all__ = ["MAX_NESTING", "check_nesting", "dumps_toml", "parse_toml", "read_file"]
 
 #: Deepest nesting of tables and arrays a file may have (a scene needs four levels).
 MAX_NESTING = 32
@@ -95,20 +95,39 @@ def parse_toml(text: str, file: str) -> dict:
     ...
     ga_rotors.errors.SceneError: x.toml: arrays or tables nested too deeply
     """
-    try:
-        data = tomllib.loads(text)
+    try:  # a byte-order mark (editors on Windows save one) is not the text's
+        data = tomllib.loads(text.removeprefix("\ufeff"))
     except tomllib.TOMLDecodeError as exc:
         raise SceneError(file, "", f"not valid TOML: {exc}") from None
     except RecursionError:  # tomllib recurses once per level of nesting
         raise SceneError(file, "", _TOO_DEEP) from None
     except ValueError as exc:  # an integer past Python's digit limit (4,300 digits)
         raise SceneError(file, "", f"not valid TOML: {str(exc).split(':')[0]}") from None
-    if _depth(data) > MAX_NESTING:
-        raise SceneError(file, "", _TOO_DEEP)
+    check_nesting(data, file)
     return data
 
 
 _TOO_DEEP = "arrays or tables nested too deeply"
+
+
+def check_nesting(data, file: str) -> None:
+    """The one-line refusal of data nested more than :data:`MAX_NESTING` levels deep, for
+    data that did not come through :func:`parse_toml` too (a scene built in Python, whose
+    copy would recurse as deep: 2,000 levels of table headers gave a RecursionError).
+
+    Examples
+    --------
+    >>> deep = {}
+    >>> node = deep
+    >>> for _ in range(2000):
+    ...     node["a"] = node = {}
+    >>> check_nesting(deep, "deep.toml")
+    Traceback (most recent call last):
+    ...
+    ga_rotors.errors.SceneError: deep.toml: arrays or tables nested too deeply
+    """
+    if _depth(data) > MAX_NESTING:
+        raise SceneError(file, "", _TOO_DEEP)
 
 
 def _depth(data) -> int:
@@ -116,11 +135,12 @@ def _depth(data) -> int:
     deepest, todo = 0, [(data, 1)]
     while todo:
         value, depth = todo.pop()
-        items = value.values() if isinstance(value, dict) else value
-        if isinstance(value, dict | list):
+        items = value.values() if isinstance(value, Mapping) else value
+        if isinstance(value, Mapping | list | tuple):
             deepest = max(deepest, depth)
             if depth <= MAX_NESTING:
-                todo.extend((v, depth + 1) for v in items if isinstance(v, dict | list))
+                todo.extend((v, depth + 1) for v in items
+                             if isinstance(v, Mapping | list | tuple))  # fmt: skip
     return deepest
 
 
