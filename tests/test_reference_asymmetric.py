@@ -224,3 +224,10 @@ def test_a_tensor_body_next_to_the_separatrix_bounds_its_sensitivity_or_refuses(
     assert max(errors) > 5e-12  # the amplification is there to be bounded
     with pytest.raises(PrecisionError, match="exceeds max_error"):
         top.state([21.0])  # beyond the default 1e-10: refused, not answered
+
+
+def test_an_angular_momentum_whose_square_overflows_is_refused():
+    """Issue 30 item 6: a box of 1e308 kg gave an OverflowError traceback from the exact
+    invariants (L² is exact as a fraction but beyond float64)."""
+    with pytest.raises(InputError, match="its square overflows float64"):
+        AsymmetricTop((1e305, 2e305, 2.5e305), (1.0, 0.0, 0.0, 0.0), (10.0, 1.0, 1.0))

@@ -186,7 +186,14 @@ class AsymmetricTop:
         qp, wp = self.body.to_principal(self.q0, self.w0)
         self._q0 = tuple(float(x) for x in qp)  # the principal frame's, solved below
         self._w0 = tuple(float(x) for x in wp)
-        self._setup()
+        try:
+            self._setup()
+        except OverflowError:  # an invariant (L², 2E·I) beyond float64, exact but unroundable
+            raise InputError(
+                f"|Iω| = {math.hypot(*(i * w for i, w in zip(inertia, wp, strict=True))):.3g}: "
+                "its square overflows float64; rescale the units",
+                key="angular_velocity",
+            ) from None
         self._axes_error, self._neighbours = 0.0, ()
         if not self.body.is_principal or self.body.tensor_residual > 0.0:
             self._neighbours = self._neighbouring_tops()
