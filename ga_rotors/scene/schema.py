@@ -290,12 +290,14 @@ def _resolve_integrator(reader: Reader, value) -> dict:
     if adaptive(method):
         out["tolerance"] = reader.number(t.get("tolerance", method.rtol), "integrator.tolerance",
                                          positive=True)  # fmt: skip
-        if not MIN_TOLERANCE <= out["tolerance"] < 1.0:
+        if out["tolerance"] >= 1.0:
+            raise reader.error("integrator.tolerance", f"expected < 1, got {out['tolerance']!r}")
+        if out["tolerance"] < MIN_TOLERANCE:
             raise reader.error(
                 "integrator.tolerance",
-                f"expected at least {MIN_TOLERANCE:.2g} and below 1, got {out['tolerance']!r} (a "
-                "relative tolerance below 100 ulps cannot be met in float64: the steps would "
-                "shrink without end)",
+                f"expected at least {MIN_TOLERANCE:.2g}, got {out['tolerance']!r} (a relative "
+                "tolerance below 100 ulps cannot be met in float64: the steps would shrink "
+                "without end)",
             )
     else:
         if "tolerance" in t:
