@@ -10,7 +10,7 @@ import pytest
 
 from ga_rotors._private_dir import private_directory
 from ga_rotors.errors import InputError
-from ga_rotors.integrators import _codegen
+from ga_rotors.integrators import _cache
 
 ROOT = hasattr(os, "geteuid") and os.geteuid() == 0
 OTHER = 4242  # a user id that is not ours
@@ -40,9 +40,9 @@ def test_a_link_owned_by_another_user_is_followed_once_and_never_again(place, mo
     os.symlink(mine, link)
     os.lchown(link, OTHER, OTHER)
     monkeypatch.setenv("GA_ROTORS_CACHE_DIR", str(link))
-    _codegen.cache_location.cache_clear()
+    _cache.cache_location.cache_clear()
     try:
-        where = _codegen.cache_location()
+        where = _cache.cache_location()
         assert where == mine / "generated"  # the resolved path, not the link's
         assert stat.S_IMODE(os.stat(where).st_mode) == 0o700
         theirs = base / "theirs"
@@ -50,11 +50,11 @@ def test_a_link_owned_by_another_user_is_followed_once_and_never_again(place, mo
         os.chown(theirs, OTHER, OTHER)
         os.unlink(link)  # the link's owner points it at their folder
         os.symlink(theirs, link)
-        assert _codegen.cache_location() == mine / "generated"  # what is used: unchanged
+        assert _cache.cache_location() == mine / "generated"  # what is used: unchanged
         with pytest.raises(InputError, match="belongs to user id 4242"):
             private_directory(link / "generated")  # resolved anew: theirs, refused
     finally:
-        _codegen.cache_location.cache_clear()
+        _cache.cache_location.cache_clear()
 
 
 @pytest.mark.skipif(not ROOT, reason="needs another user's folder (chown)")

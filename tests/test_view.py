@@ -179,23 +179,24 @@ TENSOR_SCENE = {
 
 @pytest.mark.parametrize("frame", ["principal", "written"])
 def test_a_scene_is_drawn_the_same_whichever_frame_its_run_is_in(frame):
-    """Runs were integrated and written in the principal frame; a run that names its frame
-    (meta["body_frame"]) is in the frame the scene's file is written in. Either way the body,
-    L and the trace are the same in space."""
+    """Runs of earlier versions were integrated and written in the principal frame and name
+    no frame; a run that names its frame (meta["body_frame"], as run_scene's do) is in the
+    frame the scene's file is written in. Either way the body, L and the trace are the same
+    in space."""
     from ga_rotors.body import RigidBody
     from ga_rotors.scene import run_scene
     from ga_rotors.trajectory import Trajectory
 
     scene = Scene(TENSOR_SCENE)
     tr = run_scene(scene)
+    assert "body_frame" in tr.meta  # the scene's own frame
     p = np.array(scene.principal_rotation)
     assert not np.allclose(p, [1, 0, 0, 0])
-    if frame == "written":  # the same motion, described in the scene's own frame
-        q_user = Q.multiply(tr.q, Q.conjugate(p))
-        w_user = Q.rotate(p, tr.w)
+    if frame == "principal":  # the same motion, as an earlier version wrote it
+        meta = {k: v for k, v in tr.meta.items() if k != "body_frame"}
         tr = Trajectory(
-            {"t": tr.t, "w": w_user, "q": q_user},
-            meta=tr.meta | {"body_frame": "the frame the scene is written in"},
+            {"t": tr.t, "w": Q.rotate(Q.conjugate(p), tr.w), "q": Q.multiply(tr.q, p)},
+            meta=meta,
         )
     d = View.from_scene(scene, tr).data
     q = d.paths["quaternion"]
