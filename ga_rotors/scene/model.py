@@ -61,7 +61,7 @@ import numpy as np
 
 from .. import effects as _effects
 from ..body import RigidBody
-from ..errors import InputError, SceneError
+from ..errors import InputError
 from ..shapes import SHAPES
 from . import exact as _exact
 from .reader import Reader, join
