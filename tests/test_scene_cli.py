@@ -421,3 +421,24 @@ def test_ctrl_c_while_the_command_starts_is_one_line_and_130(tmp_path, delay):
     assert child.returncode == 130, err
     assert err.splitlines() == ["ga-rotors: interrupted"], err
     assert not (tmp_path / "out").exists()  # nothing half-written
+
+
+# ---------------------------------------------------------------------------- compile budget
+
+
+def test_the_compile_estimate_grows_with_the_effects_and_is_shown(short, tmp_path, monkeypatch,
+                                                                  capsys):  # fmt: skip
+    """Issue 30 item 8: compile time grew faster than linearly with the effects and nothing
+    said so before a run. The estimate (per path, a method's stages and its torque terms)
+    is part of the scene's budget estimate and printed past a threshold."""
+    from ga_rotors.scene import budget
+
+    base = load_scene(short).replace({"output.plots": []})
+    torque = {"type": "body_torque", "torque": [0.0, 0.0, 1e-4]}
+    few, many = (budget.estimate(base.replace({"effects": [torque] * n})).compile_seconds
+                 for n in (2, 64))  # fmt: skip
+    assert 0 < budget.estimate(base).compile_seconds < few < many
+    assert many / len(base.paths) > 1.5 * few / len(base.paths)  # the terms' share
+    monkeypatch.setattr(budget, "COMPILE_NOTICE_SECONDS", 0.5)
+    assert main(["run", str(short), "--out", str(tmp_path / "o"), "--no-progress"]) == 0
+    assert "to compile its loops on a first run" in capsys.readouterr().err
