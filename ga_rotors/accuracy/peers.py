@@ -57,10 +57,9 @@ def _in_child(func, args: tuple, limit: float):
     ``args`` plain data: the child is not a fork of this process (whose threads, JAX's
     among them, a fork would copy mid-flight) but of a clean server process
     (``forkserver``; ``spawn`` where there is none)."""
-    import multiprocessing
+    from .._children import context
 
-    methods = multiprocessing.get_all_start_methods()
-    ctx = multiprocessing.get_context("forkserver" if "forkserver" in methods else "spawn")
+    ctx = context()
     receive, send = ctx.Pipe(duplex=False)
     child = ctx.Process(target=_reply, args=(send, func, args), daemon=True)
     child.start()
@@ -75,7 +74,11 @@ def _in_child(func, args: tuple, limit: float):
 
 
 def _reply(send, func, args) -> None:
-    """In the child: ``func(*args)`` sent back to the parent."""
+    """In the child: ``func(*args)`` sent back to the parent (the child ends with the
+    parent, even one killed mid-measurement)."""
+    from .._children import exit_with_parent
+
+    exit_with_parent()
     send.send(func(*args))
 
 

@@ -8,7 +8,6 @@ this).
 
 from __future__ import annotations
 
-import multiprocessing
 from concurrent.futures import ProcessPoolExecutor
 from pathlib import Path
 
@@ -38,12 +37,13 @@ def _drawing_pool() -> ProcessPoolExecutor:
     Building figures costs more CPU than the simulations, hence processes. They are
     forked from a clean server process that has imported the figures' modules once
     (``forkserver``; ``spawn`` where there is none), never from this process and its
-    threads."""
-    methods = multiprocessing.get_all_start_methods()
-    context = multiprocessing.get_context("forkserver" if "forkserver" in methods else "spawn")
-    if context.get_start_method() == "forkserver":
-        context.set_forkserver_preload(["ga_rotors.paper.figures", "matplotlib.figure"])
-    pool = ProcessPoolExecutor(len(_SHARES), mp_context=context)
+    threads, and end when this process ends, even killed (:mod:`ga_rotors._children`)."""
+    from .._children import context, exit_with_parent
+
+    ctx = context()
+    if ctx.get_start_method() == "forkserver":
+        ctx.set_forkserver_preload(["ga_rotors.paper.figures", "matplotlib.figure"])
+    pool = ProcessPoolExecutor(len(_SHARES), mp_context=ctx, initializer=exit_with_parent)
     for _ in _SHARES:
         pool.submit(_ready)
     return pool

@@ -309,7 +309,16 @@ body_axis 1'})
 
 
 def metadata_text(trajectory, csv_name: str, attributes: dict) -> str:
-    """The sidecar's JSON text: :func:`csv_metadata`, indented, no NaN or Infinity."""
+    """The sidecar's JSON text: :func:`csv_metadata`, indented, no NaN or Infinity.
+
+    Examples
+    --------
+    >>> from ga_rotors.trajectory import Trajectory
+    >>> tr = Trajectory({"t": np.array([0.0, 0.5])}, meta={"integrator": "rk4"})
+    >>> doc = json.loads(metadata_text(tr, "run.csv", {"body_frame": "body axes"}))
+    >>> doc["url"], [c["titles"] for c in doc["tableSchema"]["columns"]]
+    ('run.csv', ['t [s]'])
+    """
     document = csv_metadata(trajectory, csv_name, attributes)
     return json.dumps(document, indent=1, allow_nan=False) + "\n"
 
