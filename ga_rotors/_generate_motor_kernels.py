@@ -196,6 +196,27 @@ def generate() -> str:
     for indices, kind in ((PLANE, "plane"), (LINE, "line"), (POINT, "point")):
         funcs.append(_sandwich(layout, indices, kind))
 
+    # What the rigid-motion equations need (ga_rotors.paths.motor): the kinematics
+    # Ṁ = ½ M B with a bivector B, and the commutator of two lines in the Euler–Poincaré
+    # equation Π̇ = Π × B + W (X × Y = ½ (X Y − Y X), a line again).
+    line_b = _symbols("b", LINE)
+    mb = _product(layout, a, line_b)
+    funcs.append(_function(
+        "mmul_line", [("a", ("a", 8)), ("b", ("b", 6))],
+        "Geometric product a B of an even multivector a and a bivector B (a line).",
+        [], _tuple([mb[i] for i in MOTOR]),
+    ))  # fmt: skip
+    line_a = _symbols("a", LINE)
+    ab, ba = _product(layout, line_a, line_b), _product(layout, line_b, line_a)
+    commutator = [sp.Rational(1, 2) * (x - y) for x, y in zip(ab, ba, strict=True)]
+    if any(sp.expand(commutator[i]) != 0 for i in range(16) if i not in LINE):
+        raise RuntimeError("the commutator of two bivectors is not a bivector")
+    funcs.append(_function(
+        "line_commutator", [("a", ("a", 6)), ("b", ("b", 6))],
+        "The commutator product A × B = ½ (A B − B A) of two bivectors (lines).",
+        [], _tuple([commutator[i] for i in LINE]),
+    ))  # fmt: skip
+
     rotor_table, ideal_table = _dual_tables(layout)
     r = [sp.Symbol(f"r{i}") for i in range(4)]
     d = [sp.Symbol(f"d{i}") for i in range(4)]

@@ -12,7 +12,9 @@ from ._jit import jit
 __all__ = [
     "dual_parts",
     "from_dual_parts",
+    "line_commutator",
     "mmul",
+    "mmul_line",
     "motor_from_pose",
     "mrev",
     "sandwich_line",
@@ -123,6 +125,38 @@ def sandwich_point(m, x):
         m0 * y5 - m1 * y3 - m2 * y7 + m3 * y1 + m4 * y6 - m5 * y0 - m6 * y4 + m7 * y2,
         m0 * y6 + m1 * y7 - m2 * y3 + m3 * y2 - m4 * y5 + m5 * y4 - m6 * y0 - m7 * y1,
         m0 * y7 - m4 * y3 + m5 * y2 - m6 * y1,
+    )
+
+
+@jit
+def mmul_line(a, b):
+    """Geometric product a B of an even multivector a and a bivector B (a line)."""
+    a0, a1, a2, a3, a4, a5, a6, a7 = a
+    b0, b1, b2, b3, b4, b5 = b
+    return (
+        -a4 * b3 - a5 * b4 - a6 * b5,
+        a0 * b0 - a2 * b3 - a3 * b4 + a4 * b1 + a5 * b2 - a7 * b5,
+        a0 * b1 + a1 * b3 - a3 * b5 - a4 * b0 + a6 * b2 + a7 * b4,
+        a0 * b2 + a1 * b4 + a2 * b5 - a5 * b0 - a6 * b1 - a7 * b3,
+        a0 * b3 - a5 * b5 + a6 * b4,
+        a0 * b4 + a4 * b5 - a6 * b3,
+        a0 * b5 - a4 * b4 + a5 * b3,
+        a1 * b5 - a2 * b4 + a3 * b3 + a4 * b2 - a5 * b1 + a6 * b0,
+    )
+
+
+@jit
+def line_commutator(a, b):
+    """The commutator product A × B = ½ (A B − B A) of two bivectors (lines)."""
+    a0, a1, a2, a3, a4, a5 = a
+    b0, b1, b2, b3, b4, b5 = b
+    return (
+        -a1 * b3 - a2 * b4 + a3 * b1 + a4 * b2,
+        a0 * b3 - a2 * b5 - a3 * b0 + a5 * b2,
+        a0 * b4 + a1 * b5 - a4 * b0 - a5 * b1,
+        -a4 * b5 + a5 * b4,
+        a3 * b5 - a5 * b3,
+        -a3 * b4 + a4 * b3,
     )
 
 

@@ -85,6 +85,20 @@ def test_mmul_is_the_geometric_product(a, b):
     assert np.allclose(MK.mmul(a, b), expected, rtol=0, atol=1e-12)
 
 
+@given(even8, st.tuples(*[finite] * 6))
+def test_mmul_line_is_the_product_with_a_bivector(a, b):
+    expected = coeffs(mv(a, _pga.MOTOR) * mv(b, _pga.LINE))
+    assert np.allclose(MK.mmul_line(a, b), expected, rtol=0, atol=1e-12)
+
+
+@given(st.tuples(*[finite] * 6), st.tuples(*[finite] * 6))
+def test_line_commutator_is_half_the_commutator(a, b):
+    A, B = mv(a, _pga.LINE), mv(b, _pga.LINE)
+    expected = 0.5 * (A * B - B * A)
+    assert np.allclose(MK.line_commutator(a, b), coeffs(expected, _pga.LINE), rtol=0, atol=1e-12)
+    assert np.abs(np.delete(np.asarray(expected.value), list(_pga.LINE))).max() < 1e-12
+
+
 @given(even8)
 def test_mrev_is_reversion(a):
     assert np.array_equal(MK.mrev(a), coeffs(~mv(a, _pga.MOTOR)))
