@@ -178,6 +178,15 @@ class RigidBody:
         Unit quaternion taking the principal frame to the body frame the user works in
         (identity by default; :meth:`from_tensor` sets it). Renormalised within
         ``UNIT_TOLERANCE``; otherwise :class:`~ga_rotors.errors.InputError`.
+    mass : float, optional
+        kg: what a body moving through space needs (:func:`ga_rotors.simulate` with
+        ``position=``); a body that only turns about a fixed point has none.
+    centre_of_mass : array_like, shape (3,)
+        Where the centre of mass is in the body frame, from its origin (m; the origin by
+        default). The moments are always about the centre of mass; the body frame's
+        origin is any point of the body (the handle of a racket, a satellite's docking
+        port), and the poses, positions and velocities of a whole motion are that
+        origin's.
 
     Examples
     --------
@@ -188,6 +197,10 @@ class RigidBody:
     Traceback (most recent call last):
     ...
     ga_rotors.errors.InputError: moments: ... triangle inequality: I3 = 3 > 1 + 1; ...
+    >>> RigidBody((1.0, 2.0, 3.0), mass=0.0)
+    Traceback (most recent call last):
+    ...
+    ga_rotors.errors.InputError: mass: expected a positive number of kg, got 0.0
     """
 
     moments: tuple[float, float, float]
@@ -195,6 +208,8 @@ class RigidBody:
     #: The symmetric tensor :meth:`from_tensor` diagonalised (None for a body given by
     #: its moments): what :attr:`tensor_residual` measures the body against.
     tensor: tuple | None = field(default=None, compare=False, repr=False)
+    mass: float | None = None
+    centre_of_mass: tuple[float, float, float] = field(default=(0.0, 0.0, 0.0))
 
     def __post_init__(self):
         m = as_float_array(self.moments, "moments", last=3)
@@ -215,9 +230,25 @@ class RigidBody:
             if t.shape != (3, 3):
                 raise InputError(f"expected a 3x3 matrix, got shape {t.shape}", key="tensor")
             object.__setattr__(self, "tensor", tuple(tuple(float(v) for v in r) for r in t))
+        if self.mass is not None:
+            mass = as_float_array(self.mass, "mass")
+            tiny = np.finfo(float).tiny
+            if mass.shape != () or not tiny <= mass <= 1.0 / tiny:
+                raise InputError(f"expected a positive number of kg, got {self.mass!r:.40}",
+                                 key="mass")  # fmt: skip
+            object.__setattr__(self, "mass", float(mass))
+        s = as_float_array(self.centre_of_mass, "centre_of_mass", last=3)
+        if s.shape != (3,):
+            raise InputError(f"expected one vector of shape (3,), got shape {s.shape}",
+                             key="centre_of_mass")  # fmt: skip
+        if np.any(s != 0.0) and self.mass is None:
+            raise InputError("a centre of mass off the body origin matters only to a body "
+                             "moving through space: give its mass too",
+                             key="centre_of_mass")  # fmt: skip
+        object.__setattr__(self, "centre_of_mass", tuple(float(x) + 0.0 for x in s))
 
     @classmethod
-    def from_tensor(cls, tensor) -> RigidBody:
+    def from_tensor(cls, tensor, *, mass=None, centre_of_mass=(0.0, 0.0, 0.0)) -> RigidBody:
         """Diagonalise a symmetric positive-definite inertia tensor.
 
         Principal axes come out right-handed and sorted by increasing moment. Moments
@@ -257,7 +288,8 @@ class RigidBody:
         from .matrix import to_quaternion  # the one matrix -> quaternion formula
 
         moments, p = _equal_within_rounding(values), tuple(to_quaternion(vectors))
-        return cls(moments, p, tensor=tuple(tuple(float(v) for v in row) for row in t))
+        return cls(moments, p, tensor=tuple(tuple(float(v) for v in row) for row in t),
+                   mass=mass, centre_of_mass=centre_of_mass)
 
     @functools.cached_property
     def tensor_residual(self) -> float:
@@ -280,6 +312,40 @@ class RigidBody:
         if self.tensor is None:
             return 0.0
         return _residual(np.array(self.tensor), self.moments, self.principal_rotation)
+
+    def to_principal_axes(self, v) -> tuple[float, float, float]:
+        """Components of one vector in the user's body axes -> in the principal axes, P* v P.
+
+        Examples
+        --------
+        >>> from ga_rotors import quaternion as Q
+        >>> body = RigidBody((1.0, 2.0, 3.0), Q.from_axis_angle([0.0, 0.0, 1.0], 90, degrees=True))
+        >>> [round(x, 15) + 0.0 for x in body.to_principal_axes([1.0, 0.0, 0.0])]
+        [0.0, -1.0, 0.0]
+        """
+        v = as_float_array(v, "v", last=3)
+        if v.shape != (3,):
+            raise InputError(f"expected one vector of shape (3,), got shape {v.shape}", key="v")
+        if self.is_principal:
+            return tuple(float(x) for x in v)
+        from .quaternion import conjugate, rotate
+
+        return tuple(float(x) for x in rotate(conjugate(np.array(self.principal_rotation)), v))
+
+    def body_point(self, r) -> tuple[float, float, float]:
+        """A point of the body given in the user's body frame (from its origin, m) as the
+        integration frame sees it: from the centre of mass, in principal axes.
+
+        Examples
+        --------
+        >>> RigidBody((1.0, 2.0, 3.0), mass=1.0, centre_of_mass=(0.0, 0.5, 0.0)).body_point(
+        ...     [0.0, 1.5, 0.0])
+        (0.0, 1.0, 0.0)
+        """
+        r = as_float_array(r, "at", last=3)
+        if r.shape != (3,):
+            raise InputError(f"expected one vector of shape (3,), got shape {r.shape}", key="at")
+        return self.to_principal_axes(r - np.array(self.centre_of_mass))
 
     @property
     def is_principal(self) -> bool:

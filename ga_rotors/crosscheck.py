@@ -4,6 +4,12 @@ The rotor path (Ṙ = ½ R Ω in Cl(3,0)) and the quaternion path (q̇ = ½ q �
 same differential equation written in two isomorphic algebras, integrated with the same
 method and step: they must agree to round-off. The Euler-angle path is a different ODE (in
 coordinates singular at sin θ = 0) and agrees only where its step resolves its rates.
+
+For a body moving through space the motor path (the body frame's motor and its velocity
+line, rotation and translation coupled when the origin is not the centre of mass) and the
+quaternion path (the centre of mass moving by Newton's law, the body turning about it) are
+different equations of the same motion: they agree to the integrator's error, in angle
+and in the distance between the body origins each path puts in space.
 """
 
 from __future__ import annotations
@@ -38,13 +44,17 @@ class PathComparison:
     max_angle: float
     at_time: float
     samples: int
+    #: for a moving body, the largest distance (m) between the body origins of the two
+    #: paths, and when; None for a rotation about a fixed point
+    max_distance: float | None = None
+    distance_at: float | None = None
 
     def __str__(self) -> str:
         a, b = self.paths
-        return (
-            f"{a} vs {b}: max {self.max_angle:.3g} rad at t = {self.at_time:g} s "
-            f"({self.samples} samples)"
-        )
+        text = f"{a} vs {b}: max {self.max_angle:.3g} rad at t = {self.at_time:g} s"
+        if self.max_distance is not None:
+            text += f", max {self.max_distance:.3g} m apart at t = {self.distance_at:g} s"
+        return text + f" ({self.samples} samples)"
 
 
 def cross_check(trajectory: Trajectory, normalised=None) -> list[PathComparison]:
@@ -75,7 +85,8 @@ def cross_check(trajectory: Trajectory, normalised=None) -> list[PathComparison]
     """
     from .quaternion import distance, normalize
 
-    present = [p for p in _paths.PATHS if _paths.get(p).array in trajectory]
+    present = [p for p in _paths.PATHS if p in trajectory.paths]
+    moving = "position" in trajectory  # a body moving through space
     if len(present) < 2:
         raise InputError(f"trajectory: cross-checking needs two paths, it has {present}")
     # Between rotations: each path's own norm drift is not a disagreement.
@@ -91,5 +102,11 @@ def cross_check(trajectory: Trajectory, normalised=None) -> list[PathComparison]
             d = np.atleast_1d(distance(qa, qb))
             i = int(np.argmax(d))
             angle = d[i]
-        out.append(PathComparison((a, b), float(angle), float(trajectory.t[i]), n))
+        far = at = None
+        if moving:
+            gap = np.linalg.norm(trajectory.positions(a)[:n] - trajectory.positions(b)[:n],
+                                 axis=-1)  # fmt: skip
+            k = int(np.argmax(gap)) if n else 0
+            far, at = (float(gap[k]), float(trajectory.t[k])) if n else (0.0, 0.0)
+        out.append(PathComparison((a, b), float(angle), float(trajectory.t[i]), n, far, at))
     return out

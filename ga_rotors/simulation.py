@@ -6,8 +6,13 @@ integration of (orientation, ω) with the same integrator, so paths not asked fo
 never integrated and outputs not asked for are never computed.
 
 The primary path (whose ω goes into the trajectory's ``w``) is the first of
-``rotor``, ``quaternion``, ``euler`` (the order of :data:`ga_rotors.paths.PATHS`) among
-those requested. The function is also ``ga_rotors.simulate``.
+``motor``, ``rotor``, ``quaternion``, ``euler`` (the order of :data:`ga_rotors.paths.PATHS`)
+among those requested. The function is also ``ga_rotors.simulate``.
+
+Given a ``position`` (or a ``velocity``, or ``forces``), the body moves through space as
+well as turning: a whole rigid motion, integrated on the ``motor`` path (the motor of the
+body frame and its velocity line) and the ``quaternion`` path (the quaternion and the
+centre of mass), :mod:`ga_rotors.paths`.
 """
 
 from __future__ import annotations
@@ -148,7 +153,7 @@ def simulate(
     *,
     duration: float,
     step: float,
-    paths: Sequence[str] | str = ("rotor",),
+    paths: Sequence[str] | str | None = None,
     integrator: str = "rk4",
     torques: Sequence[base.TorqueTerm] = (),
     accept_lower_order: bool = False,
@@ -158,6 +163,9 @@ def simulate(
     t0: float = 0.0,
     progress=None,
     step_limit_key: str = "step",
+    position=None,
+    velocity=None,
+    forces: Sequence[base.ForceTerm] = (),
 ) -> Trajectory:
     """Integrate the motion and return the requested paths and outputs.
 
@@ -174,8 +182,10 @@ def simulate(
         Initial body-frame ω (rad/s), or a prescribed ω(t) (kinematics only).
     duration, step : float
         Time span and fixed step (s); ``step`` must divide ``duration``.
-    paths : sequence of {"rotor", "quaternion", "euler"}
-        Orientation paths to integrate (each a separate integration).
+    paths : sequence of {"rotor", "quaternion", "euler", "motor"}
+        Paths to integrate (each a separate integration); default ``("rotor",)``, and
+        for a body moving through space ``("motor",)`` (there ``quaternion`` is the
+        quaternion and the centre of mass; ``rotor`` and ``euler`` turn only).
     integrator : str or Integrator
         A registered integrator's name (:func:`ga_rotors.integrators.names`), or an
         integrator object (e.g. ``Dop853(rtol=1e-12)`` for another tolerance).
@@ -207,15 +217,25 @@ def simulate(
         ``step_limit``, judged on the initial state; a torqued problem by its torque-free
         rate) the run warns with :class:`~ga_rotors.errors.StepLimitWarning`, or, for
         ``lgvi``, which has no step there, raises InputError.
+    position, velocity : array_like (3,), optional
+        Where the body-frame origin is in space (m) and its velocity there (m/s): given
+        either, the body moves through space, a whole rigid motion (its ``body`` needs a
+        ``mass``; the origin need not be the centre of mass: ``RigidBody(...,
+        centre_of_mass=)``). The other defaults to zero.
+    forces : sequence of ForceTerm
+        Forces on a moving body (:mod:`ga_rotors.forces`), beside its ``torques`` (which
+        act about the centre of mass).
 
     Returns
     -------
     Trajectory
-        ``t``, ``w`` and one array per path (``rotor_blades``, ``q``, ``euler``), plus
-        ``outputs``; ``meta`` records the integrator, step and each path's status.
-        Whatever the path, ``quaternions(path)`` gives its orientation as (w, x, y, z)
-        and ``rotors(path)`` as clifford rotors (the rotor path's raw state is on
-        clifford's blades (1, e12, e13, e23), where k is −e12: not a quaternion).
+        ``t``, ``w`` and one array per path (``rotor_blades``, ``q``, ``euler``; for a
+        moving body ``motor``, ``q_com``, and the primary path's ``position`` and
+        ``velocity``), plus ``outputs``; ``meta`` records the integrator, step and each
+        path's status. Whatever the path, ``quaternions(path)`` gives its orientation as
+        (w, x, y, z) and ``rotors(path)`` as clifford rotors (the rotor path's raw state
+        is on clifford's blades (1, e12, e13, e23), where k is −e12: not a quaternion);
+        for a moving body ``positions(path)``, ``velocities()`` and ``motors(path)``.
 
     Warns
     -----
@@ -236,10 +256,23 @@ def simulate(
     [0.540302305868, 0.0, 0.0, 0.841470984808]
     >>> tr.meta["paths"]["rotor"]["complete"]
     True
+
+    A body thrown up at 5 m/s under gravity for one second, on the motor and quaternion
+    paths: its origin is at ½ g t² below the straight line, and the paths agree.
+
+    >>> from ga_rotors import RigidBody, forces
+    >>> ball = RigidBody((1.0, 1.0, 1.0), mass=2.0)
+    >>> tr = simulate(ball, [1.0, 0.0, 0.0, 0.0], [0.0, 0.0, 1.0], duration=1.0, step=1e-2,
+    ...               position=[0.0, 0.0, 0.0], velocity=[0.0, 0.0, 5.0],
+    ...               forces=[forces.uniform_gravity(ball)], paths=("motor", "quaternion"))
+    >>> tr.positions()[-1].round(12).tolist()        # 5 t − ½ g t²
+    [0.0, 0.0, 0.096675]
+    >>> tr.names
+    ('t', 'w', 'position', 'velocity', 'motor', 'q_com')
     """
     plan = _plan(body, orientation, angular_velocity, duration, step, paths, integrator,
                  torques, accept_lower_order, euler_angles, outputs, sample_every, t0,
-                 step_limit_key)  # fmt: skip
+                 step_limit_key, position, velocity, forces)  # fmt: skip
     return next(_pieces(plan, None, progress))
 
 
@@ -280,16 +313,18 @@ def simulate_chunks(
     """
     if isinstance(chunk_steps, bool) or not isinstance(chunk_steps, int) or chunk_steps < 1:
         raise InputError(f"chunk_steps: expected a positive integer, got {chunk_steps!r}")
-    defaults = dict(paths=("rotor",), integrator="rk4", torques=(), accept_lower_order=False,
+    defaults = dict(paths=None, integrator="rk4", torques=(), accept_lower_order=False,
                     euler_angles=None, outputs=(), sample_every=1, t0=0.0,
-                    step_limit_key="step")  # fmt: skip
+                    step_limit_key="step", position=None, velocity=None,
+                    forces=())  # fmt: skip
     unknown = sorted(set(options) - set(defaults))
     if unknown:
         raise InputError(f"{unknown[0]}: not an argument of simulate")
     o = {**defaults, **options}
     plan = _plan(body, orientation, angular_velocity, duration, step, o["paths"],
                  o["integrator"], o["torques"], o["accept_lower_order"], o["euler_angles"],
-                 o["outputs"], o["sample_every"], o["t0"], o["step_limit_key"])  # fmt: skip
+                 o["outputs"], o["sample_every"], o["t0"], o["step_limit_key"],
+                 o["position"], o["velocity"], o["forces"])  # fmt: skip
     return _pieces(plan, chunk_steps, progress)
 
 
@@ -299,8 +334,7 @@ class _Plan(NamedTuple):
     method: base.Integrator
     problem: base.Problem
     requested: list
-    starts: dict
-    w0: np.ndarray | None
+    starts: dict  # path -> (its initial state, its initial rates)
     rigid: RigidBody | None
     principal: np.ndarray | None
     t0: float
@@ -309,13 +343,17 @@ class _Plan(NamedTuple):
     sample_every: int
     outputs: tuple
     step_limit_key: str
+    specs: dict  # path -> the OrientationPath it runs on (a motion's variant)
 
 
 def _plan(body, orientation, angular_velocity, duration, step, paths, integrator, torques,
           accept_lower_order, euler_angles, outputs, sample_every, t0,
-          step_limit_key) -> _Plan:  # fmt: skip
+          step_limit_key, position=None, velocity=None, forces=()) -> _Plan:  # fmt: skip
     method = integrator if isinstance(integrator, base.Integrator) else base.get(integrator)
-    requested = _requested(paths)
+    forces = forces if type(forces) is tuple else tuple(forces)
+    moving = position is not None or velocity is not None or bool(forces)
+    requested = _requested(paths if paths is not None else ("motor",) if moving else "rotor")
+    specs = {p: _paths.resolve(p, moving) for p in requested}
     nsteps = _steps(duration, step)
     if type(sample_every) is not int or sample_every < 1:
         if isinstance(sample_every, bool) or not isinstance(sample_every, int) or sample_every < 1:
@@ -332,6 +370,9 @@ def _plan(body, orientation, angular_velocity, duration, step, paths, integrator
     if isinstance(angular_velocity, base.PrescribedOmega):
         if body is not None:
             raise InputError("body: a prescribed ω(t) is kinematics only; pass body=None")
+        if moving:
+            raise InputError("position: a prescribed ω(t) turns a frame; it does not move "
+                             "a body through space")  # fmt: skip
         problem = base.Problem(omega=angular_velocity)
         rigid, w0 = None, None
         if outputs:
@@ -340,7 +381,16 @@ def _plan(body, orientation, angular_velocity, duration, step, paths, integrator
         rigid = _body(body)
         w0 = _angular_velocity(angular_velocity)
         torques = torques if type(torques) is tuple else tuple(torques)
-        problem = base.problem_for(rigid.moments, torques, accept_lower_order)
+        if moving:
+            if rigid.mass is None:
+                raise InputError("a body moving through space needs its mass: "
+                                 "RigidBody(moments, mass=...)", key="body.mass")  # fmt: skip
+            problem = base.problem_for(
+                rigid.moments, torques, accept_lower_order, mass=rigid.mass,
+                centre_of_mass=rigid.to_principal_axes(rigid.centre_of_mass), forces=forces,
+            )  # fmt: skip
+        else:
+            problem = base.problem_for(rigid.moments, torques, accept_lower_order)
     for p in requested:
         method.check_once(problem, p)
 
@@ -360,20 +410,26 @@ def _plan(body, orientation, angular_velocity, duration, step, paths, integrator
         w0 = _q.rotate(_q.conjugate(principal), w0)
 
     starts = {}
-    for p in requested:
-        spec = _paths.get(p)
+    if moving:
+        p0, v0 = _vector(position, "position"), _vector(velocity, "velocity")
+        for p in requested:
+            starts[p] = specs[p].load().initial_state(q0, p0, w0, v0,
+                                                      problem.centre_of_mass)  # fmt: skip
+    for p in () if moving else requested:
+        spec = specs[p]
         module = spec.load()
         if spec.sequence == "ZYZ":
-            starts[p] = module.initial_state(_euler_start(q0, euler_angles))
+            starts[p] = module.initial_state(_euler_start(q0, euler_angles)), w0
         elif spec.sequence is not None:
             from . import euler
 
-            starts[p] = module.initial_state(euler.from_quaternion(q0, spec.sequence))
+            starts[p] = module.initial_state(euler.from_quaternion(q0, spec.sequence)), w0
         else:
-            starts[p] = module.initial_state(q0)
+            starts[p] = module.initial_state(q0), w0
 
-    return _Plan(method, problem, requested, starts, w0, rigid, principal, float(t0),
-                 float(step), nsteps, sample_every, tuple(outputs), step_limit_key)  # fmt: skip
+    return _Plan(method, problem, requested, starts, rigid, principal, float(t0),
+                 float(step), nsteps, sample_every, tuple(outputs), step_limit_key,
+                 specs)  # fmt: skip
 
 
 def _pieces(plan: _Plan, chunk: int | None, progress):
@@ -402,7 +458,7 @@ def _pieces(plan: _Plan, chunk: int | None, progress):
 
         primary = p == requested[0]
         found = method.run(
-            problem, p, plan.starts[p], plan.w0, t0, h, nsteps, every, chunk=chunk,
+            problem, p, *plan.starts[p], t0, h, nsteps, every, chunk=chunk,
             progress=report, where=plan.step_limit_key if primary else None, watch=primary,
             stacklevel=4,
         )  # fmt: skip
@@ -424,7 +480,7 @@ def _pieces(plan: _Plan, chunk: int | None, progress):
             if result.t.shape[0]:
                 info["ended_at"] = float(result.t[-1])
             info["generated_module"] = str(result.source) if result.source else None
-            module = _paths.get(p).load()
+            module = plan.specs[p].load()
             if hasattr(module, "report") and len(result.stats) == module.NSTATS:
                 info["watch"] = module.report(result.stats)  # (scipy's dop853 keeps no watch)
             if not result.complete:
@@ -455,14 +511,21 @@ def _derive(plan: _Plan, grid, results: dict, status: dict) -> Trajectory:
     arrays: dict[str, np.ndarray] = {"t": grid}
     components: dict[str, tuple[str, ...]] = {"w": ("1", "2", "3")}
     primary_w = None
+    moving = plan.problem.kind == base.MOTION
     for p in requested:
-        spec = _paths.get(p)
+        spec = plan.specs[p]
         result = results.get(p)
+        rates = 6 if moving else 3
         x = result.x if result is not None else np.empty((0, spec.dim))
-        w = result.w if result is not None else np.empty((0, 3))
+        w = result.w if result is not None else np.empty((0, rates))
         if primary_w is None:
-            primary_w = w
-            arrays["w"] = w
+            primary_w = w[:, :3]
+            arrays["w"] = primary_w
+            if moving:  # the body origin's, in space: the same in either frame of axes
+                module, s = spec.load(), plan.problem.centre_of_mass
+                arrays["position"] = module.positions(x, s)
+                arrays["velocity"] = module.velocities(x, w, s)
+                components["position"] = components["velocity"] = ("x", "y", "z")
         arrays[spec.array] = x
         components[spec.array] = spec.components
 
@@ -475,7 +538,7 @@ def _derive(plan: _Plan, grid, results: dict, status: dict) -> Trajectory:
         arrays["L"] = principal_body.momentum(primary_w)
         components["L"] = ("1", "2", "3")
     if "L_space" in outputs or "angles" in outputs:
-        primary = _paths.get(requested[0])
+        primary = plan.specs[requested[0]]
         n = primary_w.shape[0]
         # the rotation the state stands for: a long run's |q| drift (RK4 lets it reach
         # 0.998 over 10⁵ steps) is reported by the paths' norm drift, not fatal here
@@ -495,8 +558,11 @@ def _derive(plan: _Plan, grid, results: dict, status: dict) -> Trajectory:
         if "L" in arrays:
             arrays["L"] = _q.rotate(principal, arrays["L"])
         for p in requested:
-            spec = _paths.get(p)
+            spec = plan.specs[p]
             module = spec.load()
+            if moving:
+                arrays[spec.array] = module.to_user_frame(arrays[spec.array], principal)
+                continue
             q_user = _q.multiply(module.quaternions(arrays[spec.array]), back)
             arrays[spec.array] = module.initial_state(q_user)
 
@@ -512,6 +578,10 @@ def _derive(plan: _Plan, grid, results: dict, status: dict) -> Trajectory:
         "paths": {p: dict(info) for p, info in status.items()},
         "primary": requested[0],
     }
+    if moving:
+        meta["mass"] = rigid.mass
+        meta["centre_of_mass"] = rigid.centre_of_mass
+        meta["forces"] = [f.name for f in plan.problem.forces]
     return Trajectory(arrays, components, meta)
 
 
@@ -532,6 +602,16 @@ def _orientation(orientation) -> np.ndarray:
     if q0.shape != (4,):
         raise InputError(f"orientation: expected one quaternion of shape (4,), got {q0.shape}")
     return require_unit(q0, "orientation")
+
+
+def _vector(value, name: str) -> np.ndarray:
+    """A position or velocity: three finite numbers (zero when not given)."""
+    if value is None:
+        return np.zeros(3)
+    v = as_float_array(value, name, last=3)
+    if v.shape != (3,):
+        raise InputError(f"expected one vector of shape (3,), got shape {v.shape}", key=name)
+    return v
 
 
 def _angular_velocity(angular_velocity) -> np.ndarray:

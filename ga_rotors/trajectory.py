@@ -19,6 +19,12 @@ energy        (n,)      kinetic energy ½ ω·Iω (J) of the primary path
 L             (n, 3)    body-frame angular momentum Iω
 L_space       (n, 3)    space-frame angular momentum q (Iω) q*
 angles        (n, 3)    ZYZ angles (ψ, θ, φ) of the primary path's orientation
+motor         (n, 8)    motor path of a moving body, raw: its motors (1, e01, e02, e03,
+                        e12, e13, e23, e0123) of the body frame; use ``motors()``
+q_com         (n, 7)    quaternion path of a moving body, raw: q (w, x, y, z) and the
+                        centre of mass (m); use ``quaternions()``, ``positions()``
+position      (n, 3)    where the body-frame origin is, in space (m), primary path
+velocity      (n, 3)    its velocity in space (m/s), primary path
 ============= ========= ==============================================================
 
 An array can be shorter than ``t`` (``m < n``) when its path stopped early because its
@@ -85,6 +91,16 @@ class Trajectory:
 
     # ------------------------------------------------------------------ orientation
 
+    def _present(self, name: str):
+        """The path called ``name`` as this trajectory holds it (for a moving body, a
+        path's motion variant), or None."""
+        spec = _paths.PATHS[name]
+        if spec.array in self._arrays:
+            return spec
+        if spec.motion is not None and spec.motion.array in self._arrays:
+            return spec.motion
+        return None
+
     @property
     def paths(self) -> tuple[str, ...]:
         """The orientation paths present, primary first.
@@ -96,7 +112,7 @@ class Trajectory:
         ...          step=0.1, paths=("quaternion", "rotor")).paths
         ('rotor', 'quaternion')
         """
-        present = [name for name, spec in _paths.PATHS.items() if spec.array in self._arrays]
+        present = [name for name in _paths.PATHS if self._present(name) is not None]
         primary = self.meta.get("primary")
         if primary in present:
             present.remove(primary)
@@ -116,6 +132,15 @@ class Trajectory:
                 "; only the requested paths are integrated)"
             )
         return path
+
+    def _moving(self, path: str | None):
+        """The spec of ``path`` (default: the primary one) of a moving body, or InputError."""
+        spec = self._present(self._path(path))
+        if not spec.moves:
+            raise InputError("this trajectory is a rotation about a fixed point: it has no "
+                             "positions (simulate with position= for a body moving through "
+                             "space)", key="path")  # fmt: skip
+        return spec
 
     def quaternions(self, path: str | None = None) -> np.ndarray:
         """The orientation of ``path`` as quaternions (m, 4), (w, x, y, z), body -> space.
@@ -149,11 +174,71 @@ class Trajectory:
         """
         path = self._path(path)
         if path not in self._quaternions:
-            spec = _paths.get(path)
+            spec = self._present(path)
             q = np.array(spec.load().quaternions(self._arrays[spec.array]), dtype=np.float64)
             q.flags.writeable = False  # computed once and shared: nobody may change it
             self._quaternions[path] = q
         return self._quaternions[path]
+
+    def positions(self, path: str | None = None) -> np.ndarray:
+        """Where the body-frame origin is (m, 3), in space (m), on ``path`` (default: the
+        primary one) of a body moving through space.
+
+        The motor path's are its motors' translations; the quaternion path's, its centre
+        of mass less the turned lever to it, c − q s q* (``meta["centre_of_mass"]`` is s).
+
+        Examples
+        --------
+        >>> from ga_rotors import RigidBody, simulate
+        >>> body = RigidBody((1.0, 1.0, 1.0), mass=1.0, centre_of_mass=(1.0, 0.0, 0.0))
+        >>> tr = simulate(body, [1.0, 0, 0, 0], [0.0, 0.0, np.pi], duration=1.0, step=1e-2,
+        ...               velocity=[0.0, -np.pi, 0.0], paths=("motor", "quaternion"))
+        >>> tr.velocities()[0].round(15) + 0.0        # the origin circles the resting centre
+        array([ 0.        , -3.14159265,  0.        ])
+        >>> tr.positions("quaternion")[-1].round(6) + 0.0   # half a turn later
+        array([2., 0., 0.])
+        >>> tr.positions("motor")[-1].round(6) + 0.0
+        array([2., 0., 0.])
+        """
+        spec = self._moving(path)
+        s = self.meta.get("centre_of_mass", (0.0, 0.0, 0.0))
+        return spec.load().positions(self._arrays[spec.array], s)
+
+    def velocities(self) -> np.ndarray:
+        """The body-frame origin's velocity (n, 3) in space (m/s), of the primary path.
+
+        Examples
+        --------
+        >>> from ga_rotors import RigidBody, simulate
+        >>> tr = simulate(RigidBody((1.0, 1.0, 1.0), mass=1.0), [1.0, 0, 0, 0], [0.0, 0, 0],
+        ...               duration=1.0, step=0.5, velocity=[1.0, 2.0, 3.0])
+        >>> tr.velocities()[-1].tolist()
+        [1.0, 2.0, 3.0]
+        """
+        self._moving(None)
+        return self._arrays["velocity"]
+
+    def motors(self, path: str | None = None) -> np.ndarray:
+        """The poses (m, 8) of ``path`` (default: the primary one) of a body moving through
+        space, as motors T(p) R(q) of Cl(3,0,1) (:mod:`ga_rotors.motor`): the motor path's
+        own states, or those of the quaternions and positions of the quaternion path.
+
+        Examples
+        --------
+        >>> from ga_rotors import RigidBody, simulate
+        >>> tr = simulate(RigidBody((1.0, 1.0, 1.0), mass=1.0), [1.0, 0, 0, 0], [0.0, 0, 0],
+        ...               duration=1.0, step=0.5, velocity=[2.0, 0.0, 0.0],
+        ...               paths=("motor", "quaternion"))
+        >>> tr.motors("quaternion")[-1].tolist()            # at x = 2: T = 1 − ½ e0 t
+        [1.0, -1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0]
+        """
+        spec = self._moving(path)
+        if spec.array == "motor":
+            return self._arrays["motor"]
+        from .motor import from_pose
+        from .quaternion import normalize
+
+        return from_pose(normalize(self.quaternions(path)), self.positions(path))
 
     def rotors(self, path: str | None = None):
         """The orientation of ``path`` as clifford rotors of Cl(3,0).

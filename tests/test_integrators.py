@@ -24,6 +24,7 @@ from ga_rotors.errors import InputError
 from ga_rotors.integrators import (
     FREE,
     KINEMATIC,
+    MOTION,
     TORQUED,
     PrescribedOmega,
     Problem,
@@ -47,8 +48,8 @@ def test_registry_lists_rk4_with_its_declarations():
     assert {"rk4", "rk4_renorm"} <= set(names())
     rows = {r["name"]: r for r in catalogue()}
     assert rows["rk4"]["order"] == 4 and rows["rk4"]["conserves"] == []
-    assert rows["rk4"]["problems"] == sorted([FREE, TORQUED, KINEMATIC])
-    assert rows["rk4"]["paths"] == ["euler", "quaternion", "rotor"]
+    assert rows["rk4"]["problems"] == sorted([FREE, TORQUED, KINEMATIC, MOTION])
+    assert rows["rk4"]["paths"] == ["euler", "motor", "quaternion", "rotor"]
     assert rows["rk4_renorm"]["conserves"] == ["unit_norm"]
     with pytest.raises(InputError, match="unknown integrator 'nope'"):
         get("nope")

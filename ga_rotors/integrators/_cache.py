@@ -240,7 +240,7 @@ def _write_once(path: Path, text: str) -> None:
 
 
 def _memo_key(integrator, problem: Problem, path: str, form: str) -> tuple:
-    terms = (problem.omega,) if problem.omega is not None else problem.torques
+    terms = (problem.omega,) if problem.omega is not None else (*problem.torques, *problem.forces)
     return (
         form,
         "field" if integrator is None else integrator.name,

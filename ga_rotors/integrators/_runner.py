@@ -15,7 +15,7 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import InputError
-from ..paths import get as get_path
+from ..paths import resolve as resolve_path
 from . import _source, loops
 from ._cache import specialise
 from .base import Integrator, LoopResult
@@ -80,9 +80,9 @@ def _entry(dispatcher, sample: tuple):
 
 
 def _prepare(integrator: Integrator, problem: Problem, path: str) -> _Prepared:
-    spec = get_path(path)
-    kernels = spec.load()
     kind = KINDS[problem.kind]
+    spec = resolve_path(path, kind.moves)
+    kernels = spec.load()
     compiled = specialise(integrator, problem, path)
     stats = (
         kernels.initial_stats() if hasattr(kernels, "initial_stats") else np.zeros(kernels.NSTATS)
@@ -334,7 +334,8 @@ def run_batch(integrator: Integrator, batch: Batch, path: str, x0, w0, t0, h, ns
     True
     """
     problem, n = batch.problem, len(batch)
-    kind, dim = KINDS[problem.kind], get_path(path).dim
+    kind = KINDS[problem.kind]
+    dim = resolve_path(path, kind.moves).dim
     nsteps = _counts(nsteps, 1)[0]
     if isinstance(chunk, bool) or not isinstance(chunk, int | np.integer) or chunk < 1:
         raise InputError(f"expected a positive number of bodies, got {chunk!r}", key="chunk")
@@ -382,7 +383,7 @@ def vector_field(problem: Problem, path: str):
     compiled = specialise(None, problem, path, _source.RHS).module.rhs
     params = problem.params()
     inertia = kind.body(problem)
-    dim = get_path(path).dim + (kind.rate if kind.dynamic else 0)
+    dim = resolve_path(path, kind.moves).dim + (kind.rate if kind.dynamic else 0)
 
     def f(t, y):
         y = np.ascontiguousarray(y, dtype=np.float64)

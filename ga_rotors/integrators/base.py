@@ -139,8 +139,10 @@ from .limits import WATCH_GROWTH, watch_candidates
 from .problem import (
     FREE,
     KINEMATIC,
+    MOTION,
     TORQUED,
     Batch,
+    ForceTerm,
     PrescribedOmega,
     Problem,
     TorqueTerm,
@@ -153,12 +155,14 @@ __all__ = [
     "FREE",
     "KINDS",
     "KINEMATIC",
+    "MOTION",
     "ORIENTATION_TORQUES",
     "PROPERTIES",
     "TORQUED",
     "TORQUE_SUPPORT",
     "WATCH_GROWTH",
     "Batch",
+    "ForceTerm",
     "Integrator",
     "LoopResult",
     "PrescribedOmega",
@@ -235,7 +239,7 @@ class Integrator(ABC):
     --------
     >>> rk4 = get("rk4")
     >>> isinstance(rk4, Integrator), rk4.order, sorted(rk4.paths)
-    (True, 4, ['euler', 'quaternion', 'rotor'])
+    (True, 4, ['euler', 'motor', 'quaternion', 'rotor'])
     >>> rk4.check(Problem((1.0, 2.0, 3.0)), "matrix")
     Traceback (most recent call last):
     ...
@@ -410,15 +414,21 @@ class Integrator(ABC):
                 key="paths",
             )
         if not getattr(problem, "accept_lower_order", False):
-            term = torque_conflict(self, getattr(problem, "torques", ()))
+            terms = (*getattr(problem, "torques", ()), *getattr(problem, "forces", ()))
+            term = torque_conflict(self, terms)
             if term is not None:
+                force = hasattr(term, "depends_on_velocity")
+                what, reads, flag = (
+                    ("force", "the velocity", "depends_on_velocity") if force
+                    else ("torque", "ω", "depends_on_omega")
+                )  # fmt: skip
                 raise InputError(
-                    f"{self.name} (order {self.order}) integrates torques of "
-                    f"orientation and time only at its order, but torque {term.name!r} "
-                    "reads ω (depends_on_omega=True, which user kernels default to), and "
-                    f"with it {self.name} is first-order accurate. Use a method that "
-                    f"handles any torque ({', '.join(any_torque_methods())}), declare "
-                    "depends_on_omega=False if the torque does not read ω, or accept "
+                    f"{self.name} (order {self.order}) integrates {what}s of "
+                    f"{'pose' if force else 'orientation'} and time only at its order, but "
+                    f"{what} {term.name!r} reads {reads} ({flag}=True, which user kernels "
+                    f"default to), and with it {self.name} is first-order accurate. Use a "
+                    f"method that handles any {what} ({', '.join(any_torque_methods())}), "
+                    f"declare {flag}=False if the {what} does not read {reads}, or accept "
                     "first order explicitly (accept_lower_order=True)",
                     key="integrator",
                 )
@@ -568,9 +578,10 @@ def torque_conflict(integrator: Integrator, torques):
     ('isotropic_damping', None)
     >>> torque_conflict(get("split2"), [TorqueTerm(gravity, (0,) * 6, depends_on_omega=False)])
     """
-    if integrator.torques == ANY_TORQUE or TORQUED not in integrator.problems:
+    if integrator.torques == ANY_TORQUE or not ({TORQUED, MOTION} & integrator.problems):
         return None
-    return next((t for t in torques if t.depends_on_omega), None)
+    return next((t for t in torques if getattr(t, "depends_on_omega", None)
+                 or getattr(t, "depends_on_velocity", False)), None)  # fmt: skip
 
 
 def any_torque_methods() -> list[str]:
@@ -677,7 +688,7 @@ def catalogue() -> list[dict]:
     --------
     >>> row = [r for r in catalogue() if r["name"] == "rk4_renorm"][0]
     >>> row["conserves"], row["paths"]
-    (['unit_norm'], ['quaternion', 'rotor'])
+    (['unit_norm'], ['motor', 'quaternion', 'rotor'])
     """
     _load_builtins()
     return [

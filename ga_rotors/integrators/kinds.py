@@ -44,8 +44,8 @@ from typing import NamedTuple
 from .._kernels import euler_coefficients, euler_rates, free_euler_rates
 from ..errors import InputError
 from . import loops
-from ._arith import axpy3, load3, rk4_sum3, store3
-from .problem import FREE, KINEMATIC, TORQUED
+from ._arith import axpy3, axpy6, load3, load6, rk4_sum3, rk4_sum6, store3, store6
+from .problem import FREE, KINEMATIC, MOTION, TORQUED
 
 __all__ = ["KINDS", "ProblemKind", "SlotSource", "register_kind"]
 
@@ -108,6 +108,44 @@ def _torqued_accel(problem, imports) -> str:
     )
 
 
+def _wrench(problem, imports) -> str:
+    """``wrench(t, q, c, w, v, params)``: the sum of exactly the declared forces (each a
+    force in space and a torque about the centre of mass) and torques (about the centre of
+    mass), each kernel on its slice of the packed parameters (torques first)."""
+    calls, offset = [], 0
+    for n, term in enumerate(problem.torques):
+        imports.kernel(f"_term_{n}", term.kernel)
+        size = len(term.params)
+        calls.append((False, f"_term_{n}(t, q, w, params[{offset}:{offset + size}])"))
+        offset += size
+    for n, term in enumerate(problem.forces):
+        imports.kernel(f"_force_{n}", term.kernel)
+        size = len(term.params)
+        calls.append((True, f"_force_{n}(t, q, c, w, v, params[{offset}:{offset + size}])"))
+        offset += size
+    if not calls:
+        return "def wrench(t, q, c, w, v, params):\n    return (0.0, 0.0, 0.0, 0.0, 0.0, 0.0)\n"
+    body = "".join(f"    a{n} = {call}\n" for n, (_, call) in enumerate(calls))
+    sums = []
+    for k in range(6):  # forces give six numbers, torques the last three
+        parts = [f"a{n}[{k if force else k - 3}]" for n, (force, _) in enumerate(calls)
+                 if force or k >= 3]  # fmt: skip
+        sums.append(" + ".join(parts) if parts else "0.0")
+    return "def wrench(t, q, c, w, v, params):\n" + body + f"    return ({', '.join(sums)})\n"
+
+
+def _motion_accel(problem, imports) -> str:
+    """The path's equations of motion (``o_motion``) under the declared wrench, evaluated at
+    the state's centre of mass; with nothing declared, the free equations alone."""
+    if not problem.forces and not problem.torques:
+        return "def accel(t, x, w, inertia, params):\n    return o_free_motion(x, w, inertia)\n"
+    return (
+        "def accel(t, x, w, inertia, params):\n"
+        "    q, c, u, v = o_centre(x, w, inertia)\n"
+        "    return o_motion(x, w, inertia, wrench(t, q, c, u, v, params))\n"
+    )
+
+
 def _omega(problem, imports) -> str:
     """The prescribed body ω(t) on its parameters."""
     imports.kernel("_omega_0", problem.omega.kernel)
@@ -118,6 +156,11 @@ def _omega(problem, imports) -> str:
 def _moments(problem) -> tuple[float, ...]:
     """The principal moments (a prescribed ω(t) has none: ones, which no step reads)."""
     return problem.inertia if problem.inertia is not None else (1.0, 1.0, 1.0)
+
+
+def _motion_body(problem) -> tuple[float, ...]:
+    """The moments, the mass and the centre of mass (:attr:`Problem.body`)."""
+    return problem.body
 
 
 @dataclass(frozen=True)
@@ -149,10 +192,14 @@ class ProblemKind:
         once per body (``stored_size`` numbers) and appends to the body tuple, and that
         the step's kernels then read back instead of computing (None: nothing stored).
     judged : bool
-        The integrators' step limits apply to this kind.
+        The integrators' step limits apply to this kind (they read the first three
+        numbers of the rates as ω and of the body as its moments).
     dynamic : bool
         The rate part is integrated (False: it is prescribed, and the vector field's
         state is the orientation alone).
+    moves : bool
+        The state carries the body's position: a problem of this kind runs on the paths
+        that integrate whole rigid motion (:func:`ga_rotors.paths.resolve`).
 
     Examples
     --------
@@ -181,6 +228,7 @@ class ProblemKind:
     stored_size: int = 0
     judged: bool = True
     dynamic: bool = True
+    moves: bool = False
 
 
 #: name -> ProblemKind: every kind a problem can be and a step can be declared for.
@@ -251,5 +299,28 @@ register_kind(
         evaluates="omega",
         judged=False,
         dynamic=False,
+    )
+)
+register_kind(
+    ProblemKind(
+        MOTION,
+        loop=loops.fixed_step_loop,
+        rhs=loops.dynamics_rhs,
+        slots={
+            "accel": SlotSource(
+                _motion_accel,
+                frozenset({"wrench", "o_centre", "o_motion", "o_free_motion"}),
+            ),
+            "wrench": SlotSource(_wrench),
+        },
+        batch=loops.batch_chunk,
+        rate=6,
+        rate_load=load6,
+        rate_store=store6,
+        rate_axpy=axpy6,
+        rate_rk4=rk4_sum6,
+        body=_motion_body,
+        body_size=7,
+        moves=True,
     )
 )

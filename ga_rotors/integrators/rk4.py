@@ -19,7 +19,7 @@ the state. A run warns once N·|ln |R(ihν)|²| ≥ 1, the energy changed by a f
 
 from __future__ import annotations
 
-from .base import FREE, KINEMATIC, TORQUED, register
+from .base import FREE, KINEMATIC, MOTION, TORQUED, register
 from .limits import wobble_damping
 from .slots import accel, o_axpy, o_normalize, o_rate, o_rk4, omega, r_axpy, r_rk4
 from .template import TemplateIntegrator
@@ -82,8 +82,13 @@ RK4 = register(
         order=4,
         description="classical Runge–Kutta 4 on (orientation, ω): the paper's method",
         conserves=frozenset(),
-        paths=frozenset({"rotor", "quaternion", "euler"}),
-        steps={FREE: rk4_step, TORQUED: rk4_step, KINEMATIC: rk4_kinematic_step},
+        paths=frozenset({"rotor", "quaternion", "euler", "motor"}),
+        steps={
+            FREE: rk4_step,
+            TORQUED: rk4_step,
+            KINEMATIC: rk4_kinematic_step,
+            MOTION: rk4_step,
+        },
         # |R(iy)|² = 1 − y⁶/72 + y⁸/576 < 1: the wobble and |q| (q̇ has rate |ω|/2) decay.
         step_limit=wobble_damping(RK4_POLYNOMIAL, steps_q=True),
         evaluations=4,
@@ -96,11 +101,12 @@ RK4_RENORM = register(
         order=4,
         description="classical RK4, orientation renormalised to unit norm after each step",
         conserves=frozenset({"unit_norm"}),
-        paths=frozenset({"rotor", "quaternion"}),
+        paths=frozenset({"rotor", "quaternion", "motor"}),
         steps={
             FREE: rk4_renorm_step,
             TORQUED: rk4_renorm_step,
             KINEMATIC: rk4_renorm_kinematic_step,
+            MOTION: rk4_renorm_step,
         },
         helpers=(rk4_step, rk4_kinematic_step),
         # |q| is projected back each step: only the wobble of ω is damped by |R(ihν)|².

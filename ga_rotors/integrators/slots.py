@@ -7,8 +7,9 @@ same name instead, chosen for one orientation path, one problem kind
 (:mod:`ga_rotors.integrators.kinds`) and one set of declared torques. Calling a slot
 directly (running a template uninstantiated) raises :class:`TemplateSlotError`.
 
-Every slot takes and returns tuples of floats (``x`` an orientation state, ``w`` a body
-angular velocity 3-tuple, ``q`` a unit quaternion 4-tuple, ``t``/``h`` floats).
+Every slot takes and returns tuples of floats (``x`` an orientation state, or a pose for
+a motion; ``w`` the rate part, a body angular velocity 3-tuple, or for a motion the
+6-tuple ω then a velocity; ``q`` a unit quaternion 4-tuple, ``t``/``h`` floats).
 
 ========== ===================================== =========================================
 slot       signature                             bound to
@@ -41,6 +42,18 @@ o_watch    o_watch(t, x, w, h, stats)            the path's own diagnostics (the
                                                  path counts steps near sin θ = 0); a path
                                                  with nothing to watch binds a kernel that
                                                  compiles to no instruction
+o_flow     o_flow(x, h, w) -> x'                 the exact flow of constant rates w for a
+                                                 time h (the path's group exponential:
+                                                 q ⊗ Exp(hω), M exp(hB/2)); motion paths
+o_centre   o_centre(x, w, body) -> (q, c, ω, v)  a motion state's orientation, centre of
+                                                 mass and its velocity (space), body ω
+o_from_centre o_from_centre(q, c, ω, v, body)    the inverse: (x, w) of those
+o_motion   o_motion(x, w, body, f) -> ẇ          the equations of motion in the path's rate
+                                                 variables under the wrench f = (F, τ_c)
+o_free_motion o_free_motion(x, w, body) -> ẇ     the same with no force and no torque
+wrench     wrench(t, q, c, w, v, params)         the sum of the declared forces and torques:
+           -> (F, τ_c)                           F in space, τ about the centre of mass in
+                                                 the body (motion problems only)
 r_load     r_load(array) -> w                    read the rate part of a state (the kind's
                                                  ``rate_load``: ω, 3 numbers)
 r_store    r_store(out, row, w)                  write it into a 2-D array
@@ -75,8 +88,13 @@ __all__ = [
     "limit",
     "loop",
     "o_axpy",
+    "o_centre",
+    "o_flow",
+    "o_free_motion",
+    "o_from_centre",
     "o_from_quat",
     "o_load",
+    "o_motion",
     "o_normalize",
     "o_quat",
     "o_rate",
@@ -95,6 +113,7 @@ __all__ = [
     "w_get",
     "w_put",
     "w_rows",
+    "wrench",
     "x_get",
     "x_put",
     "x_rows",
@@ -112,6 +131,11 @@ PATH_SLOTS = {
     "o_load": "load",
     "o_store": "store",
     "o_watch": "watch",
+    "o_flow": "flow",
+    "o_centre": "centre_of_mass",
+    "o_from_centre": "from_centre_of_mass",
+    "o_motion": "accel",
+    "o_free_motion": "free_accel",
 }
 
 #: Slot name -> the attribute of a problem kind that binds it.
@@ -127,7 +151,7 @@ BATCH_SLOTS = ("x_rows", "x_get", "x_put", "w_rows", "w_get", "w_put", "body_row
                "body_get", "param_rows", "param_get")  # fmt: skip
 
 #: Slots whose definition the code generator writes.
-GENERATED_SLOTS = ("torque", "accel", "omega", "step", "loop", "limit", *BATCH_SLOTS)
+GENERATED_SLOTS = ("torque", "accel", "omega", "wrench", "step", "loop", "limit", *BATCH_SLOTS)
 
 
 class TemplateSlotError(GaRotorsError, RuntimeError):
@@ -198,6 +222,12 @@ o_from_quat = _slot("o_from_quat", "x = o_from_quat(q): a unit quaternion in pat
 o_load = _slot("o_load", "x = o_load(array): read a state.")
 o_store = _slot("o_store", "o_store(out, row, x): write a state.")
 o_watch = _slot("o_watch", "o_watch(t, x, w, h, stats): path diagnostics.")
+o_flow = _slot("o_flow", "x' = o_flow(x, h, w): the exact flow of constant rates for h.")
+o_centre = _slot("o_centre", "q, c, ω, v = o_centre(x, w, body): the centre of mass's state.")
+o_from_centre = _slot("o_from_centre", "x, w = o_from_centre(q, c, ω, v, body): its inverse.")
+o_motion = _slot("o_motion", "ẇ = o_motion(x, w, body, f): equations of motion, wrench f.")
+o_free_motion = _slot("o_free_motion", "ẇ = o_free_motion(x, w, body): with no wrench.")
+wrench = _slot("wrench", "F, τ = wrench(t, q, c, w, v, params): declared forces and torques.")
 r_load = _slot("r_load", "w = r_load(array): read the rate part of a state.")
 r_store = _slot("r_store", "r_store(out, row, w): write the rate part of a state.")
 r_axpy = _slot("r_axpy", "w + h·k on the rate part of the state.")

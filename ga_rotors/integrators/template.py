@@ -30,7 +30,7 @@ class TemplateIntegrator(Integrator):
     >>> from ga_rotors.integrators import FREE, get
     >>> rk4 = get("rk4")
     >>> isinstance(rk4, TemplateIntegrator), sorted(rk4.problems), rk4.steps[FREE].__name__
-    (True, ['free', 'kinematic', 'torqued'], 'rk4_step')
+    (True, ['free', 'kinematic', 'motion', 'torqued'], 'rk4_step')
     >>> rk4.evaluations, rk4.adaptive
     (4, False)
     >>> TemplateIntegrator(name="my euler", order=1, description="", conserves=(),

@@ -36,6 +36,18 @@ VARIABLES: dict[str, tuple[str, str]] = {
     "omega_space": ("rad/s", "space-frame angular velocity q w q*"),
     "angles": ("rad", "ZYZ Euler angles (psi, theta, phi) of the primary path's orientation"),
     "omega_error": ("rad/s", "|w - w_exact| of the primary path"),
+    "position": ("m", "position of the body-frame origin in space, primary path"),
+    "velocity": ("m/s", "velocity of the body-frame origin in space, primary path"),
+    "motor": (
+        "1",
+        "motor path's raw state: the body frame's motor on the blades (1, e01, e02, e03, "
+        "e12, e13, e23, e0123), the e0 blades in m",
+    ),
+    "q_com": (
+        "1",
+        "quaternion path's raw state for a moving body: q (w, x, y, z) and the centre of "
+        "mass in space (cx, cy, cz) in m",
+    ),
 }
 
 #: array name -> its CF attributes beyond units and long name (CF's standard-name table
@@ -49,6 +61,8 @@ COMPONENT_DIMS: dict[tuple[str, ...], str] = {
     ("1", "2", "3"): "body_axis",
     ("x", "y", "z"): "space_axis",
     ("psi", "theta", "phi"): "zyz_angle",
+    ("1", "e01", "e02", "e03", "e12", "e13", "e23", "e0123"): "motor_blade",
+    ("w", "x", "y", "z", "cx", "cy", "cz"): "pose_component",
 }
 
 
