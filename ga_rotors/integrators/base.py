@@ -459,8 +459,10 @@ class Integrator(ABC):
         if not KINDS[problem.kind].judged:  # the limits are of ω and its wobble
             return None
         w = np.asarray(w0, dtype=np.float64)
-        if w.shape != (3,):  # as a run says it (the limit's kernel reads three numbers)
-            raise InputError(f"expected shape (3,), got {w.shape}", key="w0")
+        rate = KINDS[problem.kind].rate
+        if w.shape != (rate,):  # as a run says it
+            raise InputError(f"expected shape ({rate},), got {w.shape}", key="w0")
+        w = w[:3]  # the limits are of ω, which every kind's rates begin with
         # The verdicts of the last few (ω₀, h, N) are kept by the problem: a repeated run
         # (repeats of a sweep, a benchmark, one start over many spans) looks it up.
         key = (id(self), w.tobytes(), h, nsteps)
@@ -520,7 +522,7 @@ class Integrator(ABC):
             return None
         if not KINDS[problem.kind].judged:
             return None
-        w = np.ascontiguousarray(w, dtype=np.float64)
+        w = np.ascontiguousarray(np.asarray(w, dtype=np.float64)[:, :3])  # ω: see check_step
         candidates = watch_candidates(w, problem.inertia)
         for k in candidates:
             limit = self.step_limit(problem.inertia, w[k], h, nsteps)

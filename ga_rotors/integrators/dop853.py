@@ -14,7 +14,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..errors import InputError
-from .base import FREE, KINEMATIC, TORQUED, Integrator, LoopResult, register
+from .base import FREE, KINEMATIC, MOTION, TORQUED, Integrator, LoopResult, register
 
 __all__ = ["DOP853", "Dop853"]
 
@@ -42,7 +42,7 @@ class Dop853(Integrator):
     order = 8
     description = "scipy's adaptive Dormand–Prince 8(5,3), compiled right-hand side"
     conserves = frozenset()
-    paths = frozenset({"rotor", "quaternion", "euler"})
+    paths = frozenset({"rotor", "quaternion", "euler", "motor"})
     evaluations = 12  # per accepted step; the run's own count is in ``stats[0]``
     adaptive = True
     continues = True
@@ -56,7 +56,7 @@ class Dop853(Integrator):
 
     @property
     def problems(self) -> frozenset[str]:
-        return frozenset({FREE, TORQUED, KINEMATIC})
+        return frozenset({FREE, TORQUED, KINEMATIC, MOTION})
 
     def _whole(self, problem, path, x0, w0, t0, h, nsteps, every, progress=None):
         from scipy.integrate import solve_ivp

@@ -27,10 +27,9 @@ y); N·|ln |R(ihν)|²| ≥ 1 warns (ν with |ω|/2, q being stepped by the same
 
 from __future__ import annotations
 
-from ._arith import axpy3
-from .base import FREE, TORQUED, register
+from .base import FREE, MOTION, TORQUED, register
 from .limits import stability_polynomial, wobble_damping
-from .slots import accel, o_axpy, o_load, o_rate
+from .slots import accel, o_axpy, o_load, o_rate, r_axpy, r_load
 from .template import TemplateIntegrator
 
 # The step templates below are not in __all__: they are source the code generator
@@ -106,108 +105,108 @@ C = (
 )
 # fmt: on
 
-#: The start of every stage sum, as a path state (o_load reads as many entries as the
-#: path's state has).
+#: The start of every stage sum, as a path state and as rates (o_load and r_load read as
+#: many entries as the path's state and the kind's rates have).
 NEG_ZERO = (-0.0,) * 8
 
 
 def dp8_step(t, x, w, h, inertia, params):
     """One step of the 12-stage, order-8 Dormand–Prince method (see the module notes)."""
-    zx, zw = o_load(NEG_ZERO), (-0.0, -0.0, -0.0)
+    zx, zw = o_load(NEG_ZERO), r_load(NEG_ZERO)
     k1x, k1w = o_rate(x, w), accel(t + C[0] * h, x, w, inertia, params)
     # stage 2
-    sx, sw = o_axpy(zx, A[1 * 12 + 0], k1x), axpy3(zw, A[1 * 12 + 0], k1w)
-    xs, ws = o_axpy(x, h, sx), axpy3(w, h, sw)
+    sx, sw = o_axpy(zx, A[1 * 12 + 0], k1x), r_axpy(zw, A[1 * 12 + 0], k1w)
+    xs, ws = o_axpy(x, h, sx), r_axpy(w, h, sw)
     k2x, k2w = o_rate(xs, ws), accel(t + C[1] * h, xs, ws, inertia, params)
     # stage 3
-    sx, sw = o_axpy(zx, A[2 * 12 + 0], k1x), axpy3(zw, A[2 * 12 + 0], k1w)
-    sx, sw = o_axpy(sx, A[2 * 12 + 1], k2x), axpy3(sw, A[2 * 12 + 1], k2w)
-    xs, ws = o_axpy(x, h, sx), axpy3(w, h, sw)
+    sx, sw = o_axpy(zx, A[2 * 12 + 0], k1x), r_axpy(zw, A[2 * 12 + 0], k1w)
+    sx, sw = o_axpy(sx, A[2 * 12 + 1], k2x), r_axpy(sw, A[2 * 12 + 1], k2w)
+    xs, ws = o_axpy(x, h, sx), r_axpy(w, h, sw)
     k3x, k3w = o_rate(xs, ws), accel(t + C[2] * h, xs, ws, inertia, params)
     # stage 4
-    sx, sw = o_axpy(zx, A[3 * 12 + 0], k1x), axpy3(zw, A[3 * 12 + 0], k1w)
-    sx, sw = o_axpy(sx, A[3 * 12 + 2], k3x), axpy3(sw, A[3 * 12 + 2], k3w)
-    xs, ws = o_axpy(x, h, sx), axpy3(w, h, sw)
+    sx, sw = o_axpy(zx, A[3 * 12 + 0], k1x), r_axpy(zw, A[3 * 12 + 0], k1w)
+    sx, sw = o_axpy(sx, A[3 * 12 + 2], k3x), r_axpy(sw, A[3 * 12 + 2], k3w)
+    xs, ws = o_axpy(x, h, sx), r_axpy(w, h, sw)
     k4x, k4w = o_rate(xs, ws), accel(t + C[3] * h, xs, ws, inertia, params)
     # stage 5
-    sx, sw = o_axpy(zx, A[4 * 12 + 0], k1x), axpy3(zw, A[4 * 12 + 0], k1w)
-    sx, sw = o_axpy(sx, A[4 * 12 + 2], k3x), axpy3(sw, A[4 * 12 + 2], k3w)
-    sx, sw = o_axpy(sx, A[4 * 12 + 3], k4x), axpy3(sw, A[4 * 12 + 3], k4w)
-    xs, ws = o_axpy(x, h, sx), axpy3(w, h, sw)
+    sx, sw = o_axpy(zx, A[4 * 12 + 0], k1x), r_axpy(zw, A[4 * 12 + 0], k1w)
+    sx, sw = o_axpy(sx, A[4 * 12 + 2], k3x), r_axpy(sw, A[4 * 12 + 2], k3w)
+    sx, sw = o_axpy(sx, A[4 * 12 + 3], k4x), r_axpy(sw, A[4 * 12 + 3], k4w)
+    xs, ws = o_axpy(x, h, sx), r_axpy(w, h, sw)
     k5x, k5w = o_rate(xs, ws), accel(t + C[4] * h, xs, ws, inertia, params)
     # stage 6
-    sx, sw = o_axpy(zx, A[5 * 12 + 0], k1x), axpy3(zw, A[5 * 12 + 0], k1w)
-    sx, sw = o_axpy(sx, A[5 * 12 + 3], k4x), axpy3(sw, A[5 * 12 + 3], k4w)
-    sx, sw = o_axpy(sx, A[5 * 12 + 4], k5x), axpy3(sw, A[5 * 12 + 4], k5w)
-    xs, ws = o_axpy(x, h, sx), axpy3(w, h, sw)
+    sx, sw = o_axpy(zx, A[5 * 12 + 0], k1x), r_axpy(zw, A[5 * 12 + 0], k1w)
+    sx, sw = o_axpy(sx, A[5 * 12 + 3], k4x), r_axpy(sw, A[5 * 12 + 3], k4w)
+    sx, sw = o_axpy(sx, A[5 * 12 + 4], k5x), r_axpy(sw, A[5 * 12 + 4], k5w)
+    xs, ws = o_axpy(x, h, sx), r_axpy(w, h, sw)
     k6x, k6w = o_rate(xs, ws), accel(t + C[5] * h, xs, ws, inertia, params)
     # stage 7
-    sx, sw = o_axpy(zx, A[6 * 12 + 0], k1x), axpy3(zw, A[6 * 12 + 0], k1w)
-    sx, sw = o_axpy(sx, A[6 * 12 + 3], k4x), axpy3(sw, A[6 * 12 + 3], k4w)
-    sx, sw = o_axpy(sx, A[6 * 12 + 4], k5x), axpy3(sw, A[6 * 12 + 4], k5w)
-    sx, sw = o_axpy(sx, A[6 * 12 + 5], k6x), axpy3(sw, A[6 * 12 + 5], k6w)
-    xs, ws = o_axpy(x, h, sx), axpy3(w, h, sw)
+    sx, sw = o_axpy(zx, A[6 * 12 + 0], k1x), r_axpy(zw, A[6 * 12 + 0], k1w)
+    sx, sw = o_axpy(sx, A[6 * 12 + 3], k4x), r_axpy(sw, A[6 * 12 + 3], k4w)
+    sx, sw = o_axpy(sx, A[6 * 12 + 4], k5x), r_axpy(sw, A[6 * 12 + 4], k5w)
+    sx, sw = o_axpy(sx, A[6 * 12 + 5], k6x), r_axpy(sw, A[6 * 12 + 5], k6w)
+    xs, ws = o_axpy(x, h, sx), r_axpy(w, h, sw)
     k7x, k7w = o_rate(xs, ws), accel(t + C[6] * h, xs, ws, inertia, params)
     # stage 8
-    sx, sw = o_axpy(zx, A[7 * 12 + 0], k1x), axpy3(zw, A[7 * 12 + 0], k1w)
-    sx, sw = o_axpy(sx, A[7 * 12 + 3], k4x), axpy3(sw, A[7 * 12 + 3], k4w)
-    sx, sw = o_axpy(sx, A[7 * 12 + 4], k5x), axpy3(sw, A[7 * 12 + 4], k5w)
-    sx, sw = o_axpy(sx, A[7 * 12 + 5], k6x), axpy3(sw, A[7 * 12 + 5], k6w)
-    sx, sw = o_axpy(sx, A[7 * 12 + 6], k7x), axpy3(sw, A[7 * 12 + 6], k7w)
-    xs, ws = o_axpy(x, h, sx), axpy3(w, h, sw)
+    sx, sw = o_axpy(zx, A[7 * 12 + 0], k1x), r_axpy(zw, A[7 * 12 + 0], k1w)
+    sx, sw = o_axpy(sx, A[7 * 12 + 3], k4x), r_axpy(sw, A[7 * 12 + 3], k4w)
+    sx, sw = o_axpy(sx, A[7 * 12 + 4], k5x), r_axpy(sw, A[7 * 12 + 4], k5w)
+    sx, sw = o_axpy(sx, A[7 * 12 + 5], k6x), r_axpy(sw, A[7 * 12 + 5], k6w)
+    sx, sw = o_axpy(sx, A[7 * 12 + 6], k7x), r_axpy(sw, A[7 * 12 + 6], k7w)
+    xs, ws = o_axpy(x, h, sx), r_axpy(w, h, sw)
     k8x, k8w = o_rate(xs, ws), accel(t + C[7] * h, xs, ws, inertia, params)
     # stage 9
-    sx, sw = o_axpy(zx, A[8 * 12 + 0], k1x), axpy3(zw, A[8 * 12 + 0], k1w)
-    sx, sw = o_axpy(sx, A[8 * 12 + 3], k4x), axpy3(sw, A[8 * 12 + 3], k4w)
-    sx, sw = o_axpy(sx, A[8 * 12 + 4], k5x), axpy3(sw, A[8 * 12 + 4], k5w)
-    sx, sw = o_axpy(sx, A[8 * 12 + 5], k6x), axpy3(sw, A[8 * 12 + 5], k6w)
-    sx, sw = o_axpy(sx, A[8 * 12 + 6], k7x), axpy3(sw, A[8 * 12 + 6], k7w)
-    sx, sw = o_axpy(sx, A[8 * 12 + 7], k8x), axpy3(sw, A[8 * 12 + 7], k8w)
-    xs, ws = o_axpy(x, h, sx), axpy3(w, h, sw)
+    sx, sw = o_axpy(zx, A[8 * 12 + 0], k1x), r_axpy(zw, A[8 * 12 + 0], k1w)
+    sx, sw = o_axpy(sx, A[8 * 12 + 3], k4x), r_axpy(sw, A[8 * 12 + 3], k4w)
+    sx, sw = o_axpy(sx, A[8 * 12 + 4], k5x), r_axpy(sw, A[8 * 12 + 4], k5w)
+    sx, sw = o_axpy(sx, A[8 * 12 + 5], k6x), r_axpy(sw, A[8 * 12 + 5], k6w)
+    sx, sw = o_axpy(sx, A[8 * 12 + 6], k7x), r_axpy(sw, A[8 * 12 + 6], k7w)
+    sx, sw = o_axpy(sx, A[8 * 12 + 7], k8x), r_axpy(sw, A[8 * 12 + 7], k8w)
+    xs, ws = o_axpy(x, h, sx), r_axpy(w, h, sw)
     k9x, k9w = o_rate(xs, ws), accel(t + C[8] * h, xs, ws, inertia, params)
     # stage 10
-    sx, sw = o_axpy(zx, A[9 * 12 + 0], k1x), axpy3(zw, A[9 * 12 + 0], k1w)
-    sx, sw = o_axpy(sx, A[9 * 12 + 3], k4x), axpy3(sw, A[9 * 12 + 3], k4w)
-    sx, sw = o_axpy(sx, A[9 * 12 + 4], k5x), axpy3(sw, A[9 * 12 + 4], k5w)
-    sx, sw = o_axpy(sx, A[9 * 12 + 5], k6x), axpy3(sw, A[9 * 12 + 5], k6w)
-    sx, sw = o_axpy(sx, A[9 * 12 + 6], k7x), axpy3(sw, A[9 * 12 + 6], k7w)
-    sx, sw = o_axpy(sx, A[9 * 12 + 7], k8x), axpy3(sw, A[9 * 12 + 7], k8w)
-    sx, sw = o_axpy(sx, A[9 * 12 + 8], k9x), axpy3(sw, A[9 * 12 + 8], k9w)
-    xs, ws = o_axpy(x, h, sx), axpy3(w, h, sw)
+    sx, sw = o_axpy(zx, A[9 * 12 + 0], k1x), r_axpy(zw, A[9 * 12 + 0], k1w)
+    sx, sw = o_axpy(sx, A[9 * 12 + 3], k4x), r_axpy(sw, A[9 * 12 + 3], k4w)
+    sx, sw = o_axpy(sx, A[9 * 12 + 4], k5x), r_axpy(sw, A[9 * 12 + 4], k5w)
+    sx, sw = o_axpy(sx, A[9 * 12 + 5], k6x), r_axpy(sw, A[9 * 12 + 5], k6w)
+    sx, sw = o_axpy(sx, A[9 * 12 + 6], k7x), r_axpy(sw, A[9 * 12 + 6], k7w)
+    sx, sw = o_axpy(sx, A[9 * 12 + 7], k8x), r_axpy(sw, A[9 * 12 + 7], k8w)
+    sx, sw = o_axpy(sx, A[9 * 12 + 8], k9x), r_axpy(sw, A[9 * 12 + 8], k9w)
+    xs, ws = o_axpy(x, h, sx), r_axpy(w, h, sw)
     k10x, k10w = o_rate(xs, ws), accel(t + C[9] * h, xs, ws, inertia, params)
     # stage 11
-    sx, sw = o_axpy(zx, A[10 * 12 + 0], k1x), axpy3(zw, A[10 * 12 + 0], k1w)
-    sx, sw = o_axpy(sx, A[10 * 12 + 3], k4x), axpy3(sw, A[10 * 12 + 3], k4w)
-    sx, sw = o_axpy(sx, A[10 * 12 + 4], k5x), axpy3(sw, A[10 * 12 + 4], k5w)
-    sx, sw = o_axpy(sx, A[10 * 12 + 5], k6x), axpy3(sw, A[10 * 12 + 5], k6w)
-    sx, sw = o_axpy(sx, A[10 * 12 + 6], k7x), axpy3(sw, A[10 * 12 + 6], k7w)
-    sx, sw = o_axpy(sx, A[10 * 12 + 7], k8x), axpy3(sw, A[10 * 12 + 7], k8w)
-    sx, sw = o_axpy(sx, A[10 * 12 + 8], k9x), axpy3(sw, A[10 * 12 + 8], k9w)
-    sx, sw = o_axpy(sx, A[10 * 12 + 9], k10x), axpy3(sw, A[10 * 12 + 9], k10w)
-    xs, ws = o_axpy(x, h, sx), axpy3(w, h, sw)
+    sx, sw = o_axpy(zx, A[10 * 12 + 0], k1x), r_axpy(zw, A[10 * 12 + 0], k1w)
+    sx, sw = o_axpy(sx, A[10 * 12 + 3], k4x), r_axpy(sw, A[10 * 12 + 3], k4w)
+    sx, sw = o_axpy(sx, A[10 * 12 + 4], k5x), r_axpy(sw, A[10 * 12 + 4], k5w)
+    sx, sw = o_axpy(sx, A[10 * 12 + 5], k6x), r_axpy(sw, A[10 * 12 + 5], k6w)
+    sx, sw = o_axpy(sx, A[10 * 12 + 6], k7x), r_axpy(sw, A[10 * 12 + 6], k7w)
+    sx, sw = o_axpy(sx, A[10 * 12 + 7], k8x), r_axpy(sw, A[10 * 12 + 7], k8w)
+    sx, sw = o_axpy(sx, A[10 * 12 + 8], k9x), r_axpy(sw, A[10 * 12 + 8], k9w)
+    sx, sw = o_axpy(sx, A[10 * 12 + 9], k10x), r_axpy(sw, A[10 * 12 + 9], k10w)
+    xs, ws = o_axpy(x, h, sx), r_axpy(w, h, sw)
     k11x, k11w = o_rate(xs, ws), accel(t + C[10] * h, xs, ws, inertia, params)
     # stage 12
-    sx, sw = o_axpy(zx, A[11 * 12 + 0], k1x), axpy3(zw, A[11 * 12 + 0], k1w)
-    sx, sw = o_axpy(sx, A[11 * 12 + 3], k4x), axpy3(sw, A[11 * 12 + 3], k4w)
-    sx, sw = o_axpy(sx, A[11 * 12 + 4], k5x), axpy3(sw, A[11 * 12 + 4], k5w)
-    sx, sw = o_axpy(sx, A[11 * 12 + 5], k6x), axpy3(sw, A[11 * 12 + 5], k6w)
-    sx, sw = o_axpy(sx, A[11 * 12 + 6], k7x), axpy3(sw, A[11 * 12 + 6], k7w)
-    sx, sw = o_axpy(sx, A[11 * 12 + 7], k8x), axpy3(sw, A[11 * 12 + 7], k8w)
-    sx, sw = o_axpy(sx, A[11 * 12 + 8], k9x), axpy3(sw, A[11 * 12 + 8], k9w)
-    sx, sw = o_axpy(sx, A[11 * 12 + 9], k10x), axpy3(sw, A[11 * 12 + 9], k10w)
-    sx, sw = o_axpy(sx, A[11 * 12 + 10], k11x), axpy3(sw, A[11 * 12 + 10], k11w)
-    xs, ws = o_axpy(x, h, sx), axpy3(w, h, sw)
+    sx, sw = o_axpy(zx, A[11 * 12 + 0], k1x), r_axpy(zw, A[11 * 12 + 0], k1w)
+    sx, sw = o_axpy(sx, A[11 * 12 + 3], k4x), r_axpy(sw, A[11 * 12 + 3], k4w)
+    sx, sw = o_axpy(sx, A[11 * 12 + 4], k5x), r_axpy(sw, A[11 * 12 + 4], k5w)
+    sx, sw = o_axpy(sx, A[11 * 12 + 5], k6x), r_axpy(sw, A[11 * 12 + 5], k6w)
+    sx, sw = o_axpy(sx, A[11 * 12 + 6], k7x), r_axpy(sw, A[11 * 12 + 6], k7w)
+    sx, sw = o_axpy(sx, A[11 * 12 + 7], k8x), r_axpy(sw, A[11 * 12 + 7], k8w)
+    sx, sw = o_axpy(sx, A[11 * 12 + 8], k9x), r_axpy(sw, A[11 * 12 + 8], k9w)
+    sx, sw = o_axpy(sx, A[11 * 12 + 9], k10x), r_axpy(sw, A[11 * 12 + 9], k10w)
+    sx, sw = o_axpy(sx, A[11 * 12 + 10], k11x), r_axpy(sw, A[11 * 12 + 10], k11w)
+    xs, ws = o_axpy(x, h, sx), r_axpy(w, h, sw)
     k12x, k12w = o_rate(xs, ws), accel(t + C[11] * h, xs, ws, inertia, params)
     # the update, its sum formed before it is added to the state
-    sx, sw = o_axpy(zx, B[0], k1x), axpy3(zw, B[0], k1w)
-    sx, sw = o_axpy(sx, B[5], k6x), axpy3(sw, B[5], k6w)
-    sx, sw = o_axpy(sx, B[6], k7x), axpy3(sw, B[6], k7w)
-    sx, sw = o_axpy(sx, B[7], k8x), axpy3(sw, B[7], k8w)
-    sx, sw = o_axpy(sx, B[8], k9x), axpy3(sw, B[8], k9w)
-    sx, sw = o_axpy(sx, B[9], k10x), axpy3(sw, B[9], k10w)
-    sx, sw = o_axpy(sx, B[10], k11x), axpy3(sw, B[10], k11w)
-    sx, sw = o_axpy(sx, B[11], k12x), axpy3(sw, B[11], k12w)
-    return o_axpy(x, h, sx), axpy3(w, h, sw)
+    sx, sw = o_axpy(zx, B[0], k1x), r_axpy(zw, B[0], k1w)
+    sx, sw = o_axpy(sx, B[5], k6x), r_axpy(sw, B[5], k6w)
+    sx, sw = o_axpy(sx, B[6], k7x), r_axpy(sw, B[6], k7w)
+    sx, sw = o_axpy(sx, B[7], k8x), r_axpy(sw, B[7], k8w)
+    sx, sw = o_axpy(sx, B[8], k9x), r_axpy(sw, B[8], k9w)
+    sx, sw = o_axpy(sx, B[9], k10x), r_axpy(sw, B[9], k10w)
+    sx, sw = o_axpy(sx, B[10], k11x), r_axpy(sw, B[10], k11w)
+    sx, sw = o_axpy(sx, B[11], k12x), r_axpy(sw, B[11], k12w)
+    return o_axpy(x, h, sx), r_axpy(w, h, sw)
 
 
 DP8 = register(
@@ -216,8 +215,8 @@ DP8 = register(
         order=8,
         description="fixed-step Dormand–Prince 8 (DOP853's order-8 tableau), compiled",
         conserves=frozenset(),
-        paths=frozenset({"rotor", "quaternion", "euler"}),
-        steps={FREE: dp8_step, TORQUED: dp8_step},
+        paths=frozenset({"rotor", "quaternion", "euler", "motor"}),
+        steps={FREE: dp8_step, TORQUED: dp8_step, MOTION: dp8_step},
         # R from the tableau itself (degree 12, not e^z's Taylor polynomial past z⁸).
         step_limit=wobble_damping(stability_polynomial(A, B), steps_q=True),
         evaluations=STAGES,

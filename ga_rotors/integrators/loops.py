@@ -154,15 +154,14 @@ def judged_run(x0, w0, t0, h, nsteps, every, inertia, params, out_t, out_x, out_
 
 
 def dynamics_rhs(t, y, inertia, params, out):
-    """out = ẏ for y = (path state..., ω1, ω2, ω3)."""
+    """out = ẏ for y = (path state..., rates...): the state's size is the path's (the
+    length of the tuple ``o_load`` reads, a constant to the compiler), the rates follow."""
     n = y.shape[0]
     x = o_load(y)
-    w = (y[n - 3], y[n - 2], y[n - 1])
+    dim = len(x)
+    w = r_load(y[dim:])
     o_store(out.reshape((1, n)), 0, o_rate(x, w))
-    dw = accel(t, x, w, inertia, params)
-    out[n - 3] = dw[0]
-    out[n - 2] = dw[1]
-    out[n - 1] = dw[2]
+    r_store(out[dim:].reshape((1, n - dim)), 0, accel(t, x, w, inertia, params))
 
 
 def kinematic_rhs(t, y, inertia, params, out):
