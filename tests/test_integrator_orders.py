@@ -120,6 +120,47 @@ def test_observed_order_on_prescribed_coning(name, n0):
     _check(name, out)
 
 
+# A racket thrown under gravity, its frame at the handle (0.15 m from the centre of mass),
+# spun at 12 rad/s near its middle axis; 1 s. (method, path) -> (n₀, halvings), chosen as
+# above from a sweep of n = 10·2^k, for the angle and the body origin's position alike
+# (rk4 is measured in tests/test_motion.py).
+RACKET, RACKET_MASS, HANDLE = (0.011, 0.023, 0.031), 0.31, (0.0, 0.15, 0.0)
+MOTION_RANGES = {
+    ("cf4", "motor"): (80, 4),
+    ("cf4", "quaternion"): (40, 4),
+    ("dp8", "motor"): (10, 2),
+    ("split2", "motor"): (160, 4),
+    ("split4", "quaternion"): (40, 4),
+    ("split6", "motor"): (20, 3),
+}
+
+
+@pytest.mark.parametrize("name,path", list(MOTION_RANGES))
+def test_observed_order_on_a_thrown_body(name, path):
+    from ga_rotors import RigidBody, forces
+    from ga_rotors.paths import resolve
+    from ga_rotors.reference.rigid_motion import FreeFlight
+
+    body = RigidBody(RACKET, mass=RACKET_MASS, centre_of_mass=HANDLE)
+    q0, w0, p0, v0 = np.array([1.0, 0, 0, 0]), [0.05, 12.0, 0.1], [0, 0, 1.5], [3.0, 0, 5.0]
+    exact = FreeFlight(RACKET, RACKET_MASS, q0, w0, p0, v0, centre_of_mass=HANDLE).state([1.0])
+    problem = Problem(RACKET, mass=RACKET_MASS, centre_of_mass=HANDLE,
+                      forces=(forces.uniform_gravity(body),))  # fmt: skip
+    module = resolve(path, moves=True).load()
+    x0, r0 = module.initial_state(q0, p0, w0, v0, HANDLE)
+    n0, halvings = MOTION_RANGES[name, path]
+    angles, distances = [], []
+    for k in range(halvings + 1):
+        n = n0 * 2**k
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", StepLimitWarning)
+            x = get(name).run(problem, path, x0, r0, 0.0, 1.0 / n, n, n).x[-1]
+        angles.append(Q.distance(exact.q[0], Q.normalize(module.quaternions(x))))
+        distances.append(np.linalg.norm(module.positions(x, HANDLE) - exact.position[0]))
+    _check(name, angles)
+    _check(name, distances)  # metres, on a flight of a few metres
+
+
 def test_rk4_on_euler_angles_has_order_4_away_from_gimbal_lock():
     # The z–y′–z″ path's RK4 is the paper's third path: order 4 while sin θ stays away from 0.
     from ga_rotors.euler import from_quaternion, to_quaternion

@@ -21,6 +21,12 @@ space, where every method reduces to its underlying Runge–Kutta tableau.
 * ``magnus4``   — fourth-order Magnus for a prescribed ω(t): two Gauss points and one
   commutator, Ω = h/2 (ω₁ + ω₂) + (√3/12) h² ω₁ × ω₂. Order 4 (kinematic problems).
 
+A body moving through space (the ``motion`` kind) runs ``cf4`` in the group of its path:
+each stage and the update move the pose by the path's exact flow of frozen rates
+(``o_flow``), the motor exponential M exp(h B/2) on the motor path (SE(3), rotation and
+translation screwed together), q ⊗ Exp(hω) beside c + h v_c on the quaternion path
+(SO(3) × R³); the rates (ω, v) step by RK4's tableau as ω does.
+
 Step limits (warn): q moves by exact exponentials, but ω is stepped by a Runge–Kutta
 formula whose stability polynomial R scales the linearised wobble by |R(ihν)|² per step:
 1 + (hν)² for Lie–Euler (its energy grows: at hν = 1 it doubles every step), Taylor to z⁴
@@ -33,9 +39,9 @@ from __future__ import annotations
 from .._kernels import cross
 from ._arith import axpy3, rk4_sum3
 from ._rigid import turn
-from .base import FREE, KINEMATIC, TORQUED, register
+from .base import FREE, KINEMATIC, MOTION, TORQUED, register
 from .limits import stability_polynomial, wobble_damping
-from .slots import accel, o_from_quat, o_quat, omega
+from .slots import accel, o_flow, o_from_quat, o_quat, omega, r_axpy, r_load, r_rk4
 from .template import TemplateIntegrator
 
 # The step templates below are not in __all__: they are source the code generator
@@ -149,6 +155,38 @@ def tuple_combo(a, b, c, d, v1, v2, v3, v4):
     )
 
 
+#: The start of a weighted sum of rates (r_load reads as many entries as the rates have):
+#: −0.0 + y = y exactly, so starting from it costs nothing.
+NEG_ZERO = (-0.0,) * 8
+
+
+def rate_combo(a, b, c, d, v1, v2, v3, v4):
+    """a v1 + b v2 + c v3 + d v4 for rates of any size, summed in :func:`tuple_combo`'s
+    order."""
+    s = r_axpy(r_axpy(r_load(NEG_ZERO), a, v1), b, v2)
+    return r_axpy(r_axpy(s, c, v3), d, v4)
+
+
+def cf4_flow_step(t, x, w, h, inertia, params):
+    """Commutator-free 4 on the path's own group: the stages of :func:`cf4_step`, each pose
+    moved by the path's exact flow of the frozen rates (``o_flow``)."""
+    half = 0.5 * h
+    k1w = accel(t, x, w, inertia, params)
+    x2 = o_flow(x, half, w)
+    w2 = r_axpy(w, half, k1w)
+    k2w = accel(t + half, x2, w2, inertia, params)
+    x3 = o_flow(x, half, w2)
+    w3 = r_axpy(w, half, k2w)
+    k3w = accel(t + half, x3, w3, inertia, params)
+    x4 = o_flow(x2, half, r_axpy(r_axpy(r_load(NEG_ZERO), 2.0, w3), -1.0, w))
+    w4 = r_axpy(w, h, k3w)
+    k4w = accel(t + h, x4, w4, inertia, params)
+    c = h / 12.0
+    early = rate_combo(3.0, 2.0, 2.0, -1.0, w, w2, w3, w4)
+    late = rate_combo(-1.0, 2.0, 2.0, 3.0, w, w2, w3, w4)
+    return o_flow(o_flow(x, c, early), c, late), r_rk4(w, h, k1w, k2w, k3w, k4w)
+
+
 def cg3_step(t, x, w, h, inertia, params):
     """Crouch–Grossman 3: stages and update as products of exponentials of frozen rates."""
     q = o_quat(x)
@@ -195,15 +233,17 @@ CG3_POLYNOMIAL = stability_polynomial(
 )
 
 
-def _lie(name, order, description, steps, helpers=(), polynomial=None, *, evaluations):
-    """Register a Lie-group method: unit norm by construction, sphere paths only."""
+def _lie(name, order, description, steps, helpers=(), polynomial=None, *, evaluations,
+         paths=_SPHERE):  # fmt: skip
+    """Register a Lie-group method: unit norm by construction, sphere paths (and for a
+    moving body the motor path) only."""
     return register(
         TemplateIntegrator(
             name=name,
             order=order,
             description=description,
             conserves=frozenset({"unit_norm"}),
-            paths=_SPHERE,
+            paths=paths,
             steps=steps,
             helpers=helpers,
             step_limit=None if polynomial is None else wobble_damping(polynomial, steps_q=False),
@@ -233,10 +273,11 @@ CF4 = _lie(
     "cf4",
     4,
     "commutator-free Lie group method of order 4 (Celledoni–Marthinsen–Owren)",
-    {FREE: cf4_step, TORQUED: cf4_step},
-    (tuple_combo,),
+    {FREE: cf4_step, TORQUED: cf4_step, MOTION: cf4_flow_step},
+    (tuple_combo, rate_combo),
     polynomial=ORDER4_POLYNOMIAL,
     evaluations=4,
+    paths=_SPHERE | {"motor"},
 )
 CG3 = _lie(
     "cg3",

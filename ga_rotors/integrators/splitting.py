@@ -29,6 +29,14 @@ ratios 1.0 for every splitting under isotropic damping), so these methods declar
 ``torques = ORIENTATION_TORQUES`` and refuse such a torque unless the problem accepts
 the lower order.
 
+A body moving through space (the ``motion`` kind): its centre of mass drifts on a straight
+line, exactly, while the body turns about it by the free-rotation composition; a force
+and a torque of pose and time kick v_c += h F/m and L += h τ. So ``split2``, ``split4``,
+``split4_yoshida`` and ``split6`` carry the centre of mass on the exact line of free
+flight and on the exact parabola of uniform gravity (the kick of a constant force is its
+exact flow), with the rotation's accuracy being the splitting's. Both motion paths run it
+through their centre of mass (``o_centre``, ``o_from_centre``).
+
 Step limits (warn): a sub-flow turns L about axis i by h·L_i/I_i ≤ h|L|/I_min, and the
 compositions' error terms are nested commutators of these turns; from 1 rad per step the
 leading term no longer bounds them, and the thin axis (whose rate is L_i/I_min) is lost.
@@ -40,9 +48,9 @@ from __future__ import annotations
 
 from .._kernels import qmul_exp
 from ._rigid import momenta, rates, rotate_about, symmetric_pair
-from .base import FREE, ORIENTATION_TORQUES, TORQUED, register
+from .base import FREE, MOTION, ORIENTATION_TORQUES, TORQUED, register
 from .limits import principal_rotation_angle, symmetric_remainder_angle
-from .slots import o_from_quat, o_quat, torque
+from .slots import o_centre, o_from_centre, o_from_quat, o_quat, torque, wrench
 from .template import TemplateIntegrator
 
 # The step templates below are not in __all__: they are source the code generator
@@ -153,6 +161,65 @@ def kdk6_step(t, x, w, h, inertia, params):
     return o_from_quat(q), rates(L, inertia)
 
 
+def flight_drift(q, c, L, v, h, inertia):
+    """Free flight for a time h: the centre of mass on its straight line (exact), the body
+    turned about it by the Strang splitting."""
+    q, L = free_strang(q, L, h, inertia)
+    return q, (c[0] + h * v[0], c[1] + h * v[1], c[2] + h * v[2]), L
+
+
+def flight_kick(t, q, c, L, v, h, inertia, params):
+    """L += h τ, v_c += h F/m: the exact flow of a wrench of pose and time."""
+    f = wrench(t, q, c, rates(L, inertia), v, params)
+    k = h / inertia[3]
+    return (
+        (L[0] + h * f[3], L[1] + h * f[4], L[2] + h * f[5]),
+        (v[0] + k * f[0], v[1] + k * f[1], v[2] + k * f[2]),
+    )
+
+
+def flight_kdk(t, q, c, L, v, h, inertia, params):
+    """Kick–drift–kick of a moving body."""
+    L, v = flight_kick(t, q, c, L, v, 0.5 * h, inertia, params)
+    q, c, L = flight_drift(q, c, L, v, h, inertia)
+    L, v = flight_kick(t + h, q, c, L, v, 0.5 * h, inertia, params)
+    return q, c, L, v
+
+
+def compose_flight(t, q, c, L, v, h, inertia, params, weights):
+    """Kick–drift–kick steps of sizes w·h for w in ``weights``, time advanced along."""
+    for k in weights:
+        q, c, L, v = flight_kdk(t, q, c, L, v, k * h, inertia, params)
+        t += k * h
+    return q, c, L, v
+
+
+def _flight_step(t, x, w, h, inertia, params, weights):
+    """A composition of kick–drift–kick steps, run on the centre of mass of either path."""
+    q, c, om, v = o_centre(x, w, inertia)
+    q, c, L, v = compose_flight(t, q, c, momenta(om, inertia), v, h, inertia, params, weights)
+    return o_from_centre(q, c, rates(L, inertia), v, inertia)
+
+
+STRANG = (1.0,)
+
+
+def split2_motion_step(t, x, w, h, inertia, params):
+    return _flight_step(t, x, w, h, inertia, params, STRANG)
+
+
+def split4_motion_step(t, x, w, h, inertia, params):
+    return _flight_step(t, x, w, h, inertia, params, SUZUKI4)
+
+
+def split4_yoshida_motion_step(t, x, w, h, inertia, params):
+    return _flight_step(t, x, w, h, inertia, params, YOSHIDA4)
+
+
+def split6_motion_step(t, x, w, h, inertia, params):
+    return _flight_step(t, x, w, h, inertia, params, YOSHIDA6)
+
+
 def symmetric_flow(q, L, h, inertia, k, p):
     """Exact flow of |L|²/(2I_p) + (1/I_k − 1/I_p) L_k²/2 (a symmetric top) for a time h."""
     a = 1.0 / inertia[p]
@@ -174,20 +241,24 @@ _SPHERE = frozenset({"rotor", "quaternion"})
 _FREE_PROPS = frozenset(
     {"unit_norm", "momentum_norm", "space_momentum", "symplectic", "time_reversible"}
 )
-_HELPERS = (free_strang, kick, kdk, compose_free, compose_kdk)
+_HELPERS = (free_strang, kick, kdk, compose_free, compose_kdk, flight_drift, flight_kick,
+            flight_kdk, compose_flight, _flight_step)  # fmt: skip
 
 
-def _splitting(name, order, description, free_step, torqued_step=None, *, evaluations):
+def _splitting(name, order, description, free_step, torqued_step=None, motion_step=None, *,
+               evaluations):  # fmt: skip
     steps = {FREE: free_step}
     if torqued_step is not None:
         steps[TORQUED] = torqued_step
+    if motion_step is not None:
+        steps[MOTION] = motion_step
     return register(
         TemplateIntegrator(
             name=name,
             order=order,
             description=description,
             conserves=_FREE_PROPS,
-            paths=_SPHERE,
+            paths=_SPHERE | ({"motor"} if motion_step is not None else set()),
             steps=steps,
             helpers=_HELPERS,
             torques=ORIENTATION_TORQUES,
@@ -203,6 +274,7 @@ SPLIT2 = _splitting(
     "Lie–Poisson Strang splitting into exact axis rotations (torqued: kick–drift–kick)",
     split2_step,
     kdk2_step,
+    split2_motion_step,
     evaluations=1,
 )
 SPLIT4 = _splitting(
@@ -211,6 +283,7 @@ SPLIT4 = _splitting(
     "Suzuki's 5-stage composition of the Strang splitting",
     split4_step,
     kdk4_step,
+    split4_motion_step,
     evaluations=5,
 )
 SPLIT4_YOSHIDA = _splitting(
@@ -219,6 +292,7 @@ SPLIT4_YOSHIDA = _splitting(
     "Yoshida's triple jump of the Strang splitting",
     split4_yoshida_step,
     kdk4_yoshida_step,
+    split4_yoshida_motion_step,
     evaluations=3,
 )
 SPLIT6 = _splitting(
@@ -227,6 +301,7 @@ SPLIT6 = _splitting(
     "Yoshida's 7-stage order-6 composition of the Strang splitting",
     split6_step,
     kdk6_step,
+    split6_motion_step,
     evaluations=7,
 )
 SPLIT_SYM = register(

@@ -37,6 +37,8 @@ Binds the template slots ``o_*`` of :mod:`ga_rotors.integrators.slots` for the
 
 from __future__ import annotations
 
+from math import sqrt
+
 import numpy as np
 
 from .._jit import jit
@@ -132,9 +134,21 @@ def centre_of_mass(x, w, body):
     >>> q, c, om, v = centre_of_mass((1.0,) + (0.0,) * 7, (0.0, 0.0, 1.0, 0.0, 0.0, 0.0), body)
     >>> c, v
     ((1.0, 0.0, 0.0), (0.0, 1.0, 0.0))
+
+    M is read as the motion it stands for, M/|r| (r its rotor part): q is r/|r| and the
+    translation of M is divided by |r|². A motor built by :func:`from_centre_of_mass`
+    from these then gives them back to rounding, with no factor |r|² ≠ 1: a method that
+    goes through the centre of mass every step (the splittings) would otherwise scale the
+    position and the velocity by the same 1 + δ every step, a drift of 1e-11 m in 2560
+    steps of split4 that the quaternion path does not have.
     """
-    q = dual_parts(x)[0]
-    p = translation(x)
+    r = dual_parts(x)[0]
+    n2 = r[0] * r[0] + r[1] * r[1] + r[2] * r[2] + r[3] * r[3]
+    k = 1.0 / sqrt(n2)
+    q = (r[0] * k, r[1] * k, r[2] * k, r[3] * k)
+    t = translation(x)
+    inv = 1.0 / n2
+    p = (t[0] * inv, t[1] * inv, t[2] * inv)
     om = (w[0], w[1], w[2])
     s = (body[4], body[5], body[6])
     lever = qrotate(q, s)
@@ -265,7 +279,9 @@ def quaternions(states: np.ndarray) -> np.ndarray:
 
 def positions(states: np.ndarray, centre_of_mass) -> np.ndarray:
     """Where the body origin is (..., 3), in space: the translation t of each motor
-    M = T(t) R(r), t = −2 d r* for M = R(r) + e0123 R(d) (as the kernel ``translation``).
+    M = T(t) R(r), t = −2 d r* for M = R(r) + e0123 R(d) (as the kernel ``translation``),
+    divided by |r|² (an integrator that does not renormalise lets |M| drift by its error:
+    the motion is that of M/|r|).
 
     Examples
     --------
@@ -277,7 +293,9 @@ def positions(states: np.ndarray, centre_of_mass) -> np.ndarray:
 
     m = np.asarray(states, dtype=np.float64)
     d = np.stack([m[..., 7], m[..., 1], m[..., 2], m[..., 3]], axis=-1)
-    return -2.0 * Q.multiply(d, Q.conjugate(quaternions(m)))[..., 1:]
+    r = quaternions(m)
+    scale = -2.0 / np.einsum("...i,...i->...", r, r)
+    return scale[..., None] * Q.multiply(d, Q.conjugate(r))[..., 1:]
 
 
 def velocities(states: np.ndarray, rates: np.ndarray, centre_of_mass) -> np.ndarray:
@@ -292,7 +310,8 @@ def velocities(states: np.ndarray, rates: np.ndarray, centre_of_mass) -> np.ndar
     """
     from .. import quaternion as Q
 
-    return Q.rotate(quaternions(states), np.asarray(rates, dtype=np.float64)[..., 3:6])
+    turn = Q.normalize(quaternions(states))
+    return Q.rotate(turn, np.asarray(rates, dtype=np.float64)[..., 3:6])
 
 
 def to_user_frame(states: np.ndarray, principal_rotation) -> np.ndarray:
