@@ -1,10 +1,11 @@
 """The reference problems of the accuracy study: bodies, initial states, exact solutions.
 
-Five cases span what a user meets: the paper's symmetric top, an asymmetric top far from
-and next to its separatrix, a fast spinner, and a heavy (Lagrange) top. Each carries its
-exact reference (:mod:`ga_rotors.reference`), the range of step counts its sweep covers,
-and, where the motion has one in closed form, the exact body ω(t) that kinematics-only
-peers are given.
+Six cases span what a user meets: the paper's symmetric top, an asymmetric top far from
+and next to its separatrix, a fast spinner, a heavy (Lagrange) top, and a racket thrown
+through the air (rotation and translation, :class:`Flight`). Each carries its exact
+reference (:mod:`ga_rotors.reference`), the range of step counts its sweep covers, and,
+where the motion has one in closed form, the exact body ω(t) that kinematics-only peers
+are given.
 """
 
 from __future__ import annotations
@@ -15,7 +16,27 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-__all__ = ["Case", "cases"]
+__all__ = ["Case", "Flight", "cases"]
+
+
+@dataclass(frozen=True)
+class Flight:
+    """What a case of a body moving through space adds: its mass, the centre of mass in
+    the body frame (from the frame's origin), the origin's initial position and velocity
+    in space, gravity, and the length its position errors are measured against (m).
+
+    Examples
+    --------
+    >>> cases()["free_flight"].flight.length
+    1.0
+    """
+
+    mass: float
+    centre_of_mass: tuple[float, float, float]
+    position: tuple[float, float, float]
+    velocity: tuple[float, float, float]
+    gravity: tuple[float, float, float]
+    length: float
 
 
 @dataclass(frozen=True)
@@ -27,6 +48,10 @@ class Case:
     ``body_rate(t)`` is the exact body ω at a scalar time (for the kinematics-only peer),
     or None; ``mgl`` is the heavy top's gravity parameter (None when torque-free): its
     torque is mgl · (Z_y, −Z_x, 0) in the body, Z = q* ẑ q (the space vertical).
+    ``flight``: a body moving through space (:class:`Flight`); its runs integrate the
+    whole motion on the quaternion path (the quaternion and the centre of mass), and its
+    error is the larger of the angle (rad) and the body origin's distance from the exact
+    one over ``flight.length`` (:meth:`errors`).
 
     Examples
     --------
@@ -48,6 +73,7 @@ class Case:
     mgl: float | None = None
     body_rate: Callable | None = None
     steps: tuple[int, int] = (16, 2**20)
+    flight: Flight | None = None
     _final: dict = field(default_factory=dict, init=False, repr=False, compare=False)
 
     @property
@@ -57,10 +83,78 @@ class Case:
         from ..reference.heavy_top import gravity_torque
 
         found = self._final.get("problem")
-        if found is None:
+        if found is None and self.flight is not None:
+            from ..body import RigidBody
+            from ..forces import uniform_gravity
+
+            f = self.flight
+            body = RigidBody(self.moments, mass=f.mass, centre_of_mass=f.centre_of_mass)
+            found = self._final["problem"] = Problem(
+                self.moments, mass=f.mass, centre_of_mass=f.centre_of_mass,
+                forces=(uniform_gravity(body, f.gravity),),
+            )  # fmt: skip
+        elif found is None:
             torques = () if self.mgl is None else (gravity_torque(self.mgl),)
             found = self._final["problem"] = Problem(self.moments, torques=torques)
         return found
+
+    def start(self, path: str = "quaternion") -> tuple[np.ndarray, np.ndarray]:
+        """The initial state and rates on ``path``: the orientation and ω, or for a flight
+        the path's whole-motion state (:func:`ga_rotors.paths.resolve`).
+
+        Examples
+        --------
+        >>> x0, w0 = cases()["free_flight"].start()
+        >>> x0.shape, w0.shape
+        ((7,), (6,))
+        """
+        if self.flight is None:
+            return np.asarray(self.q0, dtype=np.float64), np.asarray(self.w0, dtype=np.float64)
+        from ..paths import resolve
+
+        f = self.flight
+        module = resolve(path, moves=True).load()
+        return module.initial_state(np.asarray(self.q0), f.position, self.w0, f.velocity,
+                                    f.centre_of_mass)  # fmt: skip
+
+    def errors(self, x, w) -> tuple[float, float, float]:
+        """(error, energy drift, momentum drift) of a flight's run on the quaternion path,
+        from its states x (n, 7) at the sample times and its final rates ``w[-1]``: the
+        larger of the largest angle and of the largest distance over ``flight.length``;
+        the drift of the total energy (kinetic plus −m g·c) and of the spin (the angular
+        momentum about the centre of mass, in space), both relative to their start.
+
+        Examples
+        --------
+        >>> case = cases()["free_flight"]
+        >>> x0, w0 = case.start()
+        >>> case.errors(np.array([x0] * 5), np.array([w0]))[1:]
+        (0.0, 0.0)
+        """
+        from .. import quaternion as Q
+        from ..paths import resolve
+
+        f = self.flight
+        module = resolve("quaternion", moves=True).load()
+        x, w = np.asarray(x, dtype=np.float64), np.asarray(w, dtype=np.float64)
+        times = np.linspace(0.0, self.duration, x.shape[0])
+        exact = self._final.get(("flight", x.shape[0]))
+        if exact is None:
+            exact = self._final[("flight", x.shape[0])] = self.reference.state(times)
+        q = Q.normalize(module.quaternions(x))
+        angle = float(np.max(Q.distance(exact.q, q)))
+        gap = np.linalg.norm(module.positions(x, f.centre_of_mass) - exact.position, axis=-1)
+        error = max(angle, float(np.max(gap)) / f.length)
+        x0, w0 = self.start()
+        inertia = np.asarray(self.moments)
+
+        def invariants(state, rates):
+            energy = 0.5 * f.mass * rates[3:] @ rates[3:] + 0.5 * (rates[:3] ** 2) @ inertia
+            energy -= f.mass * np.dot(f.gravity, state[4:])
+            return energy, Q.rotate(Q.normalize(state[:4]), inertia * rates[:3])
+
+        (e0, s0), (e1, s1) = invariants(x0, w0), invariants(x[-1], w[-1])
+        return error, abs(e1 - e0) / abs(e0), float(np.linalg.norm(s1 - s0) / np.linalg.norm(s0))
 
     def exact_final(self) -> np.ndarray:
         """The exact orientation (w, x, y, z) at ``duration``, computed once per case."""
@@ -126,7 +220,7 @@ def cases() -> dict[str, Case]:
     Examples
     --------
     >>> sorted(cases())
-    ['asymmetric_far', 'asymmetric_near', 'fast_spinner', 'heavy_top', 'symmetric']
+    ['asymmetric_far', 'asymmetric_near', 'fast_spinner', 'free_flight', 'heavy_top', 'symmetric']
     """
     from .. import euler, shapes
     from ..kinematics import body_omega_from_zyz_rates
@@ -178,5 +272,23 @@ def cases() -> dict[str, Case]:
         "heavy_top",
         "heavy top nutating past the horizontal (θ 68°–100°), 20 s",
         (1.0, 1.0, 0.3), heavy_q, (1.0, -0.5, 3.0), 20.0, heavy, mgl=1.0,
+    )  # fmt: skip
+    # A tennis racket thrown 5 m up and 3 m out, spun at 12 rad/s 0.5° off its middle axis
+    # (it flips over once in flight), its frame at the end of the handle, 0.15 m from the
+    # centre of mass: the orientation and the handle's path through the air.
+    from ..forces import STANDARD_GRAVITY
+    from ..reference.rigid_motion import FreeFlight
+
+    racket, tilt_w = (0.011, 0.023, 0.031), (0.05, 12.0, 0.1)
+    flight = Flight(0.31, (0.0, 0.15, 0.0), (0.0, 0.0, 1.5), (3.0, 0.0, 5.0),
+                    (0.0, 0.0, -STANDARD_GRAVITY), 1.0)  # fmt: skip
+    thrown = FreeFlight(racket, flight.mass, tilt, tilt_w, flight.position, flight.velocity,
+                        gravity=flight.gravity, centre_of_mass=flight.centre_of_mass)  # fmt: skip
+    out["free_flight"] = Case(
+        "free_flight",
+        "racket thrown through the air, spun near its middle axis (it turns over as it falls), "
+        "frame at the handle, 1 s",
+        racket, tilt, tilt_w, 1.0, thrown, body_rate=_asymmetric_rate(thrown.rotation),
+        steps=(16, 2**18), flight=flight,
     )  # fmt: skip
     return out

@@ -117,7 +117,7 @@ def _exact(case: Case) -> np.ndarray:
 
 def point(case: Case, method: str, setting, times, evaluations, q, w, family) -> Point:
     """A :class:`Point` from a run's orientations ``q`` at :func:`sample_times` (n, 4) and
-    its final ω ``w[-1]``.
+    its final ω ``w[-1]`` (for a flight, its whole states and rates: :meth:`Case.errors`).
 
     Examples
     --------
@@ -130,12 +130,16 @@ def point(case: Case, method: str, setting, times, evaluations, q, w, family) ->
     """
     from .. import quaternion as Q
 
+    seconds, low, high = times
+    if case.flight is not None:  # a whole motion: q holds the states, position and all
+        error, energy, momentum = case.errors(q, w)
+        return Point(method, float(setting), seconds, float(evaluations), error, energy,
+                     momentum, family, low, high)  # fmt: skip
     q = Q.normalize(np.asarray(q, dtype=float))
     error = float(np.max(Q.distance(_exact(case), q)))
     q_end = q[-1]
     e, m = case.invariants(np.array([case.q0, q_end]), np.array([case.w0, w[-1]]))
     scale = max(float(np.linalg.norm(np.asarray(case.moments) * case.w0)), 1e-300)
-    seconds, low, high = times
     return Point(
         method,
         float(setting),
@@ -195,8 +199,9 @@ def runner(case: Case, method: str, n: int) -> tuple[Callable, object, str]:
         x0 = euler.from_quaternion(np.asarray(case.q0), "ZYZ")
         integ, path = get("rk4"), "euler"
     else:
-        x0, integ, path = np.asarray(case.q0), get(method), "quaternion"
-    w0 = np.asarray(case.w0)
+        (x0, w0), integ, path = case.start(), get(method), "quaternion"
+    if method == "rk4_euler":
+        w0 = np.asarray(case.w0)
     every = n // SAMPLES
 
     def run():

@@ -41,9 +41,10 @@ def dop853_scipy(case: Case, rtol: float, repeats: int, budget: float) -> Point:
     integ = Dop853(rtol=rtol)
     problem = case.problem
     h = case.duration / SAMPLES
+    x0, w0 = case.start()
 
     def run():
-        return integ.run(problem, "quaternion", case.q0, case.w0, 0.0, h, SAMPLES, 1)
+        return integ.run(problem, "quaternion", x0, w0, 0.0, h, SAMPLES, 1)
 
     times, result = timed(run, repeats, budget)
     return point(case, "scipy_dop853", rtol, times, result.stats[0], result.x, result.w,

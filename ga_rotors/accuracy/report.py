@@ -76,7 +76,7 @@ def run_study(
         say(f"{name}: sweeping")
         st = study(available[name], methods or None, peers=peers, log=say, **options)
         studies.append(st)
-        if peers:
+        if peers and st.case.flight is None:  # a flight has no compiled peer in the study
             goals += goal(st, rounds=3 if quick else 21, budget=0.5 if quick else 3.0)
     if figures:
         # Written only once the whole study has run, and together: an interrupted or failed

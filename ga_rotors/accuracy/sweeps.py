@@ -44,9 +44,11 @@ def methods_for(case: Case) -> list[str]:
         method = get(name)
         if method.adaptive or problem.kind not in method.problems:
             continue
-        if "quaternion" in method.paths and torque_conflict(method, problem.torques) is None:
+        terms = (*problem.torques, *problem.forces)
+        if "quaternion" in method.paths and torque_conflict(method, terms) is None:
             out.append(name)
-    return [*out, "rk4_euler"]
+    # the paper's angles carry the orientation alone
+    return out if case.flight is not None else [*out, "rk4_euler"]
 
 
 def _counts(lo: int, hi: int, factor: float) -> list[int]:
@@ -223,6 +225,12 @@ def _run(st: Study, method: str, setting: float, repeats: int, budget: float) ->
 def _compiled_sweeps(case, out, factor, tolerances, repeats, max_seconds, say):
     from . import compiled_peers as C
 
+    if case.flight is not None:
+        out.notices.append(f"{case.name}: compiled peers skipped: they integrate the rotation "
+                           "alone (benchmarks/bench_motion.py has a plain @njit RK4 of the "
+                           "whole motion)")  # fmt: skip
+        return
+
     budget = max(0.2, 3 * max_seconds)
     for peer in C.FIXED:
         best = math.inf
@@ -265,6 +273,10 @@ def numpy_quaternion_sweep(case, out, tolerances, repeats, max_seconds):
     """numpy-quaternion over ``tolerances`` (kinematics only: needs the exact ω(t))."""
     from .peers import numpy_quaternion
 
+    if case.flight is not None:
+        out.notices.append(f"{case.name}: numpy-quaternion skipped: it integrates "
+                           "orientations, not a body moving through space")  # fmt: skip
+        return
     if case.body_rate is None:
         out.notices.append(
             f"{case.name}: numpy-quaternion skipped: it integrates kinematics only and needs "
@@ -293,6 +305,10 @@ def mujoco_sweep(case, out, factor, repeats, max_seconds):
     """MuJoCo's RK4 and Euler over step counts (rollout keeps every state: ≤ 2²⁰ steps)."""
     from .peers import mujoco_run
 
+    if case.flight is not None:
+        out.notices.append(f"{case.name}: MuJoCo skipped: its model here is a body turning "
+                           "about a fixed point")  # fmt: skip
+        return
     try:
         import mujoco
         from mujoco import rollout  # noqa: F401
