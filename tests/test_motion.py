@@ -121,7 +121,7 @@ def test_the_motor_path_solves_the_euler_poincare_equation_of_its_velocity_line(
     moments = (i1, i1 + 0.5, i1 + 0.7)
     s = np.array(v[0:3]) / 3.0
     body = (*moments, mass, *s)
-    q = Q.normalize(np.array(v[3:7]) + [4.0, 0, 0, 0])
+    q = Q.normalize(np.add(v[3:7], [4.0, 0.0, 0.0, 0.0]))
     x = tuple(motor_path.initial_state(q, v[7:10], [0.0] * 3, [0.0] * 3, s)[0])
     w, vel = np.array(v[10:13]), np.array(v[13:16])
     force, torque_c = np.array(v[16:19]), np.array(v[0:3]) * 0.7
