@@ -52,6 +52,11 @@ writes the text of a Python module, in one of four *forms*:
 * ``"rhs"`` (no integrator): the kind's vector-field template with the kind's and the
   path's slots, for scipy-style integrators.
 
+A kind that declares ``inline`` (the motion kind) has its run's ``"loop"`` form compiled
+inline too, as the batched form is: its step reaches many small kernels (the path's
+centre of mass, the wrench, the equations of motion) whose every result a given force may
+not read, and only a step compiled as one function lets LLVM drop what nothing reads.
+
 Every global a template uses is resolved in the template's own module: compiled kernels
 become imports, numeric constants are copied, slots are bound here. A global that is a
 plain Python function (a template) must be among the integrator's steps or ``helpers``,
@@ -241,12 +246,13 @@ def _limit_source(integrator: Integrator, judged: bool, imports: _Imports) -> st
     )
 
 
-def _rows(prefix: str, size: int, put: bool = True) -> list[str]:
-    """``{prefix}_rows``, ``{prefix}_get`` (and ``{prefix}_put``) for ``size`` rows."""
-    rows = "".join(f"a[{k}, lo:hi], " for k in range(size))
+def _rows(prefix: str, first: int, size: int, put: bool = True) -> list[str]:
+    """``{prefix}_rows``, ``{prefix}_get`` (and ``{prefix}_put``) for ``size`` rows of a
+    chunk's block that start at row ``first`` (see :func:`_batch_slots`)."""
+    rows = "".join(f"s[{k * _BLOCK}:{(k + 1) * _BLOCK}], " for k in range(first, first + size))
     get = "".join(f"r[{k}][i], " for k in range(size))
     out = [
-        f"def {prefix}_rows(a, lo, hi):\n    return ({rows.rstrip()})\n",
+        f"def {prefix}_rows(s):\n    return ({rows.rstrip()})\n",
         f"def {prefix}_get(r, i):\n    return ({get.rstrip()})\n",
     ]
     if put:
@@ -255,34 +261,67 @@ def _rows(prefix: str, size: int, put: bool = True) -> list[str]:
     return out
 
 
+#: Bodies in a chunk's block: its rows lie this many numbers apart (loops.BLOCK).
+_BLOCK = loops.BLOCK
+
+
+def _copy_rows(source: str, first: int, size: int) -> str:
+    """Lines copying ``size`` rows of ``source`` (lo:hi) into the block from row ``first``."""
+    return "".join(
+        f"    s[{k * _BLOCK}:{k * _BLOCK} + n] = {source}[{k - first}, lo:hi]\n"
+        for k in range(first, first + size)
+    )
+
+
 def _batch_slots(kind, problem: Problem, dim: int, stored: bool, imports: _Imports) -> list[str]:
-    """The batched loop's row slots for these sizes (see :mod:`.slots`)."""
-    out = _rows("x", dim) + _rows("w", kind.rate)
-    size = kind.body_size
-    if stored and kind.stored is not None:
-        extra = kind.stored_size
-        body = ", ".join(f"a[{k}, lo + i]" for k in range(size))
-        rows = "".join(f"a[{k}, lo:hi], " for k in range(size))
-        rows += "".join(f"s[{k}], " for k in range(extra))
-        out.append(
-            "def body_rows(a, lo, hi):\n"
-            f"    s = np.empty(({extra}, hi - lo))\n"
-            "    for i in range(hi - lo):\n"
-            f"        e = _c_stored(({body},))\n"
-            f"        for j in range({extra}):\n"
-            "            s[j, i] = e[j]\n"
-            f"    return ({rows.rstrip()})\n"
-        )
-        get = "".join(f"r[{k}][i], " for k in range(size + extra))
-        out.append(f"def body_get(r, i):\n    return ({get.rstrip()})\n")
-    else:
-        out += _rows("body", size, put=False)
+    """The batched loop's slots for these sizes (see :mod:`.slots`).
+
+    A chunk's bodies are copied into one block (``chunk_load``): each number of the state,
+    the body (and what the kind stores per body) and the parameters is a row of
+    :data:`~.loops.BLOCK` numbers at a fixed place in one array, and the step reads and
+    writes them there (``x_get``, ``x_put``, ...). All the rows the loop over bodies
+    touches are then one array at constant distances, which LLVM's vectoriser can check
+    for overlap at compile time. Rows of separate arrays (the states' own rows) need a
+    runtime check between every two of them, and past LLVM's limit (a whole motion's 14
+    state rows and its body's: "too many memory checks") the loop ran one body at a time,
+    4 to 6 times slower than the rotation's (benchmarks/bench_motion.py)."""
+    rate, size = kind.rate, kind.body_size
+    extra = kind.stored_size if stored and kind.stored is not None else 0
     terms = (*problem.torques, *problem.forces)
     indexing = all(term.location in INDEXING_KERNELS for term in terms)
+    nparams = problem.params().size if indexing else 0
+    first_body, first_param = dim + rate, dim + rate + size + extra
+    total = first_param + nparams
+    load = (
+        "def chunk_load(x, w, body, params, lo, hi):\n"
+        "    n = hi - lo\n"
+        f"    s = np.empty({max(total, 1) * _BLOCK})\n"
+        + _copy_rows("x", 0, dim) + _copy_rows("w", dim, rate)
+        + _copy_rows("body", first_body, size)
+        + _copy_rows("params", first_param, nparams)
+    )  # fmt: skip
+    if extra:
+        moments = ", ".join(f"body[{k}, lo + i]" for k in range(size))
+        load += (
+            "    for i in range(n):\n"
+            f"        e = _c_stored(({moments},))\n"
+            f"        for j in range({extra}):\n"
+            f"            s[({first_body + size} + j) * {_BLOCK} + i] = e[j]\n"
+        )
+    out = [load + "    return s\n"]
+    store = "".join(
+        f"    out_{name}[{k - first}, lo:hi] = s[{k * _BLOCK}:{k * _BLOCK} + n]\n"
+        for name, first, count in (("x", 0, dim), ("w", dim, rate))
+        for k in range(first, first + count)
+    )
+    out.append("def chunk_store(s, out_x, out_w, lo, hi):\n    n = hi - lo\n" + store)
+    out += _rows("x", 0, dim) + _rows("w", dim, rate)
+    out += _rows("body", first_body, size + extra, put=False)
     if indexing:
-        out += _rows("param", problem.params().size, put=False)
+        out += _rows("param", first_param, nparams, put=False)
+        out[-2] = out[-2].replace("def param_rows(s):", "def param_rows(s, a, lo, hi):")
     else:
-        out.append("def param_rows(a, lo, hi):\n    return a[:, lo:hi]\n")
+        out.append("def param_rows(s, a, lo, hi):\n    return a[:, lo:hi]\n")
         out.append("def param_get(r, i):\n    return r[:, i]\n")
     return out
 
@@ -304,6 +343,8 @@ def source(
     """
     kind = KINDS[problem.kind]
     batch = form in (BATCH, BATCH_MOMENTS)
+    # the batched forms, and a kind that asks for it, compile the step inline
+    inlined = batch or (form == LOOP and kind.inline)
     if form == RHS:
         name, step, templates, entry, loop = "vector_field", None, [], None, kind.rhs
     else:
@@ -323,7 +364,7 @@ def source(
     used = set().union(*(_global_names(f.__code__) for f in (*templates, loop)))
 
     stored = form == BATCH and kind.stored is not None
-    imports = _Imports(inline=batch, stand_in=(kind.stored, "stored_values") if stored else None)
+    imports = _Imports(inline=inlined, stand_in=(kind.stored, "stored_values") if stored else None)
     if stored:  # computed once per body by the kernel itself, read back by stored_values
         func = kind.stored.py_func
         imports.bind("_c_stored", kind.stored,
@@ -372,12 +413,12 @@ def source(
         header = "from functools import partial\n\nfrom ga_rotors._jit import jit\n\n"
         header += "_jit = partial(jit, cache=False)\n"
     body = [header]
-    if batch:
+    if inlined:
         body.append("from ga_rotors._jit import inline as _inline\nimport numpy as np\n")
     constants = [v for v in imports.lines.values() if not v.startswith(("from ", "import "))]
     body += [line + "\n" for line in sorted(set(imports.lines.values()) - set(constants))]
     body += [line + "\n" for line in sorted(constants)]
-    small = "\n\n@_jit(inline='always')\n" if batch else "\n\n@_jit\n"
+    small = "\n\n@_jit(inline='always')\n" if inlined else "\n\n@_jit\n"
     if stored:
         size = kind.body_size
         body.append(f"{small}def stored_values(inertia):\n"

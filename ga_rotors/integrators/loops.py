@@ -46,6 +46,8 @@ from .slots import (
     accel,
     body_get,
     body_rows,
+    chunk_load,
+    chunk_store,
     limit,
     loop,
     o_load,
@@ -169,24 +171,34 @@ def kinematic_rhs(t, y, inertia, params, out):
     o_store(out.reshape((1, y.shape[0])), 0, o_rate(o_load(y), omega(t, params)))
 
 
+#: Bodies a batched loop integrates together: their state, body and parameters sit in one
+#: block of rows this long (``chunk_load``), small enough for the L1 cache (256 bodies of
+#: a whole motion: 13 state and 13 body numbers, 53 KB of L2 at worst).
+BLOCK = 256
+
+
 def batch_chunk(x, w, body, params, lo, hi, t0, h, marks, out_x, out_w):
-    """Bodies ``lo``..``hi - 1`` of a batch through every step, in place in ``x`` (dim, n)
-    and ``w`` (rate, n); their states at step ``marks[m]`` into ``out_x[m]`` and
+    """Bodies ``lo``..``hi - 1`` of a batch (``x`` (dim, n) and ``w`` (rate, n) their
+    starts) through every step, :data:`BLOCK` of them at a time, each block in one array
+    of rows (``chunk_load``); their states at step ``marks[m]`` into ``out_x[m]`` and
     ``out_w[m]``. ``body`` (body size, n) and ``params`` (P, n) are per body; a state
     that stops being finite stays NaN (nothing reads it)."""
-    xs, ws = x_rows(x, lo, hi), w_rows(w, lo, hi)
-    bs, ps = body_rows(body, lo, hi), param_rows(params, lo, hi)
-    done = 0
-    for m in range(marks.shape[0]):
-        for k in range(done, marks[m]):
-            t = t0 + k * h
-            for i in range(hi - lo):
-                xi, wi = step(t, x_get(xs, i), w_get(ws, i), h, body_get(bs, i), param_get(ps, i))
-                x_put(xs, i, xi)
-                w_put(ws, i, wi)
-        done = marks[m]
-        out_x[m, :, lo:hi] = x[:, lo:hi]
-        out_w[m, :, lo:hi] = w[:, lo:hi]
+    for start in range(lo, hi, BLOCK):
+        end = min(hi, start + BLOCK)
+        s = chunk_load(x, w, body, params, start, end)
+        xs, ws = x_rows(s), w_rows(s)
+        bs, ps = body_rows(s), param_rows(s, params, start, end)
+        done = 0
+        for m in range(marks.shape[0]):
+            for k in range(done, marks[m]):
+                t = t0 + k * h
+                for i in range(end - start):
+                    xi, wi = step(t, x_get(xs, i), w_get(ws, i), h, body_get(bs, i),
+                                  param_get(ps, i))  # fmt: skip
+                    x_put(xs, i, xi)
+                    w_put(ws, i, wi)
+            done = marks[m]
+            chunk_store(s, out_x[m], out_w[m], start, end)
 
 
 def batch_loop(x, w, body, params, t0, h, marks, out_x, out_w, chunk):

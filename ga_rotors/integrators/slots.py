@@ -62,13 +62,16 @@ r_rk4      r_rk4(w, h, k1, k2, k3, k4)           w + h/6 (k1 + 2k2 + 2k3 + k4)
 ========== ===================================== =========================================
 
 The batched loop (:func:`~ga_rotors.integrators.loops.batch_chunk`) reads and writes its
-struct-of-arrays states through slots generated for the sizes at hand: ``x_rows(a, lo,
-hi)`` the tuple of row slices ``a[k, lo:hi]`` of the orientation states, ``x_get(rows,
-i)`` body i's state as a tuple, ``x_put(rows, i, x)`` written back; ``w_rows``,
-``w_get``, ``w_put`` the same for the rates; ``body_rows``/``body_get`` the bodies (what
-the step receives as ``inertia``: the moments, then what the kind stores per body) and
-``param_rows``/``param_get`` the torques' parameters (a tuple per body where every kernel
-reads its parameters one by one, else the body's column as an array).
+struct-of-arrays states through slots generated for the sizes at hand: ``chunk_load(x, w,
+body, params, lo, hi)`` copies a block of bodies into one array ``s`` of rows
+:data:`~.loops.BLOCK` apart (states, rates, bodies with what the kind stores per body,
+parameters), ``chunk_store`` copies its states out; ``x_rows(s)`` the tuple of the
+block's orientation rows, ``x_get(rows, i)`` body i's state as a tuple, ``x_put(rows, i,
+x)`` written back; ``w_rows``, ``w_get``, ``w_put`` the same for the rates;
+``body_rows``/``body_get`` the bodies (what the step receives as ``inertia``: the moments,
+then what the kind stores per body) and ``param_rows(s, a, lo, hi)``/``param_get`` the
+parameters (a tuple per body where every kernel reads its parameters one by one, else
+the body's column of ``a`` as an array).
 """
 
 from __future__ import annotations
@@ -85,6 +88,8 @@ __all__ = [
     "accel",
     "body_get",
     "body_rows",
+    "chunk_load",
+    "chunk_store",
     "limit",
     "loop",
     "o_axpy",
@@ -147,8 +152,8 @@ KIND_SLOTS = {
 }
 
 #: Slots of the batched loop, written for the sizes of one batch.
-BATCH_SLOTS = ("x_rows", "x_get", "x_put", "w_rows", "w_get", "w_put", "body_rows",
-               "body_get", "param_rows", "param_get")  # fmt: skip
+BATCH_SLOTS = ("chunk_load", "chunk_store", "x_rows", "x_get", "x_put", "w_rows", "w_get",
+               "w_put", "body_rows", "body_get", "param_rows", "param_get")  # fmt: skip
 
 #: Slots whose definition the code generator writes.
 GENERATED_SLOTS = ("torque", "accel", "omega", "wrench", "step", "loop", "limit", *BATCH_SLOTS)
@@ -232,15 +237,17 @@ r_load = _slot("r_load", "w = r_load(array): read the rate part of a state.")
 r_store = _slot("r_store", "r_store(out, row, w): write the rate part of a state.")
 r_axpy = _slot("r_axpy", "w + h·k on the rate part of the state.")
 r_rk4 = _slot("r_rk4", "w + h/6 (k1 + 2 k2 + 2 k3 + k4) on the rate part of the state.")
-x_rows = _slot("x_rows", "rows = x_rows(a, lo, hi): a batch's orientation rows for a chunk.")
+chunk_load = _slot("chunk_load", "s = chunk_load(x, w, body, params, lo, hi): a block's rows.")
+chunk_store = _slot("chunk_store", "chunk_store(s, out_x, out_w, lo, hi): its states out.")
+x_rows = _slot("x_rows", "rows = x_rows(s): the block's orientation rows.")
 x_get = _slot("x_get", "x = x_get(rows, i): body i's orientation state.")
 x_put = _slot("x_put", "x_put(rows, i, x): write body i's orientation state.")
-w_rows = _slot("w_rows", "rows = w_rows(a, lo, hi): a batch's rate rows for a chunk.")
+w_rows = _slot("w_rows", "rows = w_rows(s): the block's rate rows.")
 w_get = _slot("w_get", "w = w_get(rows, i): body i's rates.")
 w_put = _slot("w_put", "w_put(rows, i, w): write body i's rates.")
-body_rows = _slot("body_rows", "rows = body_rows(a, lo, hi): a chunk's bodies, stored values too.")
+body_rows = _slot("body_rows", "rows = body_rows(s): the block's bodies, stored values too.")
 body_get = _slot("body_get", "inertia = body_get(rows, i): body i as its step receives it.")
-param_rows = _slot("param_rows", "rows = param_rows(a, lo, hi): a chunk's torque parameters.")
+param_rows = _slot("param_rows", "rows = param_rows(s, a, lo, hi): the block's parameters.")
 param_get = _slot("param_get", "params = param_get(rows, i): body i's torque parameters.")
 
 ALL_SLOTS = frozenset(PATH_SLOTS) | frozenset(KIND_SLOTS) | frozenset(GENERATED_SLOTS)
