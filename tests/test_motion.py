@@ -186,3 +186,28 @@ def test_bad_motion_requests_get_one_line_naming_the_argument():
         forces.uniform_gravity(RigidBody((1.0, 1.0, 1.0)))
     with pytest.raises(InputError, match=r"^path: this trajectory is a rotation about a fixed"):
         simulate((1.0, 1.0, 1.0), Q0, [0.0, 0.0, 0.1], duration=1.0, step=0.5).positions()
+
+
+def test_a_batch_of_thrown_bodies_is_each_bodys_own_run_bit_for_bit():
+    """The batched loop (ensembles) takes the very step a single run compiles."""
+    from ga_rotors.integrators import Batch, Problem, get
+    from ga_rotors.paths import resolve
+
+    body = RigidBody(RACKET, mass=MASS, centre_of_mass=HANDLE)
+    problem = Problem(RACKET, mass=MASS, centre_of_mass=HANDLE,
+                      forces=(forces.uniform_gravity(body),))  # fmt: skip
+    rng = np.random.default_rng(3)
+    n = 300  # more than one block of the batched loop (256)
+    q = Q.normalize(rng.normal(size=(n, 4)))
+    w, p, v = rng.normal(size=(n, 3)) * 5, rng.normal(size=(n, 3)), rng.normal(size=(n, 3))
+    for path in ("motor", "quaternion"):
+        module = resolve(path, moves=True).load()
+        starts = [module.initial_state(q[i], p[i], w[i], v[i], HANDLE) for i in range(n)]
+        x0, r0 = np.array([s[0] for s in starts]), np.array([s[1] for s in starts])
+        batch = Batch(problem, np.tile(problem.body, (n, 1)))
+        run = get("rk4").run(batch, path, x0, r0, 0.0, 1e-3, 40, [10, 40])
+        assert run.x.shape == (2, n, module.DIM) and run.w.shape == (2, n, 6)
+        for i in (0, 255, 256, n - 1):
+            one = get("rk4").run(problem, path, x0[i], r0[i], 0.0, 1e-3, 40, 10)
+            assert np.array_equal(one.x[[1, 4]], run.x[:, i]), (path, i)
+            assert np.array_equal(one.w[[1, 4]], run.w[:, i]), (path, i)
