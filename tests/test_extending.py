@@ -59,6 +59,7 @@ print(_json.dumps({
     "flight_rotation_is_rk4s": bool(np.array_equal(flight.x[:, :4], free.x)
                                     and np.array_equal(flight.w[:, :3], free.w)),
     "flight_v": bool((flight.w[:, 3:] == rates0[3:]).all()),
+    "terminal": float(abs(-fall.velocities()[-1, 2] - terminal) / terminal),
     "heun_simulate": float(Q.distance(
         gr.simulate([1.0, 2.0, 3.0], [1, 0, 0, 0], [1.0, 0.5, 0.2], duration=1.0, step=1e-3,
                     integrator="heun").quaternions()[-1],
@@ -82,7 +83,7 @@ def documented_steps() -> tuple[dict[str, str], str]:
 def test_the_page_documents_each_extension_with_its_files():
     text = PAGE.read_text(encoding="utf-8")
     for heading in ("## A torque effect", "## An Euler-angle path", "## An output format",
-                    "## An integrator", "## A problem kind"):  # fmt: skip
+                    "## An integrator", "## A problem kind", "## A force"):  # fmt: skip
         assert heading in text
     files, script = documented_steps()
     assert list(files) == ["my_extensions.py", "my_motion.py"]
@@ -128,3 +129,7 @@ def test_toy_extensions_registered_as_documented_work_end_to_end(tmp_path):
     assert lines[3] == "after 2 s the centre is at [2.0, 0.0, 10.0]"
     assert got["flight_position"] < 1e-12
     assert got["flight_rotation_is_rk4s"] and got["flight_v"]
+    # The new force, as documented: after ten time constants v_t/g the fall is at its
+    # terminal speed √(m g / k) (tanh(10) = 1 − 4e-9), to RK4's error at h = 1 ms
+    assert lines[4].startswith("after 20 s the ball falls at ")
+    assert got["terminal"] < 1e-7
