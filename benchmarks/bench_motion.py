@@ -3,7 +3,7 @@
 Run from the repository root, on a quiet machine::
 
     python benchmarks/bench_motion.py                 # 10**5 steps, 10**4 bodies, 9 rounds
-    python benchmarks/bench_motion.py --quick         # small sizes, 3 rounds: that it runs
+    python benchmarks/bench_motion.py --quick         # small, 3 rounds, one thread: that it runs
 
 The problem: a tennis racket thrown under gravity, spun at 12 rad/s near its middle axis,
 its frame at the end of the handle, 0.15 m from the centre of mass (the coupling of
@@ -174,7 +174,7 @@ def one_body(steps: int, rounds: int) -> None:
 # ----------------------------------------------------------------- 2. ensembles
 
 
-def ensembles(bodies: int, steps: int, rounds: int) -> None:
+def ensembles(bodies: int, steps: int, rounds: int, parallel: bool = True) -> None:
     rng = np.random.default_rng(1)
     q = Q.normalize(rng.normal(size=(bodies, 4)))
     w = np.array(W0) + 0.5 * rng.normal(size=(bodies, 3))
@@ -186,8 +186,9 @@ def ensembles(bodies: int, steps: int, rounds: int) -> None:
         starts = [module.initial_state(q[i], p[i], w[i], v[i], HANDLE) for i in range(bodies)]
         x0, r0 = np.array([s[0] for s in starts]), np.array([s[1] for s in starts])
         batch = Batch(problem, np.tile(problem.body, (bodies, 1)))
-        calls.append((f"motion, {path} path", lambda b=batch, path=path, x0=x0, r0=r0:
-                      rk4.run(b, path, x0, r0, 0.0, 1e-3, steps, steps)))  # fmt: skip
+        args = (batch, path, x0, r0, 0.0, 1e-3, steps, steps)
+        calls.append((f"motion, {path} path",
+                      lambda args=args: rk4.run(*args, parallel=parallel)))  # fmt: skip
     # the rotational batches of before: the same bodies turning freely, and turning under
     # the weight about a pivot at the handle (a heavy top: a torque of orientation)
     from ga_rotors.effects import gravity_kernel
@@ -199,11 +200,12 @@ def ensembles(bodies: int, steps: int, rounds: int) -> None:
                            ("rotation alone, under gravity", heavy)):  # fmt: skip
         batch = Batch(turning, np.tile(RACKET, (bodies, 1)))
         calls.append((label, lambda b=batch: rk4.run(b, "quaternion", q, w, 0.0, 1e-3, steps,
-                                                     steps)))  # fmt: skip
+                                                     steps, parallel=parallel)))  # fmt: skip
     times = race(calls, rounds)
     rates = {k: [bodies * steps / t / 1e6 for t in v] for k, v in times.items()}
+    threads = f"{numba.get_num_threads()} threads" if parallel else "one thread (quick mode)"
     print(f"\n2. ensembles, RK4, {bodies} bodies x {steps} steps, {rounds} interleaved rounds, "
-          f"{numba.get_num_threads()} threads")  # fmt: skip
+          f"{threads}")  # fmt: skip
     print(f"  {'':34} {'M body-steps/s, median (min–max)':>34}")
     for name in rates:
         print(f"  {name:34} {cell(rates[name]):>34}")
@@ -220,7 +222,8 @@ def main(argv=None) -> int:
     parser.add_argument("--bodies", type=int, default=10_000, help="ensembles: bodies")
     parser.add_argument("--ensemble-steps", type=int, default=1000, help="ensembles: steps")
     parser.add_argument("--rounds", type=int, default=9)
-    parser.add_argument("--quick", action="store_true", help="small sizes, 3 rounds")
+    parser.add_argument("--quick", action="store_true",
+                        help="small sizes, 3 rounds, ensembles in one thread")  # fmt: skip
     a = parser.parse_args(argv)
     if a.quick:
         a.steps, a.bodies, a.ensemble_steps, a.rounds = 2000, 256, 20, 3
@@ -230,7 +233,9 @@ def main(argv=None) -> int:
         if not 1 <= value <= top:
             parser.error(f"{name} must be in 1..{top}, got {value}")
     one_body(a.steps, a.rounds)
-    ensembles(a.bodies, a.ensemble_steps, a.rounds)
+    # quick mode runs the batches in the calling thread: the suite compiles those loops
+    # for its own tests already, and a parallel loop takes longer to compile
+    ensembles(a.bodies, a.ensemble_steps, a.rounds, parallel=not a.quick)
     return 0
 
 

@@ -21,6 +21,9 @@ point_force     a constant force at a body point, fixed in space   fixed in spac
                 (τ = r × q*Fq) or in the body (F = q F_b q*,      (V = −F·x); spin when
                 τ = r × F_b)                                       r = 0
 linear_drag     F = −b v_c at the centre of mass, τ = 0            spin
+central_gravity a planet's field μ/r² on the extended body (to       energy, angular
+                its quadrupole: the gravity-gradient torque and     momentum about the
+                the force that goes with it)                        planet's centre
 =============== ================================================ ======================
 
 Each builder takes the :class:`~ga_rotors.body.RigidBody` (its mass, its centre of mass,
@@ -45,7 +48,9 @@ from .errors import InputError
 from .integrators.problem import ForceTerm
 
 __all__ = [
+    "EARTH_MU",
     "STANDARD_GRAVITY",
+    "central_gravity",
     "linear_drag",
     "point_force",
     "spring",
@@ -54,6 +59,9 @@ __all__ = [
 
 #: m/s², the default gravity (0, 0, −STANDARD_GRAVITY), space frame, z up.
 STANDARD_GRAVITY = 9.80665
+#: m³/s², the Earth's gravitational parameter G M (IERS 2010 conventions, with its
+#: atmosphere), the default of :func:`central_gravity`.
+EARTH_MU = 3.986004418e14
 
 
 # ---------------------------------------------------------------------------- kernels
@@ -184,6 +192,60 @@ def drag_force(t, q, c, w, v, p):
     return (-b * v[0], -b * v[1], -b * v[2], 0.0, 0.0, 0.0)
 
 
+@jit
+def _field_parts(q, c, p):
+    """What the central field needs, in principal body components: r_b (the centre of
+    mass from the planet's centre p[5:8]), I r_b, |r|² and r_b·I r_b."""
+    rb = qrotate(qconj(q), (c[0] - p[5], c[1] - p[6], c[2] - p[7]))
+    irb = (p[2] * rb[0], p[3] * rb[1], p[4] * rb[2])
+    d2 = rb[0] * rb[0] + rb[1] * rb[1] + rb[2] * rb[2]
+    return rb, irb, d2, rb[0] * irb[0] + rb[1] * irb[1] + rb[2] * irb[2]
+
+
+@jit
+def central_field(t, q, c, w, v, p):
+    r"""The field of a point mass (μ = p[0]) at p[5:8] on a body of mass m = p[1] and
+    principal moments p[2:5], to the body's quadrupole (MacCullagh): the point-mass force
+    :math:`-\mu m\, r/d^3`, the gravity-gradient torque
+    :math:`\tfrac{3\mu}{d^5}\, r_b \times \mathsf I r_b` and its force
+    :math:`-\tfrac{3\mu}{2 d^5}\bigl((\operatorname{tr}\mathsf I) r + 2\,\mathsf I r
+    - 5\,\tfrac{r\cdot\mathsf I r}{d^2}\, r\bigr)`, r from the planet to the centre of mass.
+
+    Examples
+    --------
+    A sphere (no gradient torque) 7000 km from the Earth's centre: its weight there.
+
+    >>> p = (EARTH_MU, 100.0, 10.0, 10.0, 10.0, 0.0, 0.0, 0.0)
+    >>> f = central_field(0.0, (1.0, 0.0, 0.0, 0.0), (7.0e6, 0.0, 0.0), (0.0,) * 3,
+    ...                   (0.0,) * 3, p)
+    >>> round(-f[0] / 100.0, 6), f[3:]
+    (8.134703, (0.0, 0.0, 0.0))
+    """
+    rb, irb, d2, rir = _field_parts(q, c, p)
+    d = math.sqrt(d2)
+    mu = p[0]
+    k = 3.0 * mu / (d2 * d2 * d)
+    tau = cross(rb, irb)
+    trace = p[2] + p[3] + p[4]
+    g = -0.5 * k
+    five = 5.0 * rir / d2
+    f2 = qrotate(q, (g * ((trace - five) * rb[0] + 2.0 * irb[0]),
+                     g * ((trace - five) * rb[1] + 2.0 * irb[1]),
+                     g * ((trace - five) * rb[2] + 2.0 * irb[2])))  # fmt: skip
+    point = -mu * p[1] / (d2 * d)
+    r = (c[0] - p[5], c[1] - p[6], c[2] - p[7])
+    return (point * r[0] + f2[0], point * r[1] + f2[1], point * r[2] + f2[2],
+            k * tau[0], k * tau[1], k * tau[2])  # fmt: skip
+
+
+@jit
+def central_potential(q, c, p):
+    """V = −μ m/d − μ/(2 d³) (tr I − 3 r̂·I r̂) (MacCullagh's formula)."""
+    _, _, d2, rir = _field_parts(q, c, p)
+    d = math.sqrt(d2)
+    return -p[0] * p[1] / d - 0.5 * p[0] / (d2 * d) * (p[2] + p[3] + p[4] - 3.0 * rir / d2)
+
+
 # ---------------------------------------------------------------------------- builders
 
 
@@ -310,3 +372,27 @@ def linear_drag(body, coefficient) -> ForceTerm:
     b = _number(coefficient, "coefficient")
     return ForceTerm(drag_force, (b,), name="linear_drag", depends_on_velocity=True,
                      conserves={"spin"})  # fmt: skip
+
+
+def central_gravity(body, mu=EARTH_MU, centre=(0.0, 0.0, 0.0)) -> ForceTerm:
+    """The gravity of a planet of gravitational parameter ``mu`` (m³/s²) at the space point
+    ``centre`` on ``body``, to the body's quadrupole: its orbit and the gravity-gradient
+    torque that turns it on the orbit, together (a satellite's attitude and orbit).
+
+    The field is central and the body's potential in it (MacCullagh's formula, the
+    ``potential``) the exact one of the truncated field, so the energy and the angular
+    momentum about the planet's centre (orbit and spin together) are kept.
+
+    Examples
+    --------
+    >>> from ga_rotors import RigidBody
+    >>> term = central_gravity(RigidBody((10.0, 12.0, 8.0), mass=100.0))
+    >>> term.params[:5], sorted(term.conserves), term.point
+    ((398600441800000.0, 100.0, 10.0, 12.0, 8.0), ['angular_momentum', 'energy'], (0.0, 0.0, 0.0))
+    """
+    body = _moving(body, "central_gravity")
+    mu = _number(mu, "mu", positive=True)
+    a = _vector(centre, "centre")
+    return ForceTerm(central_field, (mu, body.mass, *body.moments, *a), name="central_gravity",
+                     depends_on_velocity=False, conserves={"energy", "angular_momentum"},
+                     potential=central_potential, point=a)  # fmt: skip

@@ -189,7 +189,8 @@ def test_bad_motion_requests_get_one_line_naming_the_argument():
 
 
 def test_a_batch_of_thrown_bodies_is_each_bodys_own_run_bit_for_bit():
-    """The batched loop (ensembles) takes the very step a single run compiles."""
+    """The batched loop (ensembles) takes the very step a single run compiles (its
+    scheduling over threads is the rotations', tests/test_ensemble.py)."""
     from ga_rotors.integrators import Batch, Problem, get
     from ga_rotors.paths import resolve
 
@@ -205,7 +206,7 @@ def test_a_batch_of_thrown_bodies_is_each_bodys_own_run_bit_for_bit():
         starts = [module.initial_state(q[i], p[i], w[i], v[i], HANDLE) for i in range(n)]
         x0, r0 = np.array([s[0] for s in starts]), np.array([s[1] for s in starts])
         batch = Batch(problem, np.tile(problem.body, (n, 1)))
-        run = get("rk4").run(batch, path, x0, r0, 0.0, 1e-3, 40, [10, 40])
+        run = get("rk4").run(batch, path, x0, r0, 0.0, 1e-3, 40, [10, 40], parallel=False)
         assert run.x.shape == (2, n, module.DIM) and run.w.shape == (2, n, 6)
         for i in (0, 255, 256, n - 1):
             one = get("rk4").run(problem, path, x0[i], r0[i], 0.0, 1e-3, 40, 10)

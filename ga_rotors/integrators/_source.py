@@ -52,11 +52,6 @@ writes the text of a Python module, in one of four *forms*:
 * ``"rhs"`` (no integrator): the kind's vector-field template with the kind's and the
   path's slots, for scipy-style integrators.
 
-A kind that declares ``inline`` (the motion kind) has its run's ``"loop"`` form compiled
-inline too, as the batched form is: its step reaches many small kernels (the path's
-centre of mass, the wrench, the equations of motion) whose every result a given force may
-not read, and only a step compiled as one function lets LLVM drop what nothing reads.
-
 Every global a template uses is resolved in the template's own module: compiled kernels
 become imports, numeric constants are copied, slots are bound here. A global that is a
 plain Python function (a template) must be among the integrator's steps or ``helpers``,
@@ -92,7 +87,8 @@ FORMS = (LOOP, RHS, BATCH, BATCH_MOMENTS)
 #: registered kernel may use array operations and gets its body's column as an array.
 _BUILT_IN = ("body_torque", "damping", "gravity", "isotropic_damping", "space_torque",
              "vertical_gravity")  # fmt: skip
-_BUILT_IN_FORCES = ("body_force", "drag_force", "space_force", "spring_force", "weight")
+_BUILT_IN_FORCES = ("body_force", "central_field", "drag_force", "space_force",
+                    "spring_force", "weight")  # fmt: skip
 INDEXING_KERNELS = frozenset(("ga_rotors.effects", name) for name in _BUILT_IN) | frozenset(
     ("ga_rotors.forces", name) for name in _BUILT_IN_FORCES
 )
@@ -343,8 +339,6 @@ def source(
     """
     kind = KINDS[problem.kind]
     batch = form in (BATCH, BATCH_MOMENTS)
-    # the batched forms, and a kind that asks for it, compile the step inline
-    inlined = batch or (form == LOOP and kind.inline)
     if form == RHS:
         name, step, templates, entry, loop = "vector_field", None, [], None, kind.rhs
     else:
@@ -364,7 +358,7 @@ def source(
     used = set().union(*(_global_names(f.__code__) for f in (*templates, loop)))
 
     stored = form == BATCH and kind.stored is not None
-    imports = _Imports(inline=inlined, stand_in=(kind.stored, "stored_values") if stored else None)
+    imports = _Imports(inline=batch, stand_in=(kind.stored, "stored_values") if stored else None)
     if stored:  # computed once per body by the kernel itself, read back by stored_values
         func = kind.stored.py_func
         imports.bind("_c_stored", kind.stored,
@@ -413,12 +407,12 @@ def source(
         header = "from functools import partial\n\nfrom ga_rotors._jit import jit\n\n"
         header += "_jit = partial(jit, cache=False)\n"
     body = [header]
-    if inlined:
+    if batch:
         body.append("from ga_rotors._jit import inline as _inline\nimport numpy as np\n")
     constants = [v for v in imports.lines.values() if not v.startswith(("from ", "import "))]
     body += [line + "\n" for line in sorted(set(imports.lines.values()) - set(constants))]
     body += [line + "\n" for line in sorted(constants)]
-    small = "\n\n@_jit(inline='always')\n" if inlined else "\n\n@_jit\n"
+    small = "\n\n@_jit(inline='always')\n" if batch else "\n\n@_jit\n"
     if stored:
         size = kind.body_size
         body.append(f"{small}def stored_values(inertia):\n"

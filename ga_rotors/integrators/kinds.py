@@ -200,11 +200,6 @@ class ProblemKind:
     moves : bool
         The state carries the body's position: a problem of this kind runs on the paths
         that integrate whole rigid motion (:func:`ga_rotors.paths.resolve`).
-    inline : bool
-        A run's loop compiles its step and every kernel it reaches inline, as a batch
-        does (:mod:`._source`): for a kind whose slots compute what a declared term may
-        not read (the motion kind's centre of mass: the thrown body under gravity ran at
-        262 ns a step with real calls, 76 inline, measured under load).
 
     Examples
     --------
@@ -234,7 +229,6 @@ class ProblemKind:
     judged: bool = True
     dynamic: bool = True
     moves: bool = False
-    inline: bool = False
 
 
 #: name -> ProblemKind: every kind a problem can be and a step can be declared for.
@@ -330,6 +324,5 @@ register_kind(
         stored=euler_coefficients,
         stored_size=6,
         moves=True,
-        inline=True,
     )
 )

@@ -50,7 +50,7 @@ from .._kernels import qmul_exp
 from ._rigid import momenta, rates, rotate_about, symmetric_pair
 from .base import FREE, MOTION, ORIENTATION_TORQUES, TORQUED, register
 from .limits import principal_rotation_angle, symmetric_remainder_angle
-from .slots import o_centre, o_from_centre, o_from_quat, o_quat, torque, wrench
+from .slots import o_centre, o_from_centre, o_from_quat, o_normalize, o_quat, torque, wrench
 from .template import TemplateIntegrator
 
 # The step templates below are not in __all__: they are source the code generator
@@ -195,8 +195,10 @@ def compose_flight(t, q, c, L, v, h, inertia, params, weights):
 
 
 def _flight_step(t, x, w, h, inertia, params, weights):
-    """A composition of kick–drift–kick steps, run on the centre of mass of either path."""
-    q, c, om, v = o_centre(x, w, inertia)
+    """A composition of kick–drift–kick steps, run on the centre of mass of either path
+    (the pose normalised first: a motor's translation scales with its norm, and going to
+    the centre of mass and back every step would repeat that scaling)."""
+    q, c, om, v = o_centre(o_normalize(x), w, inertia)
     q, c, L, v = compose_flight(t, q, c, momenta(om, inertia), v, h, inertia, params, weights)
     return o_from_centre(q, c, rates(L, inertia), v, inertia)
 

@@ -37,8 +37,6 @@ Binds the template slots ``o_*`` of :mod:`ga_rotors.integrators.slots` for the
 
 from __future__ import annotations
 
-from math import sqrt
-
 import numpy as np
 
 from .._jit import jit
@@ -135,20 +133,16 @@ def centre_of_mass(x, w, body):
     >>> c, v
     ((1.0, 0.0, 0.0), (0.0, 1.0, 0.0))
 
-    M is read as the motion it stands for, M/|r| (r its rotor part): q is r/|r| and the
-    translation of M is divided by |r|². A motor built by :func:`from_centre_of_mass`
-    from these then gives them back to rounding, with no factor |r|² ≠ 1: a method that
-    goes through the centre of mass every step (the splittings) would otherwise scale the
-    position and the velocity by the same 1 + δ every step, a drift of 1e-11 m in 2560
-    steps of split4 that the quaternion path does not have.
+    M is read as it is, a unit motor to the integrator's error (as the quaternion path
+    hands a force its q). A method that goes through the centre of mass and back every
+    step (the splittings) normalises M first (``o_normalize``): the translation of a motor
+    whose rotor part is off unit norm by δ is off by 2δ, and the same δ step after step
+    drifted the position by 1e-11 m in 2560 steps of split4. Normalising here instead,
+    in every stage of every method, cost a square root and two divisions a stage (RK4 under
+    gravity: 267 against 81 ns a step).
     """
-    r = dual_parts(x)[0]
-    n2 = r[0] * r[0] + r[1] * r[1] + r[2] * r[2] + r[3] * r[3]
-    k = 1.0 / sqrt(n2)
-    q = (r[0] * k, r[1] * k, r[2] * k, r[3] * k)
-    t = translation(x)
-    inv = 1.0 / n2
-    p = (t[0] * inv, t[1] * inv, t[2] * inv)
+    q = dual_parts(x)[0]
+    p = translation(x)
     om = (w[0], w[1], w[2])
     s = (body[4], body[5], body[6])
     lever = qrotate(q, s)
