@@ -240,6 +240,36 @@ class Trajectory:
 
         return from_pose(normalize(self.quaternions(path)), self.positions(path))
 
+    def velocity_lines(self) -> np.ndarray:
+        """The velocity lines (n, 6) of the primary path of a body moving through space,
+        in space: M B M̃ with B = −I₃ω − e0 v the body-frame velocity line
+        (:func:`ga_rotors.motor.velocity_line`), on the blades (e01, e02, e03, e12, e13,
+        e23). Its direction is the space angular velocity; its axis, the instantaneous
+        screw axis the body turns about and slides along (what a view draws).
+
+        Examples
+        --------
+        A body at rest on (1, 0, 0) turning about the z axis through that point: its
+        velocity line is the axis, −(the line through (1, 0, 0) along z).
+
+        >>> from ga_rotors import RigidBody, motor, simulate
+        >>> tr = simulate(RigidBody((1.0, 1.0, 1.0), mass=1.0), [1.0, 0, 0, 0], [0, 0, 2.0],
+        ...               duration=1.0, step=0.01, sample_every=50, position=[1.0, 0.0, 0.0])
+        >>> B = tr.velocity_lines()[-1]
+        >>> point, direction = motor.line_coordinates(-B / 2.0)
+        >>> point.round(12) + 0.0, direction.round(12) + 0.0
+        (array([1., 0., 0.]), array([0., 0., 1.]))
+        """
+        from . import motor
+        from .quaternion import conjugate, normalize, rotate
+
+        self._moving(None)
+        n = self.w.shape[0]
+        q = normalize(self.quaternions()[:n])
+        body_v = rotate(conjugate(q), self._arrays["velocity"][:n])
+        moving = motor.normalize(self.motors()[:n])  # a path's own drift off unit norm aside
+        return motor.sandwich_line(moving, motor.velocity_line(self.w, body_v))
+
     def rotors(self, path: str | None = None):
         """The orientation of ``path`` as clifford rotors of Cl(3,0).
 

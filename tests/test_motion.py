@@ -212,3 +212,16 @@ def test_a_batch_of_thrown_bodies_is_each_bodys_own_run_bit_for_bit():
             one = get("rk4").run(problem, path, x0[i], r0[i], 0.0, 1e-3, 40, 10)
             assert np.array_equal(one.x[[1, 4]], run.x[:, i]), (path, i)
             assert np.array_equal(one.w[[1, 4]], run.w[:, i]), (path, i)
+
+
+def test_velocity_lines_are_the_space_angular_velocity_and_the_velocity_at_the_origin():
+    body = RigidBody(RACKET, mass=MASS, centre_of_mass=HANDLE)
+    tr = _thrown(body, sample_every=100)
+    from ga_rotors import motor
+
+    w_space, v_origin = motor.velocities(tr.velocity_lines())
+    q = Q.normalize(tr.quaternions())
+    assert np.allclose(w_space, Q.rotate(q, tr.w), rtol=0, atol=1e-12)
+    # the body point now at the space origin moves at v − ω × p (v, p the frame origin's)
+    expected = tr.velocities() - np.cross(w_space, tr.positions())
+    assert np.allclose(v_origin, expected, rtol=0, atol=1e-11)
