@@ -51,7 +51,6 @@ from .errors import InputError, echoed
 __all__ = [
     "LOCK_TIMEOUT",
     "NAME_MAX",
-    "aligned_empty",
     "atomic_write",
     "checked_path",
     "output_set",
@@ -372,24 +371,6 @@ def output_set(out_dir, argument: str = "out_dir") -> Iterator[Path]:
             if not (staging / _COMPLETE).exists():
                 _remove(staging)
             raise
-
-
-# Kept only while ga_rotors.ensemble imports it: the plain form of what was a helper of the
-# direct writes, so that module still runs.
-
-
-def aligned_empty(shape, dtype=float):
-    """An uninitialised C-ordered numpy array of ``shape`` (its alignment no longer
-    matters: files are written with plain buffered writes).
-
-    Examples
-    --------
-    >>> aligned_empty((3, 1000)).shape
-    (3, 1000)
-    """
-    import numpy as np
-
-    return np.empty(shape, dtype)
 
 
 def write_together(
