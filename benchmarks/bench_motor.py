@@ -172,7 +172,8 @@ def main(argv=None) -> int:
     product = [("ga_rotors motor.compose", lambda: motor.compose(A, B), n),
                ("ga_rotors quaternion + position", pose_product, n)]  # fmt: skip
     points = [("ga_rotors motor.apply (Euclidean points)", lambda: motor.apply(A, x), n),
-              ("ga_rotors motor.sandwich_point (PGA points)", lambda: motor.sandwich_point(A, P), n),
+              ("ga_rotors motor.sandwich_point (PGA points)",
+               lambda: motor.sandwich_point(A, P), n),
               ("ga_rotors quaternion + position", pose_apply, n)]  # fmt: skip
     lines = [("ga_rotors motor.sandwich_line", lambda: motor.sandwich_line(A, L), n)]
 

@@ -97,7 +97,7 @@ def _thin_once() -> None:
 def _paper_computations() -> None:
     """What ``ga-rotors paper`` computes and writes, on 10 steps, its files discarded: the
     summary, the figures' data and digest (not drawn: the figure processes only import
-    matplotlib) and the CSV files, whose compiled number formatting is cached too."""
+    matplotlib) and the CSV files."""
     import tempfile
 
     from .paper.digest import data_digest

@@ -53,8 +53,9 @@ def newton_euler(body: RigidBody, mass, q0, w0, p0, v0, s, force, times):
 BODIES = {
     "asymmetric": RigidBody((0.011, 0.023, 0.031)),  # a tennis racket's proportions
     "symmetric": RigidBody((0.02, 0.02, 0.035)),
-    "turned tensor": RigidBody.from_tensor([[0.02, 0.003, 0.0], [0.003, 0.025, 0.001],
-                                            [0.0, 0.001, 0.03]]),  # fmt: skip
+    "turned tensor": RigidBody.from_tensor(
+        [[0.02, 0.003, 0.0], [0.003, 0.025, 0.001], [0.0, 0.001, 0.03]]
+    ),
 }
 q0 = Q.from_rotation_vector([0.3, -0.2, 0.9])
 w0 = np.array([0.4, 9.0, 0.3])  # near the middle axis of the asymmetric body

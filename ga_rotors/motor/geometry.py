@@ -121,7 +121,8 @@ def plane_coordinates(a) -> tuple[np.ndarray, np.ndarray | float]:
     size = norm3(a[..., 1:])
     if np.any(size == 0.0):
         raise InputError(
-            f"expected a plane with a normal, got the plane at infinity at index {_first(size == 0.0)}",
+            "expected a plane with a normal, got the plane at infinity at index "
+            f"{_first(size == 0.0)}",
             key="a",
         )
     offset = -a[..., 0] / size

@@ -429,7 +429,7 @@ def _bivector(a, b) -> np.ndarray:
 
 
 def from_screw(axis, angle, pitch=0.0) -> np.ndarray:
-    """The screw motion: turn by ``angle`` about the line ``axis`` and slide ``pitch·angle`` along it.
+    """The screw motion: turn by ``angle`` about the line ``axis``, slide ``pitch·angle`` along it.
 
     Chasles: every rigid motion is one. The motor is exp(−½(α L + h e0 u)) with L the unit
     line of direction u, α the angle and h = pitch·α the slide. An infinite pitch is a pure
@@ -500,8 +500,8 @@ def to_screw(M) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     perp = b + 0.5 * slide[..., None] * u_turn
     # Pure translations: b = −t/2, the axis along t (z when t = 0).
     tnorm = 2.0 * norm3(b)
-    u_shift = np.where((tnorm > 0.0)[..., None], -2.0 * b / np.where(tnorm > 0, tnorm, 1.0)[..., None],
-                       [0.0, 0.0, 1.0])  # fmt: skip
+    along = -2.0 * b / np.where(tnorm > 0, tnorm, 1.0)[..., None]
+    u_shift = np.where((tnorm > 0.0)[..., None], along, [0.0, 0.0, 1.0])
     u = np.where(turning[..., None], u_turn, u_shift)
     moment = np.where(turning[..., None], -perp / safe[..., None], 0.0)
     angle = np.where(turning, 2.0 * theta, tnorm)

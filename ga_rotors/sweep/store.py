@@ -197,7 +197,8 @@ def create(sweep, path, nominal=None) -> None:
     --------
     >>> import tempfile, pathlib
     >>> from ga_rotors.sweep import load_sweep
-    >>> s = load_sweep('[sweep]\\nscene = "heavy_top"\\nchunk = 2\\n[grid]\\n"body.mass" = [1, 2, 3]')
+    >>> text = '[sweep]\\nscene = "heavy_top"\\nchunk = 2\\n[grid]\\n"body.mass" = [1, 2, 3]'
+    >>> s = load_sweep(text)
     >>> path = pathlib.Path(tempfile.mkdtemp()) / "s.zarr"
     >>> create(s, path)
     >>> ds = open_store(path)
@@ -243,7 +244,8 @@ def write_chunk(root, sweep, c: int, outputs: dict, path) -> None:
     --------
     >>> import tempfile, pathlib
     >>> from ga_rotors.sweep import load_sweep
-    >>> s = load_sweep('[sweep]\\nscene = "heavy_top"\\nchunk = 2\\n[grid]\\n"body.mass" = [1, 2, 3]')
+    >>> text = '[sweep]\\nscene = "heavy_top"\\nchunk = 2\\n[grid]\\n"body.mass" = [1, 2, 3]'
+    >>> s = load_sweep(text)
     >>> path = pathlib.Path(tempfile.mkdtemp()) / "s.zarr"
     >>> create(s, path)
     >>> q = np.tile([1.0, 0.0, 0.0, 0.0], (2, 1, 1))  # the chunk's two samples, one time
