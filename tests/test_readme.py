@@ -37,3 +37,21 @@ def test_readme_links_work_on_a_package_index():
     text = (ROOT / "README.md").read_text(encoding="utf-8")
     links = re.findall(r"\]\(([^)\s]+)\)", text)
     assert links and all(re.match(r"https?://", link) for link in links), links
+
+
+def test_every_install_the_readme_shows_installs_from_this_repository():
+    # The package is not on a package index: `pip install "ga-rotors[x]"` would fail for a
+    # newcomer, so every pip line installs "." with extras that pyproject.toml declares.
+    import tomllib
+
+    text = (ROOT / "README.md").read_text(encoding="utf-8")
+    extras = tomllib.loads((ROOT / "pyproject.toml").read_text(encoding="utf-8"))["project"][
+        "optional-dependencies"
+    ]
+    installs = re.findall(r"pip install ([^`&\n]+?)(?:`| &&|\n)", text)
+    assert len(installs) >= 5, installs
+    for target in installs:
+        spec = target.strip().strip('"')
+        assert re.fullmatch(r"\.(\[[\w,]+\])?", spec), f"installs {target!r}, not this repository"
+        for extra in re.findall(r"\w+", spec[2:-1]):
+            assert extra in extras, f"README names the extra {extra!r}, not in pyproject.toml"
