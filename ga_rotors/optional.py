@@ -24,13 +24,14 @@ class MissingExtraError(GaRotorsError, ImportError):
     Traceback (most recent call last):
     ...
     ga_rotors.optional.MissingExtraError: no_such_module is not installed; it comes with \
-pip install "ga-rotors[results]"
+the results extra: pip install ".[results]" in the ga_rotors repository
     """
 
     def __init__(self, module: str, extra: str):
         self.module, self.extra = module, extra
         super().__init__(
-            f'{module} is not installed; it comes with pip install "ga-rotors[{extra}]"'
+            f"{module} is not installed; it comes with the {extra} extra: "
+            f'pip install ".[{extra}]" in the ga_rotors repository'
         )
 
 

@@ -53,7 +53,7 @@ def test_minimal_scene_resolves_every_default():
         "quantities": [],
         "plots": [],
         "figure_format": "png",
-        "data": ["netcdf"],  # the binary default (npz without ga-rotors[results])
+        "data": ["netcdf"],  # the binary default (npz without the results extra)
         "summary": True,
     }
     assert (s.steps, s.sample_every, s.kind) == (100, 1, "free")

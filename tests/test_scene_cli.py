@@ -280,7 +280,7 @@ def test_a_data_format_without_its_extra_is_refused_before_anything_runs(
     err = capsys.readouterr().err.strip()
     assert err == (
         f"ga-rotors: error: {path}: output.data[1]: '{fmt}': {missing} is not installed; it "
-        'comes with pip install "ga-rotors[results]"'
+        'comes with the results extra: pip install ".[results]" in the ga_rotors repository'
     )
     assert not out.exists()
     from ga_rotors.errors import SceneError

@@ -11,7 +11,7 @@ time, and how many failed.
 A sweep needing more than --max-steps integration steps (default 1e12), --max-memory GiB
 (default 2), --max-disk GiB of store (default 20) or --max-files files (default 1e5) is
 refused before anything is written.
-Needs pip install "ga-rotors[dask]".
+Needs the dask extra: pip install ".[dask]" in the repository.
 """
 
 from __future__ import annotations

@@ -9,8 +9,9 @@
 * :func:`write_csv` — CSV for spreadsheets, with units in the headers, described by a
   W3C CSVW metadata sidecar (``<file>.csv-metadata.json``: units, the run's attributes).
 
-xarray, h5netcdf and zarr come with ``pip install "ga-rotors[results]"``; a function that
-needs a missing one says so in one line (:class:`ga_rotors.optional.MissingExtraError`).
+xarray, h5netcdf and zarr come with the results extra (``pip install ".[results]"`` in the
+repository); a function that needs a missing one says so in one line
+(:class:`ga_rotors.optional.MissingExtraError`).
 NPZ and CSV need nothing beyond numpy (CSV is written by polars or pyarrow when one is
 installed).
 """

@@ -200,13 +200,13 @@ register(
 )  # fmt: skip
 register(
     DataFormat(
-        "netcdf", ".nc", "every array with its unit and the run's settings (ga-rotors[results])",
+        "netcdf", ".nc", "every array with its unit and the run's settings (the results extra)",
         _store, _stream("NetcdfStream"), (("xarray", "results"), ("h5netcdf", "results")),
     )
 )  # fmt: skip
 register(
     DataFormat(
-        "zarr", ".zarr", "a zarr store: the netCDF content, chunked (ga-rotors[results])",
+        "zarr", ".zarr", "a zarr store: the netCDF content, chunked (the results extra)",
         _store, _stream("ZarrStream"), (("xarray", "results"), ("zarr", "results")),
     )
 )  # fmt: skip

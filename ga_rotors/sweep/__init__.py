@@ -12,8 +12,8 @@
 * :mod:`ga_rotors.sweep.budget` — the steps, memory, disk and files a sweep will take,
   checked before anything is written.
 
-Needs ``pip install "ga-rotors[dask]"`` (Dask, xarray, zarr). ``ga-rotors sweep`` is the
-command; docs/ensembles.md the guide.
+Needs the dask extra: Dask, xarray, zarr (``pip install ".[dask]"`` in the repository).
+``ga-rotors sweep`` is the command; docs/ensembles.md the guide.
 """
 
 from __future__ import annotations

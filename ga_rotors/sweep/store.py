@@ -154,7 +154,7 @@ WHOLE_CHUNK_BYTES = 2**24
 
 
 def have_dask() -> bool:
-    """Whether Dask is installed (it is an extra: ``ga-rotors[dask]``)."""
+    """Whether Dask is installed (it comes with the dask extra)."""
     from ..optional import MissingExtraError
 
     try:
