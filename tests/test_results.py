@@ -256,7 +256,7 @@ def test_a_missing_extra_names_the_install_command(monkeypatch):
         return real(name, *args)
 
     monkeypatch.setattr(optional.importlib, "import_module", fake)
-    with pytest.raises(MissingExtraError, match=r'pip install "ga-rotors\[results\]"'):
+    with pytest.raises(MissingExtraError, match=r'pip install "\.\[results\]" in the ga_rotors'):
         results.to_dataset(ragged())
 
 
