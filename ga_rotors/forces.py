@@ -55,6 +55,7 @@ __all__ = [
     "point_force",
     "spring",
     "uniform_gravity",
+    "user_force",
 ]
 
 #: m/s², the default gravity (0, 0, −STANDARD_GRAVITY), space frame, z up.
@@ -396,3 +397,81 @@ def central_gravity(body, mu=EARTH_MU, centre=(0.0, 0.0, 0.0)) -> ForceTerm:
     return ForceTerm(central_field, (mu, body.mass, *body.moments, *a), name="central_gravity",
                      depends_on_velocity=False, conserves={"energy", "angular_momentum"},
                      potential=central_potential, point=a)  # fmt: skip
+
+
+# ---------------------------------------------------------------------------- user forces
+
+
+def user_force(spec: str, params=(), *, depends_on_velocity: bool = True) -> ForceTerm:
+    """The ForceTerm of a user's compiled kernel named ``"package.module:function"``.
+
+    The kernel follows the wrench contract of the built-in ones,
+    ``kernel(t, q, c, w, v, p) -> (Fx, Fy, Fz, τ1, τ2, τ3)`` (see the module's text),
+    compiled with ``@numba.njit`` (ideally ``cache=True``). Its module is code: it is
+    imported only on the user's opt-in and only from the folders named there
+    (:mod:`ga_rotors.trust`), exactly as a user torque is. Before use the kernel's Python
+    version is called once at rest (t = 0, q = 1, c = v = w = 0, p) and must return six
+    finite numbers. A user force declares nothing it conserves: the balances of a run
+    under it integrate its work, impulse and moment.
+
+    Examples
+    --------
+    >>> import os, tempfile
+    >>> folder = tempfile.mkdtemp()
+    >>> with open(os.path.join(folder, "my_forces_doc.py"), "w") as f:
+    ...     print("from ga_rotors.forces import drag_force as drag", file=f)
+    >>> user_force("my_forces_doc:drag", (0.5,))
+    Traceback (most recent call last):
+    ...
+    ga_rotors.errors.InputError: the scene asks to run code (my_forces_doc:drag); scenes ...
+    >>> from ga_rotors.trust import allow_user_code
+    >>> with allow_user_code(folder):
+    ...     term = user_force("my_forces_doc:drag", (0.5,))
+    >>> term.name, term.params, term.conserves
+    ('drag', (0.5,), frozenset())
+    """
+    from .trust import import_user_module
+
+    module, _, name = str(spec).partition(":")
+    try:
+        mod = import_user_module(module, spec)
+    except InputError:
+        raise
+    except Exception as exc:  # any failure to import is the caller's input, reported so
+        raise InputError(f"cannot import module {module!r}: {type(exc).__name__}: {exc}",
+                         key="function") from None  # fmt: skip
+    kernel = getattr(mod, name, None)
+    if kernel is None:
+        raise InputError(f"module {module!r} has no attribute {name!r}", key="function")
+    from numba.core.dispatcher import Dispatcher
+
+    if not isinstance(kernel, Dispatcher):
+        kind = "a plain Python function" if callable(kernel) else type(kernel).__name__
+        raise InputError(f"{spec} is {kind}; expected a numba-compiled kernel(t, q, c, w, v, "
+                         "p) returning six numbers: decorate it with @numba.njit(cache=True)",
+                         key="function")  # fmt: skip
+    args = kernel.py_func.__code__.co_argcount
+    if args != 6:
+        raise InputError(f"{spec} takes {args} arguments; expected kernel(t, q, c, w, v, p)",
+                         key="function")  # fmt: skip
+    params = tuple(float(x) for x in params)
+    _trial_force(kernel, spec, params)
+    return ForceTerm(kernel, params, name=name, depends_on_velocity=bool(depends_on_velocity))
+
+
+def _trial_force(kernel, spec: str, params: tuple) -> None:
+    import numpy as np
+
+    zero = (0.0, 0.0, 0.0)
+    try:
+        out = kernel.py_func(0.0, (1.0, 0.0, 0.0, 0.0), zero, zero, zero, np.array(params))
+    except Exception as exc:  # the user's code: report what it raised, where
+        raise InputError(f"{spec}(t=0, q=(1,0,0,0), c=v=w=0, p) raised {type(exc).__name__}: "
+                         f"{exc}", key="function") from None  # fmt: skip
+    try:
+        values = [float(x) for x in out]
+    except (TypeError, ValueError):
+        values = []
+    if len(values) != 6 or not all(math.isfinite(x) for x in values):
+        raise InputError(f"{spec} must return six finite numbers (a force in space, a torque "
+                         f"in the body), got {out!r:.80}", key="function")  # fmt: skip

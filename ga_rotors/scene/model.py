@@ -51,6 +51,7 @@ from __future__ import annotations
 
 import copy
 import functools
+from dataclasses import replace
 import math
 import re
 import sys
@@ -67,11 +68,13 @@ from . import exact as _exact
 from .reader import Reader, join
 from .schema import (
     ANGLE_UNITS,
+    MOTION_KEYS,
     NAME,
     ORIENTATION_FORMS,
     RATE_UNITS,
     ROTOR_BLADES,
     adaptive,
+    moves,
     resolve,
 )
 from .toml_io import check_nesting, dumps_toml, parse_toml
@@ -205,6 +208,7 @@ class Scene:
         body = d["body"]
         tensor, key = self._inertia(reader, body)
         mass = body.get("mass")
+        self.moves = moves(d)
         self.gravity_index = next(
             (i for i, e in enumerate(d["effects"]) if e["type"] == "gravity"), None
         )
@@ -212,6 +216,12 @@ class Scene:
             tensor = self._about_pivot(reader, tensor, mass)
             key = join(join("effects", self.gravity_index), "pivot_to_com")
         self.body = self._principal(reader, tensor, key)
+        if self.moves:  # the body moving through space carries its mass and centre
+            try:
+                self.body = replace(self.body, mass=mass,
+                                    centre_of_mass=tuple(body.get("centre_of_mass", (0.0,) * 3)))
+            except InputError as exc:
+                raise reader.error("body.centre_of_mass", exc.detail) from None
         self.principal_rotation = self.body.principal_rotation
         self.mass = mass
         self.frame = _effects.Frame(self.principal_rotation, mass, self.base_dir, self.file)
@@ -226,6 +236,10 @@ class Scene:
         p = np.array(self.principal_rotation)
         self.principal_orientation = Q.multiply(self.orientation, p)
         self.principal_angular_velocity = Q.rotate(Q.conjugate(p), self.angular_velocity)
+        self.position = self.velocity = None
+        if self.moves:
+            self.position, self.velocity = (np.array(d["initial"].get(k, [0.0, 0.0, 0.0]))
+                                            for k in MOTION_KEYS)  # fmt: skip
         self.euler_angles = None
         o = d["initial"]["orientation"]
         if "euler" in o and o["sequence"] == "ZYZ" and self.principal_rotation == _IDENTITY:
@@ -250,11 +264,17 @@ class Scene:
             )
         self._check_time_grid(reader)
         self._check_magnitudes(reader)
-        self.kind = "torqued" if d["effects"] else "free"
+        self.kind = "motion" if self.moves else "torqued" if d["effects"] else "free"
         self.gravity = self._gravity()
         self.method = self._method()
         self._check_integrator(reader)
-        self.exact, self.exact_reason = _exact.applicable(self.body, d["effects"], self.gravity)
+        if self.moves:
+            from . import motion
+
+            self.exact, self.exact_reason = motion.applicable(self)
+        else:
+            self.exact, self.exact_reason = _exact.applicable(self.body, d["effects"],
+                                                              self.gravity)  # fmt: skip
         self._check_outputs(reader)
 
     def _check_magnitudes(self, reader: Reader) -> None:
@@ -277,6 +297,14 @@ class Scene:
                 f"|Iω| = {momentum:.3g} kg·m²/s: its square overflows float64 (beyond "
                 f"{sys.float_info.max:.3g}); rescale the units",
             )
+        if self.moves:
+            speed = math.hypot(*self.velocity)
+            if not 0.5 * self.mass * speed * speed * 16.0 < sys.float_info.max:
+                raise reader.error(
+                    "initial.velocity",
+                    f"½ m v² of {self.mass:.3g} kg at {speed:.3g} m/s overflows float64; "
+                    "rescale the units",
+                )
         h = self.data["integrator"]["step"]
         turn = rate * h
         if not turn <= MAX_TURN_PER_STEP:
@@ -442,9 +470,19 @@ class Scene:
             )
             for i, e in enumerate(self.data["effects"])
         ]
+        from .force_types import FORCE_TYPES
+
+        forces = [
+            SimpleNamespace(
+                name=f"{join('forces', i)} ({f['type']})",
+                depends_on_velocity=FORCE_TYPES[f["type"]].reads_velocity(f),
+            )
+            for i, f in enumerate(self.data.get("forces", []))
+        ]
         problem = SimpleNamespace(
             kind=self.kind,
             torques=torques,
+            forces=forces,
             accept_lower_order=integ.get("accept_lower_order", False),
         )
         for path in integ["paths"]:
@@ -469,6 +507,18 @@ class Scene:
 
     def _check_outputs(self, reader: Reader) -> None:
         out = self.data["output"]
+        if self.moves:
+            for section, names, allowed in (("quantities", out["quantities"], MOTION_QUANTITIES),
+                                            ("plots", out["plots"], MOTION_PLOTS)):  # fmt: skip
+                for i, name in enumerate(names):
+                    if name not in allowed:
+                        raise reader.error(
+                            join(join("output", section), i),
+                            f"{name!r} is for a body turning about a fixed point; a body "
+                            f"moving through space takes {', '.join(allowed)} (its summary "
+                            "states its errors and balances)",
+                        )
+            return
         needs = {
             "error": self.exact is not None and self.exact_has_orientation,
             "omega_error": self.exact is not None,
@@ -500,6 +550,10 @@ class Scene:
         """
         from ..errors import PrecisionError
 
+        if self.moves:
+            from . import motion
+
+            return motion.build(self)
         effects = self.data["effects"]
         damping = effects[0]["coefficient"] if self.exact == "damped_symmetric_top" else None
         try:
@@ -537,6 +591,13 @@ class Scene:
         """
         given = next(k for k in ("moments", "tensor", "shape") if k in self.data["body"])
         where = f"the scene's body axes (body.{given})"
+        if self.moves:
+            com = self.body.centre_of_mass
+            axes = "principal" if self.principal_rotation == _IDENTITY else "not principal"
+            origin = ("its origin the centre of mass" if not any(com)
+                      else f"its origin {math.hypot(*com):g} m from the centre of mass")  # fmt: skip
+            return (f"{where}: {axes}, {origin}; positions and velocities are the origin's, "
+                    "in space")
         if self.principal_rotation != _IDENTITY:
             return f"{where}: not principal (principal_rotation turns them)"
         return f"{where}: principal" + ("" if self.gravity_index is None else " about the pivot")
@@ -570,6 +631,26 @@ class Scene:
     @property
     def effects(self) -> list[dict]:
         return copy.deepcopy(self.data["effects"])
+
+    def forces(self) -> tuple:
+        """The declared ``[[forces]]`` as ForceTerms on the scene's body (imports user
+        forces' modules, on the opt-in only).
+
+        Examples
+        --------
+        >>> from ga_rotors.scene import load_scene
+        >>> [f.name for f in load_scene("thrown_racket").forces()]
+        ['uniform_gravity']
+        >>> load_scene("heavy_top").forces()
+        ()
+        """
+        from .force_types import FORCE_TYPES
+
+        reader = Reader(self.file)
+        return tuple(
+            FORCE_TYPES[f["type"]].term(f, self.body, reader, join("forces", i))
+            for i, f in enumerate(self.data.get("forces", []))
+        )
 
     def torques(self) -> tuple:
         """The declared effects as TorqueTerms (imports user-torque modules).
@@ -630,6 +711,13 @@ class Scene:
             f"principal rotation P (principal -> scene body axes): {_fmt(self.principal_rotation)}",
             f"initial orientation q0 (w, x, y, z): {_fmt(q)}",
             f"initial body angular velocity: {_fmt(w)} rad/s",
+            *(
+                [f"initial position {_fmt(self.position)} m, velocity {_fmt(self.velocity)} "
+                 f"m/s (the body-frame origin, space); mass {self.mass:g} kg, centre of mass "
+                 f"{_fmt(self.body.centre_of_mass)} m (body frame); forces: "
+                 + (_effects.listed(f["type"] for f in self.data.get("forces", [])) or "none")]
+                if self.moves else []
+            ),  # fmt: skip
             f"problem: {self.kind}; torques: "
             + (_effects.listed(e["type"] for e in self.data["effects"]) or "none (torque-free)"),
             f"integrator: {method.name} (order {method.order}), "
@@ -654,6 +742,10 @@ class Scene:
 
 
 _IDENTITY = (1.0, 0.0, 0.0, 0.0)
+
+#: ``output.quantities`` and ``output.plots`` a scene moving through space can have
+MOTION_QUANTITIES = ("energy", "L", "L_space", "omega_space", "angles")
+MOTION_PLOTS = ("omega", "angles")
 
 
 def _fmt(v) -> str:

@@ -119,7 +119,7 @@ class _Sink:
     """Where the pieces of a run go: its data files, its summary, its figure's copy."""
 
     def __init__(self, scene: Scene, stage: Path | None, summarise: bool):
-        from .summary import RunSummary
+        from .summary import summary_for
 
         out, name = scene.data["output"], scene.name
         self.scene, self.meta = scene, None
@@ -129,7 +129,7 @@ class _Sink:
                 self.writers.append(
                     FORMATS[fmt].open(stage / f"{name}{FORMATS[fmt].suffix}", scene)
                 )
-        self.summary = RunSummary(scene) if summarise else None
+        self.summary = summary_for(scene) if summarise else None
         self.figure = stage is not None and bool(out["plots"])
         self.thin = self.balance = None
 

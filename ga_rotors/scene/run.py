@@ -39,11 +39,12 @@ __all__ = ["run_pieces", "run_scene"]
 def _user_compile_error(scene: Scene, exc: Exception):
     from ..errors import SceneError, first_line
 
-    users = [i for i, e in enumerate(scene.data["effects"]) if e["type"] == "user"]
+    users = [f"{section}[{i}].function" for section in ("effects", "forces")
+             for i, e in enumerate(scene.data.get(section, [])) if e["type"] == "user"]
     first = first_line(exc)
-    key = f"effects[{users[0]}].function" if len(users) == 1 else "effects"
+    key = users[0] if len(users) == 1 else "effects"
     return SceneError(
-        scene.file, key, f"numba could not compile the loop with the user torque: {first}"
+        scene.file, key, f"numba could not compile the loop with the user term: {first}"
     )
 
 
@@ -125,6 +126,9 @@ def _pieces(scene: Scene, chunk_steps, progress):
         progress=progress,
         step_limit_key=f"{scene.file}: integrator.step",
     )
+    if scene.moves:  # a whole rigid motion: its start in space and its declared forces
+        options.update(position=scene.position, velocity=scene.velocity,
+                       forces=scene.forces())  # fmt: skip
     extra = [name for name in wanted if name not in _sim.OUTPUTS]
     meta = {"scene": scene.name, "principal_rotation": scene.principal_rotation,
             "body_frame": scene.body_frame, "exact": scene.exact,
@@ -145,7 +149,8 @@ def _pieces(scene: Scene, chunk_steps, progress):
     except Exception as exc:
         from numba.core.errors import NumbaError
 
-        if isinstance(exc, NumbaError) and any(e["type"] == "user" for e in scene.data["effects"]):
+        users = [*scene.data["effects"], *scene.data.get("forces", [])]
+        if isinstance(exc, NumbaError) and any(e["type"] == "user" for e in users):
             raise _user_compile_error(scene, exc) from None
         raise
 

@@ -15,6 +15,7 @@ from collections.abc import Mapping
 
 from .. import effects as _effects
 from .. import paths as _paths
+from ..errors import InputError
 from ..paper.figures import FIGURE_FORMATS
 from ..shapes import SHAPES
 from .formats import FORMATS, default_data
@@ -25,6 +26,7 @@ __all__ = [
     "ANGULAR_VELOCITY_FORMS",
     "MAX_EFFECTS",
     "MIN_TOLERANCE",
+    "MOTION_KEYS",
     "NAME",
     "ORIENTATION_FORMS",
     "PLOTS",
@@ -34,12 +36,13 @@ __all__ = [
     "SECTIONS",
     "adaptive",
     "compile_seconds",
+    "moves",
     "resolve",
 ]
 
 
 #: Top-level tables, in the order a resolved scene lists them.
-SECTIONS = ("scene", "body", "initial", "time", "integrator", "effects", "output")
+SECTIONS = ("scene", "body", "initial", "time", "integrator", "effects", "forces", "output")
 
 #: Angle units -> radians per unit.
 ANGLE_UNITS = {"rad": 1.0, "deg": math.pi / 180.0}
@@ -82,7 +85,11 @@ PLOTS = {
     "error": "geodesic error of each path against the exact solution",
 }
 
-#: Most ``[[effects]]`` entries a scene may declare (see :func:`compile_seconds`).
+#: ``initial`` keys of a body moving through space -> their unit (SI, space frame).
+MOTION_KEYS = {"position": "m", "velocity": "m/s"}
+
+#: Most ``[[effects]]`` entries a scene may declare (see :func:`compile_seconds`), and
+#: most ``[[effects]]`` and ``[[forces]]`` together.
 MAX_EFFECTS = 64
 
 
@@ -149,7 +156,8 @@ def _dimension_keys() -> list[str]:
 
 def _resolve_body(reader: Reader, value) -> dict:
     dims = _dimension_keys()
-    t = reader.table(value, "body", ("moments", "tensor", "shape", "mass", *dims))
+    t = reader.table(value, "body", ("moments", "tensor", "shape", "mass", "centre_of_mass",
+                                     *dims))  # fmt: skip
     form = reader.one_of(t, "body", ("moments", "tensor", "shape"))
     out: dict = {}
     if form == "moments":
@@ -168,6 +176,9 @@ def _resolve_body(reader: Reader, value) -> dict:
                 )
     if "mass" in t:
         out["mass"] = reader.number(t["mass"], "body.mass", positive=True, unit="kg")
+    if "centre_of_mass" in t:  # stored only when given, as every motion key
+        out["centre_of_mass"] = list(reader.vector(t["centre_of_mass"], "body.centre_of_mass",
+                                                   unit="m"))  # fmt: skip
     for d in dims:
         if d in t:
             if form != "shape" or d not in SHAPES[out["shape"]][1]:
@@ -254,14 +265,34 @@ def _resolve_angular_velocity(reader: Reader, value, orientation: dict) -> dict:
 
 def _resolve_initial(reader: Reader, value) -> dict:
     t = reader.table(value if value is not None else {}, "initial",
-                     ("orientation", "angular_velocity"))  # fmt: skip
+                     ("orientation", "angular_velocity", *MOTION_KEYS))  # fmt: skip
     orientation = _resolve_orientation(reader, t.get("orientation"))
-    return {
+    out = {
         "orientation": orientation,
         "angular_velocity": _resolve_angular_velocity(
             reader, t.get("angular_velocity"), orientation
         ),
     }
+    # Stored only when given: a scene without them turns about a fixed point, and its
+    # resolved data (and its figures' digests) are what they were before the keys existed.
+    for name, unit in MOTION_KEYS.items():
+        if name in t:
+            out[name] = list(reader.vector(t[name], join("initial", name), unit=unit))
+    return out
+
+
+def moves(data: Mapping) -> bool:
+    """Whether the scene ``data`` (given or resolved) describes a body moving through
+    space: it gives ``initial.position`` or ``initial.velocity``, or declares forces.
+
+    Examples
+    --------
+    >>> moves({"initial": {"velocity": [0, 0, 1]}}), moves({"body": {"moments": [1, 2, 3]}})
+    (True, False)
+    """
+    initial = data.get("initial")
+    given = isinstance(initial, Mapping) and any(k in initial for k in MOTION_KEYS)
+    return bool(given or data.get("forces"))
 
 
 def adaptive(method) -> bool:
@@ -277,7 +308,7 @@ def adaptive(method) -> bool:
     return bool(method.adaptive)
 
 
-def _resolve_integrator(reader: Reader, value) -> dict:
+def _resolve_integrator(reader: Reader, value, moving: bool = False) -> dict:
     from ..integrators import base
 
     t = reader.table(value if value is not None else {}, "integrator",
@@ -309,11 +340,19 @@ def _resolve_integrator(reader: Reader, value) -> dict:
             )
         if out["step"] is None:
             raise reader.error("integrator.step", f"missing; {name} is a fixed-step method")
-    paths = reader.names(t.get("paths", ["rotor"]), "integrator.paths", _paths.PATHS)
+    paths = reader.names(t.get("paths", ["motor" if moving else "rotor"]), "integrator.paths",
+                         _paths.PATHS)  # fmt: skip
     if not paths:
         raise reader.error(
             "integrator.paths", f"expected at least one of {', '.join(_paths.PATHS)}"
         )
+    for i, path in enumerate(paths):
+        try:
+            _paths.resolve(path, moving)
+        except InputError as exc:
+            why = ("" if moving else " (this scene turns about a fixed point: it gives no "
+                   "initial.position, initial.velocity or forces)")  # fmt: skip
+            raise reader.error(join("integrator.paths", i), exc.detail + why) from None
     out["paths"] = paths
     # Stored only when set: the resolved default scene (and its figures' digests) is the
     # same as before the key existed.
@@ -365,6 +404,63 @@ def _resolve_effects(reader: Reader, value) -> list[dict]:
     return out
 
 
+def _resolve_forces(reader: Reader, value) -> list[dict]:
+    from .force_types import FORCE_TYPES
+
+    entries = reader.array(value if value is not None else [], "forces")
+    out = []
+    for i, entry in enumerate(entries[: MAX_EFFECTS + 1]):  # more: refused by the caller
+        key = join("forces", i)
+        if not isinstance(entry, Mapping):
+            raise reader.error(key, "expected a table ([[forces]] with a type)")
+        if "type" not in entry:
+            raise reader.error(join(key, "type"),
+                               f"missing; expected one of {', '.join(FORCE_TYPES)}")  # fmt: skip
+        kind = reader.string(entry["type"], join(key, "type"), FORCE_TYPES)
+        out.append(FORCE_TYPES[kind].resolve(reader, dict(entry), key))
+    return out
+
+
+def _check_terms(reader: Reader, effects: list, forces: list) -> None:
+    """The cap on compiled terms holds for torques and forces together: each is a term of
+    every compiled loop (see :func:`compile_seconds`)."""
+    if len(effects) + len(forces) > MAX_EFFECTS:
+        raise reader.error(
+            "forces",
+            f"{len(effects)} effects and {len(forces):,} forces; a scene declares at most "
+            f"{MAX_EFFECTS} terms in all (each is a term of every compiled loop, and "
+            f"compiling grows faster than their number: about "
+            f"{compile_seconds(MAX_EFFECTS):.0f} s a path at {MAX_EFFECTS}); sum constant "
+            "forces into one entry",
+        )
+
+
+def _check_motion(reader: Reader, out: dict) -> None:
+    """A moving body needs its mass and cannot have a pivot; ``body.centre_of_mass`` is
+    for a moving body (a pivoted one gives its lever in the gravity effect)."""
+    initial, forces = out["initial"], out["forces"]
+    first = next((join("initial", k) for k in MOTION_KEYS if k in initial), "forces[0]")
+    if not (forces or any(k in initial for k in MOTION_KEYS)):
+        if "centre_of_mass" in out["body"]:
+            raise reader.error(
+                "body.centre_of_mass",
+                "for a body moving through space (with initial.position, initial.velocity "
+                "or forces); a body turning about a pivot gives effects.pivot_to_com",
+            )
+        return
+    gravity = next((i for i, e in enumerate(out["effects"]) if e["type"] == "gravity"), None)
+    if gravity is not None:
+        raise reader.error(
+            first,
+            f"the scene has a pivot (effects[{gravity}], gravity about a fixed point): a "
+            "pivoted body turns in place and has no position or forces; for a body moving "
+            "through space declare its weight as [[forces]] type = \"uniform_gravity\"",
+        )
+    if "mass" not in out["body"]:
+        raise reader.error("body.mass", f"missing; a body moving through space ({first}) "
+                           "needs its mass (kg)")  # fmt: skip
+
+
 def _resolve_output(reader: Reader, value) -> dict:
     t = reader.table(value if value is not None else {}, "output",
                      ("quantities", "plots", "figure_format", "data", "summary"))  # fmt: skip
@@ -403,15 +499,23 @@ def resolve(reader: Reader, data, default_name: str) -> dict:
     ga_rotors.errors.SceneError: x.toml: body: expected exactly one of moments, tensor, ...
     """
     top = reader.table(data, "", SECTIONS, ("body", "time"))
+    forces = reader.array(top.get("forces", []), "forces")
+    if len(forces) > MAX_EFFECTS:  # before any entry is read
+        _check_terms(reader, [], forces)
     out = {
         "scene": _resolve_scene(reader, top.get("scene", {}), default_name),
         "body": _resolve_body(reader, top["body"]),
         "initial": _resolve_initial(reader, top.get("initial")),
         "time": _resolve_time(reader, top["time"]),
-        "integrator": _resolve_integrator(reader, top.get("integrator")),
+        "integrator": _resolve_integrator(reader, top.get("integrator"), moves(top)),
         "effects": _resolve_effects(reader, top.get("effects")),
+        "forces": _resolve_forces(reader, forces),
         "output": _resolve_output(reader, top.get("output")),
     }
+    _check_terms(reader, out["effects"], out["forces"])
+    _check_motion(reader, out)
+    if not out["forces"]:  # stored only when declared (see _resolve_initial)
+        del out["forces"]
     time, integrator = out["time"], out["integrator"]
     if integrator["step"] is None:  # an adaptive method: the step only fixes sample times
         if time["output_step"] is None:

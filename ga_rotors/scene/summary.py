@@ -45,8 +45,10 @@ __all__ = [
     "extrema",
     "hermite_at",
     "invariant_series",
+    "mark_incomplete",
     "report",
     "status_report",
+    "summary_for",
     "zero_crossings",
 ]
 
@@ -779,7 +781,7 @@ class RunSummary:
                 rep.lines.append(f"  {PathComparison(pair, angle, at, samples)}")
         self._exact_lines(rep)
         self._accuracy_line(rep)
-        _completeness(rep, meta, self.first[3] if self.first is not None else 0.0)
+        mark_incomplete(rep, meta, self.first[3] if self.first is not None else 0.0)
         return rep
 
     def _balance_line(self, rep: Report) -> None:
@@ -968,7 +970,7 @@ class RunSummary:
         )
 
 
-def _completeness(rep: Report, meta: dict, t_end: float) -> None:
+def mark_incomplete(rep: Report, meta: dict, t_end: float) -> None:
     """Put the INCOMPLETE line first in ``rep`` (and ``values["incomplete"]``) when a path
     stopped before ``t_end``: every figure below it covers only the steps taken."""
     stopped = {p: i for p, i in meta["paths"].items() if not i["complete"]}
@@ -1001,8 +1003,29 @@ def status_report(scene: Scene, meta: dict) -> Report:
     """
     rep = Report(scene.name)
     t_end = scene.data["time"]["start"] + meta["steps"] * meta["step"]
-    _completeness(rep, meta, t_end)
+    mark_incomplete(rep, meta, t_end)
     return rep
+
+
+def summary_for(scene: Scene):
+    """The summary that measures ``scene``'s run: a :class:`RunSummary` for a rotation
+    about a fixed point, a :class:`~ga_rotors.scene.motion_summary.MotionSummary` for a
+    body moving through space; both take the run piece by piece (``add``) and give its
+    :class:`Report` (``report``).
+
+    Examples
+    --------
+    >>> from ga_rotors.scene import load_scene
+    >>> type(summary_for(load_scene("heavy_top"))).__name__
+    'RunSummary'
+    >>> type(summary_for(load_scene("thrown_racket"))).__name__
+    'MotionSummary'
+    """
+    if scene.moves:
+        from .motion_summary import MotionSummary
+
+        return MotionSummary(scene)
+    return RunSummary(scene)
 
 
 def report(scene: Scene, trajectory: Trajectory) -> Report:
@@ -1018,6 +1041,6 @@ def report(scene: Scene, trajectory: Trajectory) -> Report:
     >>> rep.values["error_rotor"] < 1e-9, rep.values["rotor_vs_quaternion"] < 1e-13
     (True, True)
     """
-    summary = RunSummary(scene)
+    summary = summary_for(scene)
     summary.add(trajectory)
     return summary.report()
