@@ -173,6 +173,16 @@ def _momentum(axes, ctx: _Context) -> None:
     ax.legend(**_BESIDE)
 
 
+def _position(axes, ctx: _Context) -> None:
+    (ax,) = axes
+    p = ctx.tr.positions()
+    n = min(p.shape[0], ctx.t.shape[0])
+    for k, name in enumerate("xyz"):
+        _line(ax, ctx.t[:n], p[:n, k], lw=0.8, label=name)
+    ax.set_ylabel("origin in space (m)", fontsize=8)
+    ax.legend(**_BESIDE)
+
+
 def _invariants(axes, ctx: _Context) -> None:
     from .summary import invariant_series
 
@@ -299,6 +309,7 @@ PANELS = {
     "momentum": (1, _momentum),
     "invariants": (1, _invariants),
     "error": (1, _error),
+    "position": (1, _position),
 }
 
 

@@ -523,6 +523,7 @@ class Scene:
             "error": self.exact is not None and self.exact_has_orientation,
             "omega_error": self.exact is not None,
             "potential_energy": self.gravity_index is not None,
+            "position": False,
         }
         for section, names in (("quantities", out["quantities"]), ("plots", out["plots"])):
             for i, name in enumerate(names):
@@ -530,6 +531,8 @@ class Scene:
                     continue
                 reason = (
                     "needs gravity" if name == "potential_energy"
+                    else "needs a body moving through space (initial.position, "
+                    "initial.velocity or forces)" if name == "position"
                     else f"needs an exact solution; this scene has none ({self.exact_reason})"
                 )  # fmt: skip
                 raise reader.error(join(join("output", section), i), f"{name!r} {reason}")
@@ -745,7 +748,7 @@ _IDENTITY = (1.0, 0.0, 0.0, 0.0)
 
 #: ``output.quantities`` and ``output.plots`` a scene moving through space can have
 MOTION_QUANTITIES = ("energy", "L", "L_space", "omega_space", "angles")
-MOTION_PLOTS = ("omega", "angles")
+MOTION_PLOTS = ("omega", "angles", "position")
 
 
 def _fmt(v) -> str:

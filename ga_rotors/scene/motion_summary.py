@@ -93,6 +93,9 @@ class MotionSummary:
             self.kept.setdefault(name, []).append(np.array(piece[name][:n]))
         self.reach = max(self.reach, float(np.linalg.norm(piece["position"], axis=1).max()))
         live = [p for p in piece.paths if piece.positions(p).shape[0]]
+        for path in live:  # how far each path's rotation part drifted off the unit sphere
+            norms = np.linalg.norm(piece.quaternions(path), axis=1)
+            self._max(f"norm_drift_{path}", float(np.abs(norms - 1.0).max()))
         unit = {p: Q.normalize(piece.quaternions(p)) for p in live}
         positions = {p: piece.positions(p) for p in live}
         if self.reference is not None:
@@ -146,6 +149,10 @@ class MotionSummary:
         rep.lines.append("paths:")
         for path, info in meta["paths"].items():
             status = "complete" if info["complete"] else f"stopped at t = {info['ended_at']:g} s"
+            drift = self.maxima.get(f"norm_drift_{path}")
+            if drift is not None:
+                rep.values[f"norm_drift_{path}"] = drift
+                status += f", max | |q| − 1 | = {drift:.1e}"
             rep.lines.append(f"  {path:<11} {status}")
         if self.reach > 0.0:
             rep.values["length_scale"] = self.reach

@@ -83,6 +83,7 @@ PLOTS = {
     "momentum": "space-frame angular momentum components against time",
     "invariants": "drift of the scene's conserved quantities (or their exact decay)",
     "error": "geodesic error of each path against the exact solution",
+    "position": "the body-frame origin's position in space against time (a moving body)",
 }
 
 #: ``initial`` keys of a body moving through space -> their unit (SI, space frame).

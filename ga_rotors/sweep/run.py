@@ -51,15 +51,12 @@ def _outputs(sweep: Sweep, lo: int, hi: int, nominal) -> dict[str, np.ndarray]:
 
     ``nominal``: (first grid point, q of the nominal runs of the points from it on).
     """
-    from ..ensemble import run_samples, scene_samples
-
     values = sweep.values(lo, hi)
-    try:
-        samples = scene_samples(sweep.scene, values)
-    except InputError as exc:
-        raise _refused(sweep, lo, values, exc) from None
-    run = run_samples(samples, sweep.run_times(), parallel=False)
+    run = _run(sweep, values, lo, "sample", parallel=False)
     out = {"q": run.q.transpose(1, 0, 2), "w": run.w.transpose(1, 0, 2)}
+    if sweep.scene.moves:
+        out.update(position=run.position.transpose(1, 0, 2),
+                   velocity=run.velocity.transpose(1, 0, 2))  # fmt: skip
     if sweep.draws:
         first, q_nominal = nominal
         point = np.arange(lo, hi, dtype=np.int64) // sweep.samples - first
@@ -297,16 +294,29 @@ def local_cluster(workers: int | None = None):
 # ---------------------------------------------------------------------- the sweep
 
 
-def _nominal(sweep: Sweep):
-    """(q, w) of each grid point's nominal run, (points, time, 4) and (points, time, 3)."""
+def _run(sweep: Sweep, values: dict, lo: int, what: str, parallel: bool = True):
+    """The runs of the samples with ``values`` (the first is sample ``lo``): on the
+    batched ensemble loops, or one scene run each for a body moving through space
+    (:mod:`ga_rotors.sweep.motion`); a refused sample is one line naming it."""
+    if sweep.scene.moves:
+        from .motion import run_motion_samples
+
+        try:
+            return run_motion_samples(sweep.scene, values, sweep.run_times())
+        except InputError as exc:
+            raise _refused(sweep, lo, values, exc, what) from None
     from ..ensemble import run_samples, scene_samples
 
-    values = sweep.nominal_values()
     try:
         samples = scene_samples(sweep.scene, values)
     except InputError as exc:
-        raise _refused(sweep, 0, values, exc, "the nominal run of grid point") from None
-    run = run_samples(samples, sweep.run_times())
+        raise _refused(sweep, lo, values, exc, what) from None
+    return run_samples(samples, sweep.run_times(), parallel=parallel)
+
+
+def _nominal(sweep: Sweep):
+    """(q, w) of each grid point's nominal run, (points, time, 4) and (points, time, 3)."""
+    run = _run(sweep, sweep.nominal_values(), 0, "the nominal run of grid point")
     return run.q.transpose(1, 0, 2).copy(), run.w.transpose(1, 0, 2).copy()
 
 

@@ -36,7 +36,8 @@ BODY_FRAME = (
     "(v_space = q v_body q*), w is the angular velocity in them"
 )
 
-_COMPONENTS = {"quaternion_component": ["w", "x", "y", "z"], "body_axis": ["1", "2", "3"]}
+_COMPONENTS = {"quaternion_component": ["w", "x", "y", "z"], "body_axis": ["1", "2", "3"],
+               "space_axis": ["x", "y", "z"]}
 
 
 def _per_sample(sweep) -> dict:
@@ -57,6 +58,11 @@ def _per_sample(sweep) -> dict:
             {"units": describe("w")[0], "long_name": "body angular velocity"},
         ),
     }
+    if sweep.scene.moves:  # a body moving through space: where its origin is, and how fast
+        for name in ("position", "velocity"):
+            unit, long_name = describe(name)
+            out[name] = (("time", "space_axis"),
+                         {"units": unit, "long_name": long_name.replace(", primary path", "")})
     if sweep.draws:
         out["angle_from_nominal"] = (
             ("time",),
@@ -101,7 +107,9 @@ def template(sweep, nominal=None, lazy: bool = False):
         np.zeros(sweep.chunks, dtype=np.int8),
         {"long_name": "1 once the chunk's samples are written", "units": "1"},
     )
-    coords = {"time": ("time", sweep.times, variable_attrs("t")), **_COMPONENTS}
+    used = {d for more, _ in _per_sample(sweep).values() for d in more}
+    coords = {"time": ("time", sweep.times, variable_attrs("t")),
+              **{d: v for d, v in _COMPONENTS.items() if d in used}}  # fmt: skip
     for key, values in sweep.grid:
         name = sweep.names[key]
         coords[name] = (name, values, {"scene_key": key, "long_name": f"scene key {key}"})
