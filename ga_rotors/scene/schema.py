@@ -445,7 +445,7 @@ def _check_motion(reader: Reader, out: dict) -> None:
         if "centre_of_mass" in out["body"]:
             raise reader.error(
                 "body.centre_of_mass",
-                "for a body moving through space (with initial.position, initial.velocity "
+                "only for a body moving through space (with initial.position, initial.velocity "
                 "or forces); a body turning about a pivot gives effects.pivot_to_com",
             )
         return
