@@ -61,7 +61,7 @@ _STREAM_COPIES = 4 + SUMMARY_LAG + SUMMARY_DELAY
 COMPILE_NOTICE_SECONDS = 10.0
 
 #: Columns a path's state occupies per sample.
-_PATH_COLUMNS = {"rotor": 4, "quaternion": 4, "euler": 3}
+_PATH_COLUMNS = {"rotor": 4, "quaternion": 4, "euler": 3, "motor": 8}
 #: Columns of each quantity per sample (per path for ``error``).
 _QUANTITY_COLUMNS = {"angles": 3, "omega_space": 3, "L_space": 3, "L": 3}
 
@@ -154,6 +154,8 @@ def estimate(scene, streamed: bool = False) -> Estimate:
     paths = scene.paths
     samples = scene.steps // scene.sample_every + 2
     columns = 1 + 3 + sum(_PATH_COLUMNS.get(p, 4) for p in paths)
+    if scene.moves:  # position and velocity, and the quaternion path's centre of mass
+        columns += 6 + 3 * ("quaternion" in paths)
     for name in scene.data["output"]["quantities"]:
         columns += len(paths) if name == "error" else _QUANTITY_COLUMNS.get(name, 1)
     per_value = sum(BYTES_PER_VALUE.get(f, 8) for f in scene.data["output"]["data"])
@@ -165,7 +167,7 @@ def estimate(scene, streamed: bool = False) -> Estimate:
         memory = samples * columns * 8 * WORKING_COPIES
     from .schema import compile_seconds
 
-    effects = len(scene.data["effects"])
+    effects = len(scene.data["effects"]) + len(scene.data.get("forces", []))  # terms
     return Estimate(
         steps=scene.steps * len(paths),
         samples=samples,
