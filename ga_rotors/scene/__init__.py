@@ -7,11 +7,15 @@ Data flows one way, one module per step:
 * :mod:`~ga_rotors.scene.model`: :class:`Scene`, the resolved scene and its derived values;
 * :mod:`~ga_rotors.scene.toml_io`: a resolved scene written back as TOML;
 * :mod:`~ga_rotors.scene.loading`: :func:`load_scene`, files and the bundled scenes;
-* :mod:`~ga_rotors.scene.exact`: the exact solution that applies, in the scene's terms;
+* :mod:`~ga_rotors.scene.exact`: the exact solution that applies, in the scene's terms
+  (:mod:`~ga_rotors.scene.motion` for a body moving through space; its ``[[forces]]``
+  are :mod:`~ga_rotors.scene.force_types`);
 * :mod:`~ga_rotors.scene.run`: :func:`run_scene`, a scene integrated into a Trajectory
   (:func:`run_pieces`: the same run as pieces of consecutive samples);
 * :mod:`~ga_rotors.scene.summary`: the closing summary (invariants, cross-check, exact),
-  accumulated piece by piece;
+  accumulated piece by piece; :mod:`~ga_rotors.scene.motion_summary` that of a body moving
+  through space (its exact errors, balances and cross-check), both a
+  :class:`~ga_rotors.scene.reports.Report`;
 * :mod:`~ga_rotors.scene.thinning`: the bounded copy of a long run its figure is drawn from;
 * :mod:`~ga_rotors.scene.figures`: the run's figure;
 * :mod:`~ga_rotors.scene.formats`: the data formats (``output.data``), a registry;

@@ -88,7 +88,14 @@ class MotionExact:
 
 
 def build(scene) -> MotionExact | None:
-    """The exact reference of a motion ``scene``, or None (see :class:`MotionExact`)."""
+    """The exact reference of a motion ``scene``, or None (see :class:`MotionExact`).
+
+    Examples
+    --------
+    >>> from ga_rotors.scene import load_scene
+    >>> build(load_scene("thrown_racket")).name, build(load_scene("satellite_orbit"))
+    ('free_flight', None)
+    """
     reference = _reference(scene)
     return None if reference is None else MotionExact(scene.exact, reference)
 

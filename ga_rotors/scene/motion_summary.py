@@ -31,7 +31,7 @@ from ..effects import listed
 from ..trajectory import Trajectory
 from . import motion
 from .model import Scene
-from .summary import Report, mark_incomplete
+from .reports import Report, mark_incomplete
 
 __all__ = ["MotionSummary"]
 

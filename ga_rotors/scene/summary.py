@@ -28,7 +28,6 @@ the output step Δ rather than the O(Δ²) of linear interpolation.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -38,6 +37,7 @@ from .._validate import UNIT_TOLERANCE
 from ..effects import listed
 from ..trajectory import Trajectory
 from .model import Scene
+from .reports import Report, mark_incomplete
 
 __all__ = [
     "Report",
@@ -45,36 +45,11 @@ __all__ = [
     "extrema",
     "hermite_at",
     "invariant_series",
-    "mark_incomplete",
     "report",
     "status_report",
     "summary_for",
     "zero_crossings",
 ]
-
-
-@dataclass
-class Report:
-    """A run's summary: ``lines`` to print and ``values`` (name -> number) to test.
-
-    :func:`report` fills one from a simulated scene; ``str`` joins the lines.
-
-    Examples
-    --------
-    >>> rep = Report("demo", ["scene demo: rk4", "  energy drift 1e-15"], {"energy": 1e-15})
-    >>> print(rep)
-    scene demo: rk4
-      energy drift 1e-15
-    >>> rep.values["energy"]
-    1e-15
-    """
-
-    scene: str
-    lines: list[str] = field(default_factory=list)
-    values: dict[str, float] = field(default_factory=dict)
-
-    def __str__(self) -> str:
-        return "\n".join(self.lines)
 
 
 # ---------------------------------------------------------------------------- Hermite
@@ -968,20 +943,6 @@ class RunSummary:
             f"  |L| at the end {measured:.10g} (exact {ref:.10g}, {diff}); "
             f"|L₀| = {np.linalg.norm(body.momentum(self.first[1])):.6g}"
         )
-
-
-def mark_incomplete(rep: Report, meta: dict, t_end: float) -> None:
-    """Put the INCOMPLETE line first in ``rep`` (and ``values["incomplete"]``) when a path
-    stopped before ``t_end``: every figure below it covers only the steps taken."""
-    stopped = {p: i for p, i in meta["paths"].items() if not i["complete"]}
-    if stopped:
-        where = ", ".join(f"{p} at t = {i['ended_at']:g} s" for p, i in stopped.items())
-        rep.lines.insert(
-            0,
-            f"INCOMPLETE: the run stopped before t = {t_end:g} s ({where}); the figures "
-            "below cover only the steps taken",
-        )
-        rep.values["incomplete"] = 1.0
 
 
 def status_report(scene: Scene, meta: dict) -> Report:

@@ -23,7 +23,14 @@ __all__ = ["MotionRun", "run_motion_samples"]
 class MotionRun:
     """Every sample's state at the times ``t`` (k,): ``q`` (k, n, 4), ``w`` (k, n, 3),
     ``position`` and ``velocity`` (k, n, 3), as :class:`ga_rotors.ensemble.EnsembleRun`
-    with the motion's position and velocity added."""
+    with the motion's position and velocity added.
+
+    Examples
+    --------
+    >>> run = MotionRun(np.array([1.0]), *(np.zeros((1, 2, k)) for k in (4, 3, 3, 3)))
+    >>> run.position.shape
+    (1, 2, 3)
+    """
 
     t: np.ndarray
     q: np.ndarray

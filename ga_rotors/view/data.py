@@ -8,9 +8,11 @@ from these. Every input is checked here, so the page's data is always valid JSON
 finite numbers, strictly increasing times, and text without control characters.
 :func:`from_trajectory` is the adapter from a :class:`~ga_rotors.trajectory.Trajectory`.
 
-Room for rigid motion: ``positions`` (per path, the body frame's origin in space at each
-sample) moves the body, and ``lines`` draws lines in space (a velocity line), each given
-per sample; both are optional and the page draws what is there.
+Rigid motion: ``positions`` (per path, the body frame's origin in space at each sample)
+moves the body, and ``lines`` draws lines in space, each given per sample; for a body
+moving through space :func:`from_trajectory` gives both, the line being the velocity
+line's axis (:func:`screw_axes`, the instantaneous screw axis). Both are optional and the
+page draws what is there.
 """
 
 from __future__ import annotations
@@ -26,7 +28,19 @@ from .._validate import as_float_array
 from ..errors import InputError
 from .geometry import Solid, from_inertia
 
-__all__ = ["NEAR_LOCK", "Line", "ViewData", "from_trajectory", "symmetry_axis", "visible_text"]
+__all__ = [
+    "NEAR_LOCK",
+    "VELOCITY_LINE",
+    "Line",
+    "ViewData",
+    "from_trajectory",
+    "screw_axes",
+    "symmetry_axis",
+    "visible_text",
+]
+
+#: The velocity line's legend text and colour (a brown apart from the axes', ω's and L's).
+VELOCITY_LINE = ("velocity line: the instantaneous screw axis, M B M̃", "#8c510a")
 
 #: |sin θ| below which the page flags the z–y′–z″ angles as near gimbal lock: their
 #: rates ψ̇, φ̇ grow as 1/sin θ there (exact lock is ``ga_rotors.euler``'s own flag).
@@ -333,4 +347,52 @@ def from_trajectory(trajectory, body=None, *, title: str = "ga_rotors", descript
     if isinstance(body, RigidBody):
         r = Q.to_matrix(np.asarray(body.principal_rotation))
         body = r @ np.diag(body.moments) @ r.T
-    return ViewData(trajectory.t, paths, trajectory.w, body, title, description, solid)
+    positions, lines = {}, ()
+    if "position" in trajectory:  # a body moving through space, and its velocity line
+        positions = {p: trajectory.positions(p) for p in paths}
+        n = trajectory.w.shape[0]
+        lever = Q.rotate(Q.normalize(paths[trajectory.paths[0]][:n]),
+                         np.asarray(trajectory.meta.get("centre_of_mass", (0.0, 0.0, 0.0))))
+        centre = positions[trajectory.paths[0]][:n] + lever
+        point, direction = screw_axes(trajectory.velocity_lines(), centre)
+        lines = (Line("velocity", *VELOCITY_LINE[:1], point, direction, VELOCITY_LINE[1]),)
+    return ViewData(trajectory.t, paths, trajectory.w, body, title, description, solid,
+                    positions, lines)  # fmt: skip
+
+
+def screw_axes(lines, near) -> tuple[np.ndarray, np.ndarray]:
+    """The axes of space velocity lines (n, 6) (:meth:`Trajectory.velocity_lines`): each
+    one's point nearest ``near`` (n, 3), m, and its unit direction, the angular velocity's.
+
+    The velocity of the point x is v(x) = v₀ + ω × x (v₀ that of the point at the space
+    origin); it is along ω on the line through ω × v₀ / |ω|² (Chasles: the body turns
+    about that axis and slides along it). A pure translation (ω = 0) has its axis at
+    infinity: the line through ``near`` along the velocity stands in for it.
+
+    Examples
+    --------
+    Turning at 2 rad/s about z while the point at the origin moves along y at 2 m/s: the
+    axis is the vertical through (−1, 0, 0), where ω × x cancels v₀.
+
+    >>> from ga_rotors import motor
+    >>> B = motor.velocity_line([[0.0, 0.0, 2.0]], [[0.0, 2.0, 0.0]])
+    >>> point, direction = screw_axes(B, [[1.0, 0.0, 5.0]])
+    >>> point.round(12) + 0.0, direction + 0.0
+    (array([[-1.,  0.,  5.]]), array([[0., 0., 1.]]))
+    """
+    from .. import motor
+
+    w, v0 = motor.velocities(lines)
+    near = np.broadcast_to(np.asarray(near, dtype=np.float64), w.shape)
+    rate = np.linalg.norm(w, axis=-1, keepdims=True)
+    turning = rate[..., 0] > 0.0
+    safe = np.where(rate > 0.0, rate, 1.0)
+    u = w / safe
+    on_axis = np.cross(w, v0) / (safe * safe)
+    point = on_axis + np.einsum("...i,...i->...", near - on_axis, u)[..., None] * u
+    # a translation: through the point, along its velocity (or along z at rest)
+    v = v0 + np.cross(w, near)
+    speed = np.linalg.norm(v, axis=-1, keepdims=True)
+    along = np.where(speed > 0.0, v / np.where(speed > 0.0, speed, 1.0), [0.0, 0.0, 1.0])
+    return (np.where(turning[..., None], point, near),
+            np.where(turning[..., None], u, along))  # fmt: skip

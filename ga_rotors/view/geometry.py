@@ -338,7 +338,8 @@ def from_scene(scene) -> Solid:
     ``moments`` or ``tensor`` is the uniform ellipsoid of its inertia about the centre of
     mass (for a tensor given about the pivot, ``inertia_about = "pivot"``, the pivot's share
     m(|r|²1 − r rᵀ) is taken off first). With gravity the pivot is the origin and the centre
-    of mass is at ``pivot_to_com``.
+    of mass is at ``pivot_to_com``; for a body moving through space, at its
+    ``body.centre_of_mass``.
 
     Examples
     --------
@@ -357,6 +358,8 @@ def from_scene(scene) -> Solid:
         gravity = scene.data["effects"][scene.gravity_index]
         centre, pivot = tuple(gravity["pivot_to_com"]), (0.0, 0.0, 0.0)
         about_pivot = gravity.get("inertia_about") == "pivot"
+    elif scene.moves:  # a body moving through space: its frame's origin may be off the centre
+        centre = tuple(scene.body.centre_of_mass)
     if "shape" in body:
         kind = body["shape"]
         size = tuple(body[k] for k in SHAPES[kind][1])

@@ -48,7 +48,16 @@ ELEMENTS = {
     "L": ("L = Iω, angular momentum, in space", "#1a1a1a"),
     "plane": ("the rotor's plane (its bivector) and angle α", "#e6c700"),
     "trace": ("trace of the symmetry axis on the unit sphere", "#56b4e9"),
+    "trail": ("path of the centre of mass through space", "#6a3d9a"),
 }
+
+#: For a body moving through space: how far the whole flight reaches from the view's centre
+#: across or up the picture (drawing units; the picture shows 1.65 each way), the smallest
+#: body drawn (its reach, enlarged up to it and said so), and the size of ω, L, the rotor's
+#: plane and the trace's sphere around its centre of mass.
+FLIGHT_REACH = 1.5
+SMALLEST_BODY = 0.2
+MOVING_GLYPH = 0.4
 
 #: Drawn length of each vector at its largest over the run (drawing units).
 _LENGTHS = {"omega": 1.2, "L": 1.45}
@@ -74,6 +83,7 @@ def _vector(key: str, values: np.ndarray, rows: np.ndarray, unit: str) -> dict:
 
 
 def _body(data: ViewData, scale: float) -> dict | None:
+    """The body's mesh at ``scale`` drawing units per metre, in its body frame."""
     solid = data.solid
     if solid is None:
         return None
@@ -99,6 +109,64 @@ def _scale(data: ViewData) -> float:
     return BODY_REACH / (reach + moved) if reach + moved > 0 else 1.0
 
 
+def _camera(data: ViewData) -> dict:
+    """Where the view looks from: for a body moving through space, from the side of its
+    flight (the centre of mass' horizontal travel runs across the picture, left to right),
+    a little from above; a closed orbit from higher up; else the default."""
+    if not data.positions:
+        return {"azimuth": 40.0, "elevation": 22.0}
+    trail = next(iter(_trails(data).values()))
+    travel = trail[-1] - trail[0]
+    spread = np.ptp(trail, axis=0)
+    if np.hypot(*travel[:2]) > 0.5 * np.hypot(*spread[:2]):
+        heading = np.degrees(np.arctan2(travel[1], travel[0]))
+        return {"azimuth": round(float(heading - 70.0), 3), "elevation": 15.0}
+    return {"azimuth": 40.0, "elevation": 35.0}
+
+
+def _basis(camera: dict) -> tuple[np.ndarray, np.ndarray]:
+    """The picture's right and up directions in space (viewer.js's ``basis``)."""
+    a, e = np.radians(camera["azimuth"]), np.radians(camera["elevation"])
+    eye = np.array([np.cos(e) * np.cos(a), np.cos(e) * np.sin(a), np.sin(e)])
+    right = np.array([-np.sin(a), np.cos(a), 0.0])
+    return right, np.cross(eye, right)
+
+
+def _frame(data: ViewData, camera: dict) -> tuple[np.ndarray, float, float]:
+    """(centre in m, drawing units per metre of the flight, of the body) of a body moving
+    through space, seen from ``camera``: the whole flight (every path's origin, and its
+    centre of mass with the body's reach around it) fills the picture to
+    :data:`FLIGHT_REACH` across or up; a body that would be drawn smaller than
+    :data:`SMALLEST_BODY` is enlarged to it."""
+    reach = 0.0
+    if data.solid is not None:
+        vertices = data.solid.mesh()[0]
+        reach = float(np.linalg.norm(vertices - np.asarray(data.solid.centre), axis=1).max())
+    origins = np.concatenate(list(data.positions.values()))
+    centres = np.concatenate(list(_trails(data).values()))
+    right, up = _basis(camera)
+    lo, hi = [], []
+    for axis in (right, up):
+        a, b = origins @ axis, centres @ axis
+        lo.append(min(a.min(), b.min() - reach))
+        hi.append(max(a.max(), b.max() + reach))
+    lo, hi = np.array(lo), np.array(hi)
+    middle = (lo + hi) / 2.0
+    mean = centres.mean(axis=0)  # a point of space whose picture is the middle
+    centre = mean + right * (middle[0] - mean @ right) + up * (middle[1] - mean @ up)
+    half = float(np.max(hi - lo)) / 2.0
+    scale = FLIGHT_REACH / half if half > 0 else 1.0
+    body = max(scale, SMALLEST_BODY / reach) if reach > 0 else scale
+    return centre, scale, body
+
+
+def _trails(data: ViewData) -> dict:
+    """Per path with positions, its centre of mass in space at each sample (m)."""
+    centre = np.asarray(data.solid.centre if data.solid is not None else (0.0, 0.0, 0.0))
+    return {k: p + Q.rotate(data.paths[k][: p.shape[0]], centre)
+            for k, p in data.positions.items()}  # fmt: skip
+
+
 def payload(data: ViewData) -> dict:
     """The page's data: everything ``viewer.js`` draws, thinned to :data:`MAX_FRAMES`.
 
@@ -113,7 +181,14 @@ def payload(data: ViewData) -> dict:
     n = data.t.shape[0]
     idx = _thin(n, MAX_FRAMES)
     wi = np.minimum(idx, data.w.shape[0] - 1)
-    scale = _scale(data)
+    moving = bool(data.positions)
+    camera = _camera(data)
+    if moving:
+        centre, scale, body_scale = _frame(data, camera)
+        trails = _trails(data)
+    else:
+        centre, scale = np.zeros(3), _scale(data)
+        body_scale, trails = scale, {}
     axis = data.symmetry_direction
     vectors = [_vector("omega", data.w, wi, "rad/s")]
     if data.L is not None:
@@ -126,6 +201,8 @@ def payload(data: ViewData) -> dict:
         sin_theta = np.abs(np.sin(np.radians(angles[keep, 1])))
         traced = _thin(m, MAX_TRACE)
         position = data.positions.get(name)
+        trail = trails.get(name)
+        drawn = None if trail is None else _thin(trail.shape[0], MAX_TRACE)
         paths.append({
             "name": name,
             "frames": int(keep.shape[0]),
@@ -137,11 +214,15 @@ def payload(data: ViewData) -> dict:
             "endedAt": None if m == n else float(data.t[m - 1]),
             "trace": Q.rotate(q[traced], axis).round(4).tolist(),
             "traceUpTo": np.searchsorted(traced, keep, side="right").tolist(),
-            "position": None if position is None else (position[keep] * scale).round(6).tolist(),
+            "position": None if position is None
+            else ((position[keep] - centre) * scale).round(6).tolist(),
+            "trail": None if trail is None else ((trail[drawn] - centre) * scale).round(5).tolist(),
+            "trailUpTo": None if trail is None
+            else np.searchsorted(drawn, keep, side="right").tolist(),
         })  # fmt: skip
     lines = [
         {"key": line.key, "label": line.label, "colour": line.colour,
-         "point": (line.point[idx] * scale).round(6).tolist(),
+         "point": ((line.point[idx] - centre) * scale).round(6).tolist(),
          "direction": (line.direction[idx] / np.maximum(_norms(line.direction[idx]), 1e-300)
                        [:, None]).round(6).tolist()}
         for line in data.lines
@@ -150,21 +231,24 @@ def payload(data: ViewData) -> dict:
         "format": 2,
         "title": data.title,
         "t": data.t[idx].tolist(),
-        "body": _body(data, scale),
+        "body": _body(data, body_scale),
         "metresPerUnit": None if data.solid is None or data.solid.relative else 1.0 / scale,
+        "bodyEnlarged": body_scale / scale,
+        "glyph": MOVING_GLYPH if moving else 1.0,
         "inertia": None if data.inertia is None else data.inertia.tolist(),
         "symmetry": axis.tolist(),
         "vectors": vectors,
         "paths": paths,
         "lines": lines,
         "elements": _elements(data),
-        "camera": {"azimuth": 40.0, "elevation": 22.0},
+        "camera": camera,
     }
 
 
 def _elements(data: ViewData) -> list[dict]:
     present = {"body": data.solid is not None, "pivot": data.solid is not None
-               and data.solid.pivot is not None, "L": data.L is not None}  # fmt: skip
+               and data.solid.pivot is not None, "L": data.L is not None,
+               "trail": bool(data.positions)}  # fmt: skip
     out = [{"key": k, "label": text, "colour": colour}
            for k, (text, colour) in ELEMENTS.items() if present.get(k, True)]  # fmt: skip
     out += [{"key": line.key, "label": line.label, "colour": line.colour} for line in data.lines]
@@ -190,7 +274,9 @@ def _swatch(key: str, colour: str) -> str:
         shape = '<circle cx="14" cy="7" r="4.5" fill="#fff" stroke="#000" stroke-width="2.5"/>'
     else:
         width = 4 if key in ("omega", "L") else 2.5
-        shape = f'<line x1="2" y1="7" x2="26" y2="7" stroke="{colour}" stroke-width="{width}"/>'
+        dash = ' stroke-dasharray="6 3"' if key == "velocity" else ""
+        shape = (f'<line x1="2" y1="7" x2="26" y2="7" stroke="{colour}" stroke-width="{width}"'
+                 f'{dash}/>')
     return f'<svg width="28" height="14" aria-hidden="true">{shape}</svg>'
 
 
@@ -242,6 +328,14 @@ def page_html(data: ViewData) -> str:
     )
     size = ("to scale, " + f"{data_json['metresPerUnit']:.3g} m per unit"
             if data_json["metresPerUnit"] else "its size relative")  # fmt: skip
+    if data_json["bodyEnlarged"] > 1.0 + 1e-9:
+        size += f" (the body itself enlarged {data_json['bodyEnlarged']:.3g}× to be seen)"
+    where = ("turning about the origin" if not data.positions else
+             "moving through space, framed to show its whole flight; ω, L, the rotor's plane, "
+             f"the space axes and the trace's sphere (radius {MOVING_GLYPH:g} units) are "
+             "drawn around its centre of mass at a fixed size")  # fmt: skip
+    sphere = ("the unit sphere (radius 1) carries the trace" if not data.positions
+              else "a sphere around the centre of mass carries the trace")  # fmt: skip
     return f"""<!DOCTYPE html>
 <html lang="en"><head><meta charset="utf-8">
 <meta name="viewport" content="width=device-width, initial-scale=1">
@@ -262,8 +356,8 @@ def page_html(data: ViewData) -> str:
 <thead><tr><th>path</th><th>rotor R = w − x e23 − y e31 − z e12</th>
 <th>quaternion (w, x, y, z)</th><th>z–y′–z″ (ψ, θ, φ)</th><th>gimbal</th></tr></thead>
 <tbody>{rows}</tbody></table>
-<p id="legend-note">Space axes x, y, z in grey; the unit sphere (radius 1) carries the trace.
-The body is drawn {size}, turning about the origin. {scales}. The rotor's plane is the
+<p id="legend-note">Space axes x, y, z in grey; {sphere}.
+The body is drawn {size}, {where}. {scales}. The rotor's plane is the
 plane of the bivector of R = cos(α/2) − I u sin(α/2) (the plane ⊥ u), the arc its angle α.
 Drag a picture to turn the view; double-click to reset it.</p>
 <script type="application/json" id="view-data">{_script_json(data_json)}</script>

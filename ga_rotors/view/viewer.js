@@ -16,7 +16,9 @@
   const TONES = [[0xc3, 0xca, 0xd2], [0x8f, 0x99, 0xa5]]; // the body's two tones
   const SPACE = "#9a9a9a"; // space axes
   const VIEW_RADIUS = 1.65; // drawing units from the centre to the canvas' nearer edge
-  const PLANE_RADIUS = 1.0, ARC_RADIUS = 0.9, PIECE = 0.08;
+  // A body moving through space gets its ω, L, plane and sphere at a smaller, fixed size.
+  const G = D.glyph || 1;
+  const PLANE_RADIUS = 1.0 * G, ARC_RADIUS = 0.9 * G, PIECE = 0.08;
   const camera = { azimuth: D.camera.azimuth, elevation: D.camera.elevation };
 
   const add = (a, b) => [a[0] + b[0], a[1] + b[1], a[2] + b[2]];
@@ -172,7 +174,7 @@
     order.forEach((v) => {
       const value = v.values[Math.min(i, v.values.length - 1)];
       if (norm(value) < 1e-9) return;
-      const dir = rotate(q, value), tip = add(o, mul(dir, v.length));
+      const dir = rotate(q, value), tip = add(o, mul(dir, v.length * G));
       const thick = v.key === "L";
       const over = !thick && under && dot(unit(dir), under.dir) > Math.cos(Math.PI / 12) ? under.depths : null;
       const depths = arrow(S, o, tip, { colour: COLOUR[v.key], width: thick ? 7 : 3.2 }, thick ? 14 : 11, over);
@@ -212,7 +214,7 @@
     const end = S.project(at(ARC_RADIUS, alpha)), before = S.project(at(ARC_RADIUS, alpha * 0.9));
     S.items.push({ z: end[2] - 1e-3, kind: "head", tip: end, back: before, size: 10, colour: COLOUR.plane });
     const middle = S.project(at(ARC_RADIUS, alpha / 2));
-    const label = S.project(at(ARC_RADIUS + 0.2, alpha / 2));
+    const label = S.project(at(ARC_RADIUS + 0.2 * G, alpha / 2));
     S.labels.push({ text: `α = ${fmt((alpha * 180) / Math.PI, 1)}°`, at: label, colour: "#7a6200" });
     S.anchors.plane = [middle[0], middle[1]];
   }
@@ -226,14 +228,33 @@
         const lo = past ? k : Math.max(k, upto), hi = past ? Math.min(last, upto - 1) : last;
         if (hi < lo) continue;
         const pts = [];
-        for (let j = lo - 1; j <= hi; j++) pts.push(S.project(add(o, T[j])));
+        for (let j = lo - 1; j <= hi; j++) pts.push(S.project(add(o, mul(T[j], G))));
         const z = pts.reduce((acc, x) => acc + x[2], 0) / pts.length;
         S.items.push({ z, kind: "path", pts, style: { colour: COLOUR.trace, width: past ? 1.8 : 1, alpha: past ? 1 : 0.35 } });
       }
     }
-    const tip = S.project(add(o, rotate(q, D.symmetry)));
+    const tip = S.project(add(o, mul(rotate(q, D.symmetry), G)));
     S.items.push({ z: tip[2] - 2e-3, kind: "dot", at: tip, r: 3.5, colour: COLOUR.trace });
     S.anchors.trace = [tip[0], tip[1]];
+  }
+
+  // The centre of mass' path through space: the part flown so far solid, the rest faint.
+  function addTrail(S, p, i) {
+    const T = p.trail, upto = p.trailUpTo[Math.min(i, p.trailUpTo.length - 1)], RUN = 20;
+    for (let k = 1; k < T.length; k += RUN) {
+      const last = Math.min(T.length - 1, k + RUN - 1);
+      for (const past of [true, false]) {
+        const lo = past ? k : Math.max(k, upto), hi = past ? Math.min(last, upto - 1) : last;
+        if (hi < lo) continue;
+        const pts = [];
+        for (let j = lo - 1; j <= hi; j++) pts.push(S.project(T[j]));
+        const z = pts.reduce((acc, x) => acc + x[2], 0) / pts.length;
+        S.items.push({ z, kind: "path", pts, style: { colour: COLOUR.trail, width: past ? 2.4 : 1.2, alpha: past ? 1 : 0.4, dash: past ? [] : [2, 3] } });
+      }
+    }
+    const here = S.project(T[Math.max(0, Math.min(T.length - 1, upto - 1))]);
+    S.items.push({ z: here[2] - 2e-3, kind: "dot", at: here, r: 4, colour: COLOUR.trail });
+    S.anchors.trail = [here[0], here[1]];
   }
 
   function addLines(S, i) {
@@ -349,21 +370,24 @@
       return [];
     }
     const q = p.q[i], o = p.position ? p.position[i] : [0, 0, 0];
-    const centre = S.project(o);
+    // a moving body's ω, L, plane, trace and space axes are drawn at its centre of mass
+    const g = p.position && D.body ? add(o, rotate(q, D.body.centre)) : o;
+    const centre = S.project(g);
     ctx.beginPath(); // the unit sphere's outline, behind everything
-    ctx.arc(centre[0], centre[1], S.s, 0, 2 * Math.PI);
+    ctx.arc(centre[0], centre[1], S.s * G, 0, 2 * Math.PI);
     ctx.strokeStyle = "#e4e4e4";
     ctx.lineWidth = 1;
     ctx.stroke();
     for (let a = 0; a < 3; a++) {
-      const e = [0, 0, 0]; e[a] = 1.6;
-      segments(S, o, add(o, e), { colour: SPACE, width: 1 });
-      S.labels.push({ text: "xyz"[a], at: S.project(add(o, e)), colour: "#777777" });
+      const e = [0, 0, 0]; e[a] = 1.6 * G;
+      segments(S, g, add(g, e), { colour: SPACE, width: 1 });
+      S.labels.push({ text: "xyz"[a], at: S.project(add(g, e)), colour: "#777777" });
     }
     if (D.body) addBody(S, q, o);
-    addVectors(S, q, o, i);
-    addPlane(S, q, o);
-    addTrace(S, p, q, o, i);
+    addVectors(S, q, g, i);
+    addPlane(S, q, g);
+    addTrace(S, p, q, g, i);
+    if (p.trail) addTrail(S, p, i);
     addLines(S, i);
     paint(ctx, S);
     panel.canvas.dataset.elements = JSON.stringify(S.anchors);
