@@ -194,3 +194,24 @@ def test_play_pause_and_the_slider_move_the_flight(chrome, racket):
     j = int(np.flatnonzero(tr.t == still["t"])[0])
     assert still["q"]["motor"] == pytest.approx(Q.normalize(tr.quaternions("motor")[j]).tolist(),
                                                 abs=1e-14)
+
+
+def test_a_saved_result_of_a_moving_body_views_as_its_run(racket, tmp_path):
+    """``ga-rotors view RESULT`` of a racket's npz result: the same flight as the run's page
+    (the quaternion path's origin needs the centre of mass, from the saved scene)."""
+    from ga_rotors.cli import main
+    from ga_rotors.scene import Scene
+
+    page, scene, tr, data = racket
+    moved = Scene({**scene.to_dict(), "output": {**scene.data["output"], "data": ["npz"]}})
+    (tmp_path / "racket.toml").write_text(moved.to_toml())
+    assert main(["run", str(tmp_path / "racket.toml"), "--out", str(tmp_path / "out"),
+                 "--no-progress"]) == 0  # fmt: skip
+    out = tmp_path / "saved.html"
+    assert main(["view", str(tmp_path / "out"), "--out", str(out)]) == 0
+    saved = json.loads(re.search(r'id="view-data">(.*?)</script>', out.read_text(), re.S)[1])
+    for a, b in zip(saved["paths"], data["paths"], strict=True):
+        assert a["name"] == b["name"]
+        assert np.allclose(a["trail"], b["trail"], atol=1e-5)
+        assert np.allclose(a["position"], b["position"], atol=1e-5)
+    assert np.allclose(saved["lines"][0]["point"], data["lines"][0]["point"], atol=1e-5)

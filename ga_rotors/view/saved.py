@@ -218,4 +218,7 @@ def load_result(path: Path):
         raise
     except _UNREADABLE as exc:
         raise InputError(f"{path}: not a readable .npz result ({first_line(exc)})") from None
-    return scene, Trajectory(arrays, meta={"moments": scene.body.moments})
+    meta = {"moments": scene.body.moments, "primary": scene.paths[0]}
+    if scene.moves:  # where the quaternion path's centre of mass is in the body frame
+        meta.update(mass=scene.mass, centre_of_mass=scene.body.centre_of_mass)
+    return scene, Trajectory(arrays, meta=meta)
