@@ -180,6 +180,11 @@ def test_the_viewer_plays_on_the_site(site):
     assert '<iframe class="viewer" src="heavy_top.view.html"' in html
     page = (site / "view" / "heavy_top.view.html").read_text(encoding="utf-8")
     assert "<h1>heavy_top</h1>" in page and 'id="view-data"' in page and "ga_rotors viewer" in page
+    # and the learning path's last page frames the thrown racket's flight
+    html = (site / "learn" / "motors" / "index.html").read_text(encoding="utf-8")
+    assert '<iframe class="viewer" src="thrown_racket.view.html"' in html
+    page = (site / "learn" / "motors" / "thrown_racket.view.html").read_text(encoding="utf-8")
+    assert "<h1>thrown_racket</h1>" in page and '"trail":[[' in page
 
 
 #: An attribute that makes the browser fetch something: scripts, styles, fonts, images, frames.

@@ -62,6 +62,9 @@ COMPILE_NOTICE_SECONDS = 10.0
 
 #: Columns a path's state occupies per sample.
 _PATH_COLUMNS = {"rotor": 4, "quaternion": 4, "euler": 3, "motor": 8}
+#: Numbers a motion scene's summary keeps per sample until its report: t, ω, position,
+#: velocity and the primary path's state (8 for a motor).
+MOTION_SUMMARY_COLUMNS = 1 + 3 + 3 + 3 + 8
 #: Columns of each quantity per sample (per path for ``error``).
 _QUANTITY_COLUMNS = {"angles": 3, "omega_space": 3, "L_space": 3, "L": 3}
 
@@ -163,6 +166,10 @@ def estimate(scene, streamed: bool = False) -> Estimate:
         piece = min(samples, CHUNK_STEPS // scene.sample_every + 2)
         thinned = min(samples, COLUMNS * (2 + 2 * columns)) if scene.data["output"]["plots"] else 0
         memory = (piece * _STREAM_COPIES + thinned) * columns * 8
+        if scene.moves and scene.data["output"]["summary"]:
+            # the balances integrate over the whole run: the summary keeps the primary
+            # path's samples (ga_rotors.scene.motion_summary)
+            memory += samples * MOTION_SUMMARY_COLUMNS * 8
     else:
         memory = samples * columns * 8 * WORKING_COPIES
     from .schema import compile_seconds

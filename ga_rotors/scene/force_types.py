@@ -40,7 +40,7 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 
 from .. import forces as _forces
-from ..effects import Key
+from ..effects import EffectType, Key
 from ..errors import InputError
 from ..integrators.problem import ForceTerm
 from .reader import Reader, join
@@ -81,13 +81,8 @@ class ForceType:
         return self.depends_on_velocity
 
     def resolve(self, reader: Reader, entry: dict, key: str) -> dict:
-        """Check ``entry``'s keys and fill defaults; ``type`` first."""
-        names = ["type", *(k.name for k in self.keys)]
-        reader.table(entry, key, names, ["type", *(k.name for k in self.keys if k.required)])
-        out = {"type": self.name}
-        for k in self.keys:
-            out[k.name] = k.read(reader, entry.get(k.name, k.default), join(key, k.name))
-        return out
+        """Check ``entry``'s keys and fill defaults; ``type`` first (as an effect's)."""
+        return EffectType.resolve(self, reader, entry, key)
 
     def term(self, entry: dict, body, reader: Reader, key: str) -> ForceTerm:
         """The ForceTerm of a resolved ``entry`` on ``body`` (a RigidBody with a mass);

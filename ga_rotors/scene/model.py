@@ -5,12 +5,16 @@ data and are never evaluated) or the same nested dictionary built in Python. The
 every key with its type, default and units, is in ``docs/scenes.md``; in short::
 
     [scene]                     name, description
-    [body]                      moments | tensor | shape + dimensions; mass (kg)
+    [body]                      moments | tensor | shape + dimensions; mass (kg);
+                                centre_of_mass (m, a body moving through space)
+    [initial]                   position (m), velocity (m/s): a body moving through space
     [initial.orientation]       quaternion | euler + sequence + units | rotor | axis + angle + units
     [initial.angular_velocity]  body | space | euler_rates, + units (rad/s, deg/s, rpm)
     [time]                      duration, start, output_step (s)
     [integrator]                method, step (s), paths
     [[effects]]                 type = gravity | damping | body_torque | space_torque | user
+    [[forces]]                  type = uniform_gravity | spring | point_force | linear_drag |
+                                central_gravity | user (a body moving through space)
     [output]                    quantities, plots, figure_format, data, summary
 
 Lengths, masses, times, torques and inertia are SI (m, kg, s, N·m, kg·m²). Angles and

@@ -410,7 +410,7 @@ def _resolve_forces(reader: Reader, value) -> list[dict]:
 
     entries = reader.array(value if value is not None else [], "forces")
     out = []
-    for i, entry in enumerate(entries[: MAX_EFFECTS + 1]):  # more: refused by the caller
+    for i, entry in enumerate(entries):  # (more than MAX_EFFECTS: refused before)
         key = join("forces", i)
         if not isinstance(entry, Mapping):
             raise reader.error(key, "expected a table ([[forces]] with a type)")

@@ -219,20 +219,27 @@
     S.anchors.plane = [middle[0], middle[1]];
   }
 
-  // The symmetry axis' trace on the unit sphere, in runs of pieces (the past darker).
-  function addTrace(S, p, q, o, i) {
-    const T = p.trace, upto = p.traceUpTo[Math.min(i, p.traceUpTo.length - 1)], RUN = 40;
-    for (let k = 1; k < T.length; k += RUN) {
-      const last = Math.min(T.length - 1, k + RUN - 1);
+  // A polyline through the points T (space, mapped by ``at``) in runs of ``run`` pieces,
+  // each depth-sorted: up to ``upto`` (the past) in style(true), after it in style(false).
+  function addRuns(S, T, upto, run, at, style) {
+    for (let k = 1; k < T.length; k += run) {
+      const last = Math.min(T.length - 1, k + run - 1);
       for (const past of [true, false]) {
         const lo = past ? k : Math.max(k, upto), hi = past ? Math.min(last, upto - 1) : last;
         if (hi < lo) continue;
         const pts = [];
-        for (let j = lo - 1; j <= hi; j++) pts.push(S.project(add(o, mul(T[j], G))));
+        for (let j = lo - 1; j <= hi; j++) pts.push(S.project(at(T[j])));
         const z = pts.reduce((acc, x) => acc + x[2], 0) / pts.length;
-        S.items.push({ z, kind: "path", pts, style: { colour: COLOUR.trace, width: past ? 1.8 : 1, alpha: past ? 1 : 0.35 } });
+        S.items.push({ z, kind: "path", pts, style: style(past) });
       }
     }
+  }
+
+  // The symmetry axis' trace on the unit sphere, in runs of pieces (the past darker).
+  function addTrace(S, p, q, o, i) {
+    const upto = p.traceUpTo[Math.min(i, p.traceUpTo.length - 1)];
+    addRuns(S, p.trace, upto, 40, (x) => add(o, mul(x, G)),
+      (past) => ({ colour: COLOUR.trace, width: past ? 1.8 : 1, alpha: past ? 1 : 0.35 }));
     const tip = S.project(add(o, mul(rotate(q, D.symmetry), G)));
     S.items.push({ z: tip[2] - 2e-3, kind: "dot", at: tip, r: 3.5, colour: COLOUR.trace });
     S.anchors.trace = [tip[0], tip[1]];
@@ -240,18 +247,9 @@
 
   // The centre of mass' path through space: the part flown so far solid, the rest faint.
   function addTrail(S, p, i) {
-    const T = p.trail, upto = p.trailUpTo[Math.min(i, p.trailUpTo.length - 1)], RUN = 20;
-    for (let k = 1; k < T.length; k += RUN) {
-      const last = Math.min(T.length - 1, k + RUN - 1);
-      for (const past of [true, false]) {
-        const lo = past ? k : Math.max(k, upto), hi = past ? Math.min(last, upto - 1) : last;
-        if (hi < lo) continue;
-        const pts = [];
-        for (let j = lo - 1; j <= hi; j++) pts.push(S.project(T[j]));
-        const z = pts.reduce((acc, x) => acc + x[2], 0) / pts.length;
-        S.items.push({ z, kind: "path", pts, style: { colour: COLOUR.trail, width: past ? 2.4 : 1.2, alpha: past ? 1 : 0.4, dash: past ? [] : [2, 3] } });
-      }
-    }
+    const T = p.trail, upto = p.trailUpTo[Math.min(i, p.trailUpTo.length - 1)];
+    addRuns(S, T, upto, 20, (x) => x, (past) => ({ colour: COLOUR.trail,
+      width: past ? 2.4 : 1.2, alpha: past ? 1 : 0.4, dash: past ? [] : [2, 3] }));
     const here = S.project(T[Math.max(0, Math.min(T.length - 1, upto - 1))]);
     S.items.push({ z: here[2] - 2e-3, kind: "dot", at: here, r: 4, colour: COLOUR.trail });
     S.anchors.trail = [here[0], here[1]];
