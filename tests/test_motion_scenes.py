@@ -34,8 +34,12 @@ def bundled_run(name: str):
 
 def moving(**changes) -> dict:
     """A small moving body: the base the mistakes below change."""
-    data = {"body": {"moments": [1.0, 2.0, 2.5], "mass": 1.0}, "time": {"duration": 0.1},
-            "integrator": {"step": 0.01}, "initial": {"velocity": [1.0, 0.0, 0.0]}}
+    data = {
+        "body": {"moments": [1.0, 2.0, 2.5], "mass": 1.0},
+        "time": {"duration": 0.1},
+        "integrator": {"step": 0.01},
+        "initial": {"velocity": [1.0, 0.0, 0.0]},
+    }
     data.update(changes)
     return data
 
@@ -57,7 +61,8 @@ def test_bundled_motion_scenes_state_their_accuracy_and_their_paths_agree(name):
     assert rep.values["motor_vs_quaternion_distance"] == pytest.approx(gap, rel=1e-12)
     # every balance stated, and held to RK4's error (and Simpson's on the samples)
     assert {"balance_energy", "balance_linear_momentum", "balance_angular_momentum"} <= set(
-        rep.values)
+        rep.values
+    )
     for key, value in rep.values.items():
         if key.startswith("balance_"):
             assert value < 1e-8, key
@@ -74,7 +79,8 @@ def test_the_racket_flips_while_its_centre_of_mass_flies_its_parabola():
     lever = Q.rotate(scene.orientation, s)
     c0 = np.array(scene.data["initial"]["position"]) + lever
     cdot0 = np.array(scene.data["initial"]["velocity"]) + np.cross(
-        Q.rotate(scene.orientation, scene.angular_velocity), lever)
+        Q.rotate(scene.orientation, scene.angular_velocity), lever
+    )
     t = tr.t[:, None]
     parabola = c0 + cdot0 * t + 0.5 * np.array([0.0, 0.0, -G]) * t * t
     centre = tr["q_com"][:, 4:]
@@ -138,27 +144,36 @@ def test_a_summary_in_pieces_is_the_summary_of_the_whole_run():
         ({"forces": {"type": "uniform_gravity"}}, "forces"),
         ({"forces": [{"type": "uniform_gravity", "g": [0.0, 0.0]}]}, "forces[0].g"),
         ({"forces": [{"type": "uniform_gravity", "g": [0.0, 0.0, 0.0]}]}, "forces[0].g"),
-        ({"forces": [{"type": "spring", "stiffness": -1.0, "anchor": [0, 0, 1]}]},
-         "forces[0].stiffness"),
-        ({"forces": [{"type": "point_force", "force": [1, 0, 0], "fixed_in": "bdy"}]},
-         "forces[0].fixed_in"),
+        (
+            {"forces": [{"type": "spring", "stiffness": -1.0, "anchor": [0, 0, 1]}]},
+            "forces[0].stiffness",
+        ),
+        (
+            {"forces": [{"type": "point_force", "force": [1, 0, 0], "fixed_in": "bdy"}]},
+            "forces[0].fixed_in",
+        ),
         ({"forces": [{"type": "central_gravity", "mu": 0.0}]}, "forces[0].mu"),
         ({"forces": [{"type": "user", "function": "os.system"}]}, "forces[0].function"),
-        ({"effects": [{"type": "gravity", "pivot_to_com": [0.0, 0.0, 0.1]}]},
-         "initial.velocity"),
+        ({"effects": [{"type": "gravity", "pivot_to_com": [0.0, 0.0, 0.1]}]}, "initial.velocity"),
         ({"integrator": {"step": 0.01, "paths": ["rotor"]}}, "integrator.paths[0]"),
         ({"integrator": {"step": 0.01, "paths": ["motor", "euler"]}}, "integrator.paths[1]"),
         ({"initial": {"velocity": [1.0, 0.0]}}, "initial.velocity"),
         ({"initial": {"position": [0.0, 0.0, math.inf]}}, "initial.position[2]"),
         ({"initial": {"velocity": [1e300, 0.0, 0.0]}}, "initial.velocity"),
         ({"initial": {"positon": [0.0, 0.0, 1.0]}}, "initial.positon"),
-        ({"body": {"moments": [1.0, 2.0, 2.5], "mass": 1.0, "centre_of_mass": [0, 1]}},
-         "body.centre_of_mass"),
+        (
+            {"body": {"moments": [1.0, 2.0, 2.5], "mass": 1.0, "centre_of_mass": [0, 1]}},
+            "body.centre_of_mass",
+        ),
         ({"output": {"quantities": ["total_energy"]}}, "output.quantities[0]"),
         ({"output": {"plots": ["invariants"]}}, "output.plots[0]"),
-        ({"forces": [{"type": "linear_drag", "coefficient": 0.1}],
-          "integrator": {"method": "split2", "step": 0.01, "paths": ["motor"]}},
-         "integrator.method"),
+        (
+            {
+                "forces": [{"type": "linear_drag", "coefficient": 0.1}],
+                "integrator": {"method": "split2", "step": 0.01, "paths": ["motor"]},
+            },
+            "integrator.method",
+        ),
     ],
 )
 def test_every_mistake_is_one_line_naming_the_file_and_the_key(change, key):
@@ -169,8 +184,11 @@ def test_every_mistake_is_one_line_naming_the_file_and_the_key(change, key):
 
 
 def test_motion_keys_on_a_body_turning_about_a_fixed_point_are_refused():
-    still = {"body": {"moments": [1.0, 2.0, 2.5], "centre_of_mass": [0.0, 0.1, 0.0]},
-             "time": {"duration": 0.1}, "integrator": {"step": 0.01}}
+    still = {
+        "body": {"moments": [1.0, 2.0, 2.5], "centre_of_mass": [0.0, 0.1, 0.0]},
+        "time": {"duration": 0.1},
+        "integrator": {"step": 0.01},
+    }
     with pytest.raises(SceneError, match=r"body\.centre_of_mass: only for a body moving"):
         Scene(still)
     del still["body"]["centre_of_mass"]
@@ -200,7 +218,8 @@ def test_the_guards_count_forces_with_the_effects():
 
     scene = Scene(moving(forces=[weight] * 20, effects=[torque] * 10))
     assert estimate(scene).compile_seconds == pytest.approx(
-        compile_seconds(30, scene.method.evaluations))
+        compile_seconds(30, scene.method.evaluations)
+    )
 
 
 def test_a_motion_scene_round_trips_and_a_rotation_scene_is_unchanged():
@@ -231,17 +250,26 @@ def test_the_docs_describe_every_force_key():
 
 def test_a_spring_at_the_centre_of_mass_is_a_harmonic_oscillator():
     k, m = 8.0, 2.0
-    scene = Scene({"body": {"moments": [0.1, 0.2, 0.25], "mass": m},
-                   "initial": {"position": [1.0, 0.0, 0.0], "velocity": [0.0, 0.5, 0.0],
-                               "angular_velocity": {"body": [0.3, 2.0, 0.1], "units": "rad/s"}},
-                   "forces": [{"type": "spring", "stiffness": k, "anchor": [0.0, 0.0, 0.0]}],
-                   "time": {"duration": 2.0, "output_step": 0.1}, "integrator": {"step": 1e-3}})
+    scene = Scene(
+        {
+            "body": {"moments": [0.1, 0.2, 0.25], "mass": m},
+            "initial": {
+                "position": [1.0, 0.0, 0.0],
+                "velocity": [0.0, 0.5, 0.0],
+                "angular_velocity": {"body": [0.3, 2.0, 0.1], "units": "rad/s"},
+            },
+            "forces": [{"type": "spring", "stiffness": k, "anchor": [0.0, 0.0, 0.0]}],
+            "time": {"duration": 2.0, "output_step": 0.1},
+            "integrator": {"step": 1e-3},
+        }
+    )
     assert scene.exact == "spring_at_centre_of_mass"
     tr = run_scene(scene)
     omega = math.sqrt(k / m)
     t = tr.t[:, None]
-    expected = (np.array([1.0, 0.0, 0.0]) * np.cos(omega * t)
-                + np.array([0.0, 0.5, 0.0]) / omega * np.sin(omega * t))
+    expected = np.array([1.0, 0.0, 0.0]) * np.cos(omega * t) + np.array(
+        [0.0, 0.5, 0.0]
+    ) / omega * np.sin(omega * t)
     assert np.abs(tr.positions() - expected).max() < 1e-9
     rep = report(scene, tr)
     assert rep.values["position_error_motor"] < 1e-9 and rep.values["error_motor"] < 1e-9
@@ -253,8 +281,9 @@ def test_a_spring_at_the_centre_of_mass_is_a_harmonic_oscillator():
 
 def test_a_user_force_runs_only_on_the_opt_in(tmp_path, monkeypatch):
     monkeypatch.delenv("GA_ROTORS_ALLOW_USER_CODE", raising=False)
-    data = moving(forces=[{"type": "user", "function": "_forces_for_tests:linear_air_drag",
-                           "params": [0.1]}])
+    data = moving(
+        forces=[{"type": "user", "function": "_forces_for_tests:linear_air_drag", "params": [0.1]}]
+    )
     scene = Scene(data, file="ball.toml")  # loading and showing run nothing
     assert "_forces_for_tests" not in sys.modules
     scene.to_toml()
@@ -269,8 +298,18 @@ def test_a_user_force_runs_only_on_the_opt_in(tmp_path, monkeypatch):
 @pytest.mark.usefixtures("tests_code")
 def test_a_user_force_is_integrated_on_the_opt_in():
     b, m, v0 = 0.1, 1.0, 1.0
-    scene = Scene(moving(forces=[{"type": "user", "function": "_forces_for_tests:linear_air_drag",
-                                  "params": [b], "depends_on_velocity": True}]))
+    scene = Scene(
+        moving(
+            forces=[
+                {
+                    "type": "user",
+                    "function": "_forces_for_tests:linear_air_drag",
+                    "params": [b],
+                    "depends_on_velocity": True,
+                }
+            ]
+        )
+    )
     tr = run_scene(scene)
     exact = v0 * np.exp(-b * tr.t / m)  # m v̇ = −b v
     assert np.abs(tr.velocities()[:, 0] - exact).max() < 1e-12
@@ -324,17 +363,22 @@ def test_a_sweep_over_the_racket_s_spin(tmp_path):
     pytest.importorskip("zarr")
     from ga_rotors.sweep import load_sweep, open_sweep, run_sweep
 
-    text = ('[sweep]\nscene = "thrown_racket"\nsamples = 3\nseed = 5\ntimes = [0.1, 0.2]\n'
-            '[set]\n"time.duration" = 0.2\n'
-            '[[draw]]\nkey = "initial.angular_velocity.body[2]"\nnormal = [0.05, 0.02]\n')
+    text = (
+        '[sweep]\nscene = "thrown_racket"\nsamples = 3\nseed = 5\ntimes = [0.1, 0.2]\n'
+        '[set]\n"time.duration" = 0.2\n'
+        '[[draw]]\nkey = "initial.angular_velocity.body[2]"\nnormal = [0.05, 0.02]\n'
+    )
     sweep = load_sweep(text)
     run_sweep(text, tmp_path / "racket.zarr", client="sync")
     ds = open_sweep(tmp_path / "racket.zarr")
     assert ds["position"].attrs["units"] == "m" and ds["position"].shape == (3, 2, 3)
     # each sample is the scene run with its drawn value, bit for bit
     drawn = ds["initial_angular_velocity_body_2"].values
-    one = run_scene(sweep.scene.replace({"initial.angular_velocity.body[2]": float(drawn[1]),
-                                         "integrator.paths": ["motor"]}))
+    one = run_scene(
+        sweep.scene.replace(
+            {"initial.angular_velocity.body[2]": float(drawn[1]), "integrator.paths": ["motor"]}
+        )
+    )
     rows = np.searchsorted(one.t, [0.1, 0.2])
     assert np.array_equal(ds["position"].values[1], one.positions()[rows])
     assert np.array_equal(ds["w"].values[1], one.w[rows])

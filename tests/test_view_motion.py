@@ -124,7 +124,7 @@ def test_the_page_is_light_and_places_the_flight_where_the_run_puts_it(racket):
 
 
 def test_every_element_is_drawn_the_flight_is_framed_and_the_body_moves(chrome, racket):
-    page, scene, tr, data = racket
+    page, _, tr, data = racket
     boxes = []
     for t in (0.1, 0.6, 1.0):
         chrome.open(page, f"t={t}")
@@ -175,7 +175,7 @@ def test_every_element_is_drawn_the_flight_is_framed_and_the_body_moves(chrome, 
 
 
 def test_play_pause_and_the_slider_move_the_flight(chrome, racket):
-    page, scene, tr, data = racket
+    page, _, tr, data = racket
     chrome.open(page)
     before = _state(chrome)["panels"][0]["elements"]["trail"]
     chrome.evaluate("(() => { const s = document.getElementById('slider'); s.value = '70';"
@@ -192,8 +192,9 @@ def test_play_pause_and_the_slider_move_the_flight(chrome, racket):
     still = _state(chrome)
     assert still["button"] == "play" and still["i"] == paused["i"]
     j = int(np.flatnonzero(tr.t == still["t"])[0])
-    assert still["q"]["motor"] == pytest.approx(Q.normalize(tr.quaternions("motor")[j]).tolist(),
-                                                abs=1e-14)
+    assert still["q"]["motor"] == pytest.approx(
+        Q.normalize(tr.quaternions("motor")[j]).tolist(), abs=1e-14
+    )
 
 
 def test_a_saved_result_of_a_moving_body_views_as_its_run(racket, tmp_path):
@@ -202,7 +203,7 @@ def test_a_saved_result_of_a_moving_body_views_as_its_run(racket, tmp_path):
     from ga_rotors.cli import main
     from ga_rotors.scene import Scene
 
-    page, scene, tr, data = racket
+    _, scene, _, data = racket
     moved = Scene({**scene.to_dict(), "output": {**scene.data["output"], "data": ["npz"]}})
     (tmp_path / "racket.toml").write_text(moved.to_toml())
     assert main(["run", str(tmp_path / "racket.toml"), "--out", str(tmp_path / "out"),

@@ -162,6 +162,9 @@ def _user(entry, body):
 
 
 _AT = "m, body frame, from the body-frame origin: where it acts"
+_DOWN = [0.0, 0.0, -_forces.STANDARD_GRAVITY]
+_MU = "m³/s², the planet's G M (the Earth's by default)"
+_READS = "whether the kernel reads w or v (false lets the splittings take it at their order)"
 
 #: type name -> ForceType, in the order the docs list them.
 FORCE_TYPES: dict[str, ForceType] = {
@@ -170,8 +173,7 @@ FORCE_TYPES: dict[str, ForceType] = {
         ForceType(
             "uniform_gravity",
             "the weight m g at the centre of mass",
-            (Key("g", _nonzero_vector, [0.0, 0.0, -_forces.STANDARD_GRAVITY],
-                 "m/s², space frame"),),  # fmt: skip
+            (Key("g", _nonzero_vector, _DOWN, "m/s², space frame"),),
             _gravity,
         ),
         ForceType(
@@ -187,8 +189,7 @@ FORCE_TYPES: dict[str, ForceType] = {
         ),
         ForceType(
             "point_force",
-            "a constant force at a body point, fixed in space (a pull) or in the body (a "
-            "thrust)",
+            "a constant force at a body point, fixed in space (a pull) or in the body (a thrust)",
             (
                 Key("force", _vector, doc="N, space or body components (fixed_in)"),
                 Key("at", _vector, [0.0, 0.0, 0.0], _AT),
@@ -207,10 +208,9 @@ FORCE_TYPES: dict[str, ForceType] = {
             "central_gravity",
             "a planet's gravity μ/r² on the extended body, with the gravity-gradient torque",
             (
-                Key("mu", _positive("m³/s²"), _forces.EARTH_MU,
-                    "m³/s², the planet's G M (the Earth's by default)"),
+                Key("mu", _positive("m³/s²"), _forces.EARTH_MU, _MU),
                 Key("centre", _vector, [0.0, 0.0, 0.0], "m, space frame: the planet's centre"),
-            ),  # fmt: skip
+            ),
             _central,
         ),
         ForceType(
@@ -220,10 +220,8 @@ FORCE_TYPES: dict[str, ForceType] = {
             (
                 Key("function", _function, doc='"package.module:function", compiled'),
                 Key("params", _params, [], "numbers passed to the kernel as p"),
-                Key("depends_on_velocity", _boolean, True,
-                    "whether the kernel reads w or v (false lets the splittings take it at "
-                    "their order)"),
-            ),  # fmt: skip
+                Key("depends_on_velocity", _boolean, True, _READS),
+            ),
             _user,
             depends_on_velocity=None,
         ),

@@ -55,11 +55,11 @@ from __future__ import annotations
 
 import copy
 import functools
-from dataclasses import replace
 import math
 import re
 import sys
 from collections.abc import Mapping
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
@@ -222,8 +222,11 @@ class Scene:
         self.body = self._principal(reader, tensor, key)
         if self.moves:  # the body moving through space carries its mass and centre
             try:
-                self.body = replace(self.body, mass=mass,
-                                    centre_of_mass=tuple(body.get("centre_of_mass", (0.0,) * 3)))
+                self.body = replace(
+                    self.body,
+                    mass=mass,
+                    centre_of_mass=tuple(body.get("centre_of_mass", (0.0,) * 3)),
+                )
             except InputError as exc:
                 raise reader.error("body.centre_of_mass", exc.detail) from None
         self.principal_rotation = self.body.principal_rotation
@@ -601,10 +604,12 @@ class Scene:
         if self.moves:
             com = self.body.centre_of_mass
             axes = "principal" if self.principal_rotation == _IDENTITY else "not principal"
-            origin = ("its origin the centre of mass" if not any(com)
-                      else f"its origin {math.hypot(*com):g} m from the centre of mass")  # fmt: skip
-            return (f"{where}: {axes}, {origin}; positions and velocities are the origin's, "
-                    "in space")
+            origin = (
+                f"its origin {math.hypot(*com):g} m from the centre of mass"
+                if any(com)
+                else "its origin the centre of mass"
+            )
+            return f"{where}: {axes}, {origin}; positions and velocities are the origin's, in space"
         if self.principal_rotation != _IDENTITY:
             return f"{where}: not principal (principal_rotation turns them)"
         return f"{where}: principal" + ("" if self.gravity_index is None else " about the pivot")
@@ -718,13 +723,7 @@ class Scene:
             f"principal rotation P (principal -> scene body axes): {_fmt(self.principal_rotation)}",
             f"initial orientation q0 (w, x, y, z): {_fmt(q)}",
             f"initial body angular velocity: {_fmt(w)} rad/s",
-            *(
-                [f"initial position {_fmt(self.position)} m, velocity {_fmt(self.velocity)} "
-                 f"m/s (the body-frame origin, space); mass {self.mass:g} kg, centre of mass "
-                 f"{_fmt(self.body.centre_of_mass)} m (body frame); forces: "
-                 + (_effects.listed(f["type"] for f in self.data.get("forces", [])) or "none")]
-                if self.moves else []
-            ),  # fmt: skip
+            *self._motion_lines(),
             f"problem: {self.kind}; torques: "
             + (_effects.listed(e["type"] for e in self.data["effects"]) or "none (torque-free)"),
             f"integrator: {method.name} (order {method.order}), "
@@ -738,6 +737,17 @@ class Scene:
             f"exact solution: {self.exact or 'none'} ({self.exact_reason})",
         ]
         return "\n".join("# " + line for line in lines)
+
+    def _motion_lines(self) -> list[str]:
+        """What :meth:`describe` says of a body moving through space (nothing otherwise)."""
+        if not self.moves:
+            return []
+        forces = _effects.listed(f["type"] for f in self.data.get("forces", [])) or "none"
+        return [
+            f"initial position {_fmt(self.position)} m, velocity {_fmt(self.velocity)} m/s "
+            f"(the body-frame origin, space); mass {self.mass:g} kg, centre of mass "
+            f"{_fmt(self.body.centre_of_mass)} m (body frame); forces: {forces}"
+        ]
 
     def __repr__(self) -> str:
         return f"Scene({self.name!r}, {self.kind}, {self.steps} steps)"

@@ -39,8 +39,12 @@ __all__ = ["run_pieces", "run_scene"]
 def _user_compile_error(scene: Scene, exc: Exception):
     from ..errors import SceneError, first_line
 
-    users = [f"{section}[{i}].function" for section in ("effects", "forces")
-             for i, e in enumerate(scene.data.get(section, [])) if e["type"] == "user"]
+    users = [
+        f"{section}[{i}].function"
+        for section in ("effects", "forces")
+        for i, e in enumerate(scene.data.get(section, []))
+        if e["type"] == "user"
+    ]
     first = first_line(exc)
     key = users[0] if len(users) == 1 else "effects"
     return SceneError(

@@ -455,7 +455,7 @@ def _check_motion(reader: Reader, out: dict) -> None:
             first,
             f"the scene has a pivot (effects[{gravity}], gravity about a fixed point): a "
             "pivoted body turns in place and has no position or forces; for a body moving "
-            "through space declare its weight as [[forces]] type = \"uniform_gravity\"",
+            'through space declare its weight as [[forces]] type = "uniform_gravity"',
         )
     if "mass" not in out["body"]:
         raise reader.error("body.mass", f"missing; a body moving through space ({first}) "

@@ -63,8 +63,8 @@ def run_motion_samples(scene, values: dict, times: np.ndarray) -> MotionRun:
     n = next(iter(values.values())).shape[0] if values else 1
     first = scene.paths[0]
     shape = (marks.size, n)
-    q, w = np.full(shape + (4,), np.nan), np.full(shape + (3,), np.nan)
-    position, velocity = np.full(shape + (3,), np.nan), np.full(shape + (3,), np.nan)
+    q, w = np.full((*shape, 4), np.nan), np.full((*shape, 3), np.nan)
+    position, velocity = np.full((*shape, 3), np.nan), np.full((*shape, 3), np.nan)
     for i in range(n):
         change = {key: float(v[i]) for key, v in values.items()}
         change.update({"time.output_step": every * h, "integrator.paths": [first],

@@ -36,8 +36,11 @@ BODY_FRAME = (
     "(v_space = q v_body q*), w is the angular velocity in them"
 )
 
-_COMPONENTS = {"quaternion_component": ["w", "x", "y", "z"], "body_axis": ["1", "2", "3"],
-               "space_axis": ["x", "y", "z"]}
+_COMPONENTS = {
+    "quaternion_component": ["w", "x", "y", "z"],
+    "body_axis": ["1", "2", "3"],
+    "space_axis": ["x", "y", "z"],
+}
 
 
 def _per_sample(sweep) -> dict:
@@ -61,8 +64,10 @@ def _per_sample(sweep) -> dict:
     if sweep.scene.moves:  # a body moving through space: where its origin is, and how fast
         for name in ("position", "velocity"):
             unit, long_name = describe(name)
-            out[name] = (("time", "space_axis"),
-                         {"units": unit, "long_name": long_name.replace(", primary path", "")})
+            out[name] = (
+                ("time", "space_axis"),
+                {"units": unit, "long_name": long_name.replace(", primary path", "")},
+            )
     if sweep.draws:
         out["angle_from_nominal"] = (
             ("time",),

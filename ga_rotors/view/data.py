@@ -351,8 +351,10 @@ def from_trajectory(trajectory, body=None, *, title: str = "ga_rotors", descript
     if "position" in trajectory:  # a body moving through space, and its velocity line
         positions = {p: trajectory.positions(p) for p in paths}
         n = trajectory.w.shape[0]
-        lever = Q.rotate(Q.normalize(paths[trajectory.paths[0]][:n]),
-                         np.asarray(trajectory.meta.get("centre_of_mass", (0.0, 0.0, 0.0))))
+        lever = Q.rotate(
+            Q.normalize(paths[trajectory.paths[0]][:n]),
+            np.asarray(trajectory.meta.get("centre_of_mass", (0.0, 0.0, 0.0))),
+        )
         centre = positions[trajectory.paths[0]][:n] + lever
         point, direction = screw_axes(trajectory.velocity_lines(), centre)
         lines = (Line("velocity", *VELOCITY_LINE[:1], point, direction, VELOCITY_LINE[1]),)

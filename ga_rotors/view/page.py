@@ -275,8 +275,9 @@ def _swatch(key: str, colour: str) -> str:
     else:
         width = 4 if key in ("omega", "L") else 2.5
         dash = ' stroke-dasharray="6 3"' if key == "velocity" else ""
-        shape = (f'<line x1="2" y1="7" x2="26" y2="7" stroke="{colour}" stroke-width="{width}"'
-                 f'{dash}/>')
+        shape = (
+            f'<line x1="2" y1="7" x2="26" y2="7" stroke="{colour}" stroke-width="{width}"{dash}/>'
+        )
     return f'<svg width="28" height="14" aria-hidden="true">{shape}</svg>'
 
 
