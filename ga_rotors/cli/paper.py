@@ -61,5 +61,5 @@ def run(args: argparse.Namespace) -> int:
     print()
     where = os.path.relpath(Path(args.out).resolve())
     print(f"wrote {len(written)} files to {where}/ in {time.perf_counter() - start:.1f} s")
-    print('see it move: ga-rotors view paper_15deg (or paper_0.001deg); the view extra')
+    print('see it move: ga-rotors view paper_15deg (or paper_0.001deg)')
     return 0

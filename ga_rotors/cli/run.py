@@ -255,7 +255,7 @@ def run(args: argparse.Namespace) -> int:
         print("ga-rotors: error: the run is incomplete (see the first line)", file=sys.stderr)
         return 3
     saved = any(p.suffix == ".npz" for p in written)
-    print(f'see it move: ga-rotors view {out if saved else args.scene} (the view extra)')
+    print(f'see it move: ga-rotors view {out if saved else args.scene}')
     return 0
 
 
