@@ -272,7 +272,7 @@ def specialise(
 
     >>> import inspect
     >>> inspect.getsource(spec.module.step.py_func).splitlines()[:2]
-    ['@_jit', 'def rk4_step(t, x, w, h, inertia, params):']
+    ["@_jit(inline='always')", 'def rk4_step(t, x, w, h, inertia, params):']
     """
     key = _memo_key(integrator, problem, path, form)
     found = _MEMO.get(key)
