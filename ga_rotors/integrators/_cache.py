@@ -248,6 +248,7 @@ def _memo_key(integrator, problem: Problem, path: str, form: str) -> tuple:
         problem.kind,
         path,
         tuple((term.location, len(term.params)) for term in terms),
+        _source.centred(problem, form),  # other kernels bound (the frame at the centre)
     )
 
 

@@ -75,7 +75,7 @@ from .base import Integrator
 from .kinds import KINDS
 from .problem import Problem
 
-__all__ = ["BATCH", "BATCH_MOMENTS", "FORMS", "LOOP", "RHS", "source"]
+__all__ = ["BATCH", "BATCH_MOMENTS", "FORMS", "LOOP", "RHS", "centred", "source"]
 
 LOOP, RHS, BATCH, BATCH_MOMENTS = "loop", "rhs", "batch", "batch-moments"
 FORMS = (LOOP, RHS, BATCH, BATCH_MOMENTS)
@@ -322,6 +322,25 @@ def _batch_slots(kind, problem: Problem, dim: int, stored: bool, imports: _Impor
     return out
 
 
+def centred(problem: Problem, form: str) -> bool:
+    """Whether ``form`` of ``problem`` binds the path's kernels of a body frame at the
+    centre of mass (a path's ``CENTRED`` names): a whole motion whose centre of mass is
+    the frame's origin, in a form whose body is the problem's own (a batch's bodies each
+    carry their own centre of mass, so its loop keeps the general kernels).
+
+    Examples
+    --------
+    >>> centred(Problem((1.0, 2.0, 3.0), mass=1.0), LOOP)
+    True
+    >>> centred(Problem((1.0, 2.0, 3.0), mass=1.0, centre_of_mass=(0.0, 0.1, 0.0)), LOOP)
+    False
+    >>> centred(Problem((1.0, 2.0, 3.0), mass=1.0), BATCH)
+    False
+    """
+    return (KINDS[problem.kind].moves and form in (LOOP, RHS)
+            and not any(problem.centre_of_mass))  # fmt: skip
+
+
 def source(
     integrator: Integrator | None, problem: Problem, path: str, form: str = LOOP,
     cache: bool = True,
@@ -384,11 +403,12 @@ def source(
 
     spec = resolve_path(path, kind.moves)
     module = spec.load()
+    swaps = getattr(module, "CENTRED", {}) if centred(problem, form) else {}
     for slot, attr in slots.PATH_SLOTS.items():
         if slot in used:
             if not hasattr(module, attr):
                 raise InputError(f"{name}: uses {slot}, which the {path!r} path does not have")
-            imports.kernel(slot, getattr(module, attr))
+            imports.kernel(slot, getattr(module, swaps.get(attr, attr)))
     for slot, attr in slots.KIND_SLOTS.items():
         if slot in used:
             imports.kernel(slot, getattr(kind, attr))
