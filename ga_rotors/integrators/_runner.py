@@ -350,7 +350,11 @@ def run_batch(integrator: Integrator, batch: Batch, path: str, x0, w0, t0, h, ns
     params = np.ascontiguousarray(batch.params.T)
     out_x, out_w = np.empty((marks.size, dim, n)), np.empty((marks.size, kind.rate, n))
     call = (x, w, body, params, float(t0), float(h), marks, out_x, out_w, chunk)
-    spec = specialise(integrator, problem, path, _source.BATCH)
+    # bodies all with their frames at their centres of mass (the last three numbers of a
+    # motion's body, Problem.body) take the kernels their single runs take, without the
+    # lever's terms
+    form = _source.BATCH_CENTRED if kind.moves and not body[-3:].any() else _source.BATCH
+    spec = specialise(integrator, problem, path, form)
     try:
         (spec.module.loop if parallel else spec.module.serial)(*call)
     except Exception as exc:  # a step that unpacks ``inertia`` cannot take the stored values

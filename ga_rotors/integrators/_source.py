@@ -49,6 +49,8 @@ writes the text of a Python module, in one of four *forms*:
   stores per body (the Euler coefficients) is computed once per body and read back where
   the inline kernels would compute it. ``"batch-moments"``: the same, storing nothing
   (for a step that unpacks ``inertia`` into three names, which the longer tuple cannot be);
+  ``"batch-centred"``: the ``"batch"`` form binding the path's kernels of a body frame at
+  the centre of mass (:func:`centred`), for bodies that all have theirs there;
 * ``"rhs"`` (no integrator): the kind's vector-field template with the kind's and the
   path's slots, for scipy-style integrators.
 
@@ -75,10 +77,11 @@ from .base import Integrator
 from .kinds import KINDS
 from .problem import Problem
 
-__all__ = ["BATCH", "BATCH_MOMENTS", "FORMS", "LOOP", "RHS", "centred", "source"]
+__all__ = ["BATCH", "BATCH_CENTRED", "BATCH_MOMENTS", "FORMS", "LOOP", "RHS", "centred", "source"]
 
 LOOP, RHS, BATCH, BATCH_MOMENTS = "loop", "rhs", "batch", "batch-moments"
-FORMS = (LOOP, RHS, BATCH, BATCH_MOMENTS)
+BATCH_CENTRED = "batch-centred"
+FORMS = (LOOP, RHS, BATCH, BATCH_MOMENTS, BATCH_CENTRED)
 
 #: Built-in torque kernels that read their parameters p[j] one by one, so they run the same
 #: on a tuple as on an array: a batch hands them a tuple per body, which lives in registers
@@ -325,8 +328,9 @@ def _batch_slots(kind, problem: Problem, dim: int, stored: bool, imports: _Impor
 def centred(problem: Problem, form: str) -> bool:
     """Whether ``form`` of ``problem`` binds the path's kernels of a body frame at the
     centre of mass (a path's ``CENTRED`` names): a whole motion whose centre of mass is
-    the frame's origin, in a form whose body is the problem's own (a batch's bodies each
-    carry their own centre of mass, so its loop keeps the general kernels).
+    the frame's origin, in a form whose body is the problem's own; a batch's bodies each
+    carry their own centre of mass, so a batch binds them in the ``"batch-centred"`` form
+    only (for bodies all at their centres, :func:`~._runner.run_batch` decides).
 
     Examples
     --------
@@ -337,8 +341,9 @@ def centred(problem: Problem, form: str) -> bool:
     >>> centred(Problem((1.0, 2.0, 3.0), mass=1.0), BATCH)
     False
     """
-    return (KINDS[problem.kind].moves and form in (LOOP, RHS)
-            and not any(problem.centre_of_mass))  # fmt: skip
+    if not KINDS[problem.kind].moves:
+        return False
+    return form == BATCH_CENTRED or (form in (LOOP, RHS) and not any(problem.centre_of_mass))
 
 
 def source(
@@ -357,7 +362,7 @@ def source(
     (True, False, True)
     """
     kind = KINDS[problem.kind]
-    batch = form in (BATCH, BATCH_MOMENTS)
+    batch = form in (BATCH, BATCH_MOMENTS, BATCH_CENTRED)
     if form == RHS:
         name, step, templates, entry, loop = "vector_field", None, [], None, kind.rhs
     else:
@@ -376,7 +381,7 @@ def source(
             loop, entry = kind.loop, loops.judged_run
     used = set().union(*(_global_names(f.__code__) for f in (*templates, loop)))
 
-    stored = form == BATCH and kind.stored is not None
+    stored = form in (BATCH, BATCH_CENTRED) and kind.stored is not None
     imports = _Imports(inline=batch, stand_in=(kind.stored, "stored_values") if stored else None)
     if stored:  # computed once per body by the kernel itself, read back by stored_values
         func = kind.stored.py_func
