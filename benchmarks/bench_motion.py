@@ -21,10 +21,11 @@ rotation and translation that motors carry). RK4 everywhere, compiled against co
    lever's coupling terms), against the same two.
 2. **Ensembles** (million body-steps per second, every core): a :class:`Batch` of bodies
    through ``Integrator.run`` (the batched loop ``ga_rotors.ensemble`` runs), each with its
-   own start, on the motor and quaternion paths, against the rotational batches of the same
-   bodies (what an ensemble ran before motion): turning freely, and turning under their
-   weight about a pivot at the handle (a heavy top). Target: within 1.5× of the rotational
-   body-steps/s.
+   own start, on the motor path (frames at the handle, and at the centre of mass, which a
+   batch of bodies all centred compiles without the lever's terms) and the quaternion
+   path, against the rotational batches of the same bodies (what an ensemble ran before
+   motion): turning freely, and turning under their weight about a pivot at the handle
+   (a heavy top). Target: within 1.5× of the rotational body-steps/s.
 
 Each candidate runs once per round, the rounds interleaved (other load hits all alike);
 printed: median (min–max) over the rounds, and the ratios round by round, median
@@ -196,16 +197,17 @@ def ensembles(bodies: int, steps: int, rounds: int, parallel: bool = True,
     q = Q.normalize(rng.normal(size=(bodies, 4)))
     w = np.array(W0) + 0.5 * rng.normal(size=(bodies, 3))
     p, v = np.array(P0) + rng.normal(size=(bodies, 3)), np.array(V0) + rng.normal(size=(bodies, 3))
-    problem, rk4 = _problem(), get("rk4")
+    rk4 = get("rk4")
     calls = []
-    for path in ("motor", "quaternion"):
-        module = resolve(path, moves=True).load()
-        starts = [module.initial_state(q[i], p[i], w[i], v[i], HANDLE) for i in range(bodies)]
-        x0, r0 = np.array([s[0] for s in starts]), np.array([s[1] for s in starts])
+    for label, path, s in (("motion, motor path", "motor", HANDLE),
+                           ("motion, motor path, at the centre", "motor", (0.0, 0.0, 0.0)),
+                           ("motion, quaternion path", "quaternion", HANDLE)):  # fmt: skip
+        problem, module = _problem(s), resolve(path, moves=True).load()
+        starts = [module.initial_state(q[i], p[i], w[i], v[i], s) for i in range(bodies)]
+        x0, r0 = np.array([a[0] for a in starts]), np.array([a[1] for a in starts])
         batch = Batch(problem, np.tile(problem.body, (bodies, 1)))
         args = (batch, path, x0, r0, 0.0, 1e-3, steps, steps)
-        calls.append((f"motion, {path} path",
-                      lambda args=args: rk4.run(*args, parallel=parallel)))  # fmt: skip
+        calls.append((label, lambda args=args: rk4.run(*args, parallel=parallel)))
     # the rotational batches of before: the same bodies turning freely, and turning under
     # the weight about a pivot at the handle (a heavy top: a torque of orientation)
     from ga_rotors.effects import gravity_kernel
@@ -228,12 +230,11 @@ def ensembles(bodies: int, steps: int, rounds: int, parallel: bool = True,
     print(f"  {'':34} {'M body-steps/s, median (min–max)':>34}")
     for name in rates:
         print(f"  {name:34} {cell(rates[name]):>34}")
-    for path in ("motor", "quaternion"):
+    print("  motion's body-steps against rotation's (time ratios):")
+    for label in ("motor path", "motor path, at the centre", "quaternion path"):
         for alone in ("free", "under gravity"):
-            print(
-                f"  motion on the {path} path / rotation alone, {alone}: "
-                f"{ratio(times, f'motion, {path} path', f'rotation alone, {alone}', 1.5)}"
-            )
+            print(f"  {label} / rotation alone, {alone}:".ljust(62)
+                  + ratio(times, f"motion, {label}", f"rotation alone, {alone}", 1.5))  # fmt: skip
 
 
 def main(argv=None) -> int:
