@@ -3,7 +3,10 @@
 :func:`scene_samples` and :func:`run_samples` integrate n variations of a scene (per-sample
 inertia, initial state and parameters of the declared effects) with the scene's own
 integrator and step, and return the states at chosen times, in the scene's body frame;
-each sample equals the single run of the same body and start bit for bit. The batched
+each sample equals the single run of the same body and start bit for bit. A scene whose
+body moves through space (``scene.moves``: a thrown racket, a satellite) runs the same
+way on the motion kind's batched loop, with per-sample mass, centre of mass, position,
+velocity and force parameters, and answers the body origin's position and velocity too. The batched
 loop is the integrators' own (:meth:`ga_rotors.integrators.Integrator.run` on a
 :class:`~ga_rotors.integrators.Batch`: the single run's step compiled inline in a batched
 loop template, struct-of-arrays, L1-sized chunks spread over the cores).
@@ -211,7 +214,13 @@ class SceneSamples:
     kernels (a heavy top whose lever leaves the symmetry axis in some samples only runs
     the general gravity there, :func:`ga_rotors.effects.gravity_kernel`), and each sample
     runs its own single run's kernels, one batch per distinct set. By default one set,
-    the scene's. :func:`scene_samples` stores each array one row per component (the
+    the scene's. For a scene whose body moves through space (``scene.moves``), ``terms``
+    hold its torques then its forces (:class:`~ga_rotors.integrators.ForceTerm`, their
+    parameters packed after the torques' in ``params``), ``motion`` (n, 4) the mass and
+    the centre of mass (principal axes, from the body-frame origin: the rows the motion
+    kind's loop reads after the moments) and ``position``, ``velocity`` (n, 3) the body
+    origin's start in space; all three are None for a body turning about a fixed point.
+    :func:`scene_samples` stores each array one row per component (the
     transpose of a C-contiguous (k, n) array, the layout the batched loops read), so
     :func:`run_samples` hands them over without copying.
 
@@ -230,10 +239,13 @@ class SceneSamples:
     principal: np.ndarray
     terms: tuple = None
     kernels: np.ndarray = None
+    motion: np.ndarray | None = None
+    position: np.ndarray | None = None
+    velocity: np.ndarray | None = None
 
     def __post_init__(self):
         if self.terms is None:
-            self.terms = (tuple(self.scene.torques()),)
+            self.terms = (_terms(self.scene),)
         if self.kernels is None:
             self.kernels = np.zeros(len(self), dtype=np.int64)
 
@@ -243,53 +255,73 @@ class SceneSamples:
 
 #: Keys whose per-sample values map to the kernel's inputs without building a scene per
 #: sample (checked against a full Scene on the first and last samples before use).
-FAST_KEYS = ("body.moments", "initial.angular_velocity.body")
+#: ``body.moments`` on a body turning about a fixed point only: a moving body's forces may
+#: read its moments (the central field's gravity-gradient torque).
+FAST_KEYS = ("body.moments", "initial.angular_velocity.body", "initial.position",
+             "initial.velocity")  # fmt: skip
 
 #: (id(scene), keys) -> scene, for the scene and keys whose fast mapping was checked.
 _CHECKED: dict = {}
 
 _ELEMENT = re.compile(r"^(?P<key>.*)\[(?P<index>[0-2])\]$")
 
+#: The fast keys' targets: the moments, the body rate, the position, the velocity.
+_MOMENTS, _RATE, _POSITION, _VELOCITY = range(4)
+
 
 def _fast_targets(scene, keys) -> list | None:
-    """For each key, (0 for the moments or 1 for the rate, component or None for all
-    three, scale): the vectorised mapping of :data:`FAST_KEYS`; None when a key needs a
-    Scene per sample."""
+    """For each key, (which of the :data:`FAST_KEYS` targets, component or None for all
+    three, scale): the vectorised mapping; None when a key needs a Scene per sample."""
     d = scene.data
     if scene.principal_rotation != (1.0, 0.0, 0.0, 0.0) or scene.gravity_index is not None:
         return None
-    av = d["initial"]["angular_velocity"]
+    initial = d["initial"]
+    av = initial["angular_velocity"]
     out = []
     for key in keys:
         m = _ELEMENT.match(key)
         base, index = (m["key"], int(m["index"])) if m else (key, None)
-        if base == "body.moments" and "moments" in d["body"]:
-            out.append((0, index, 1.0))
+        if base == "body.moments" and "moments" in d["body"] and not scene.moves:
+            out.append((_MOMENTS, index, 1.0))
         elif base == "initial.angular_velocity.body" and "body" in av:
             from .scene.schema import RATE_UNITS
 
-            out.append((1, index, RATE_UNITS[av["units"]]))
+            out.append((_RATE, index, RATE_UNITS[av["units"]]))
+        elif base in ("initial.position", "initial.velocity") and scene.moves:
+            if base.split(".")[1] not in initial:
+                return None
+            out.append((_POSITION if base == "initial.position" else _VELOCITY, index, 1.0))
         else:
             return None
     return out
 
 
 def _fast(scene, changes: dict, n: int):
-    """Vectorised inputs, or None when a key needs a Scene per sample."""
+    """Vectorised inputs (moments, rate, position, velocity; the last two None for a body
+    turning about a fixed point), or None when a key needs a Scene per sample."""
     targets = _fast_targets(scene, changes)
     if targets is None:
         return None
-    moments = _repeat(scene.body.moments, n)
-    omega = _repeat(scene.angular_velocity, n)
+    arrays = [_repeat(scene.body.moments, n), _repeat(scene.angular_velocity, n), None, None]
+    if scene.moves:
+        arrays[_POSITION], arrays[_VELOCITY] = (
+            _repeat(scene.position, n),
+            _repeat(scene.velocity, n),
+        )
     for values, (which, index, scale) in zip(changes.values(), targets, strict=True):
-        target = (moments, omega)[which]
+        target = arrays[which]
         if index is None:
             target[:] = values.reshape(n, 3) * scale
         else:
             target[:, index] = values.reshape(n) * scale
-    if _refused(moments, omega, np.finfo(float).tiny, MIN_MOMENT_RATIO):
+    if _refused(arrays[_MOMENTS], arrays[_RATE], np.finfo(float).tiny, MIN_MOMENT_RATIO):
         return None  # let the per-sample path name the bad value
-    return moments, omega
+    if scene.moves:
+        p, v = arrays[_POSITION], arrays[_VELOCITY]
+        energy = 0.5 * scene.mass * np.einsum("ij,ij->i", v, v) * 16.0  # as the scene's check
+        if not (np.isfinite(p).all() and (energy < np.finfo(float).max).all()):
+            return None
+    return tuple(arrays)
 
 
 @numba.njit(inline="always", error_model="numpy")
@@ -367,18 +399,27 @@ def scene_samples(scene, changes=None, n: int | None = None) -> SceneSamples:
     fast = _fast(scene, changes, count) if changes else None
     checked = (id(scene), tuple(changes))
     if fast is not None and _CHECKED.get(checked) is not scene:
-        moments, omega = fast
+        moments, omega, position, velocity = fast
         for i in {0, count - 1}:  # the vectorised mapping must equal the scene's own
             one = _sample_scene(scene, changes, i)
-            if (tuple(moments[i]) != one.body.moments
-                    or not np.array_equal(omega[i], one.angular_velocity)):  # fmt: skip
+            same = (tuple(moments[i]) == one.body.moments
+                    and np.array_equal(omega[i], one.angular_velocity))  # fmt: skip
+            if scene.moves:
+                same = (same and np.array_equal(position[i], one.position)
+                        and np.array_equal(velocity[i], one.velocity)
+                        and np.array_equal(_params(one), base_params))  # fmt: skip
+            if not same:
                 fast = None
                 break
         else:
             _CHECKED[checked] = scene  # once per scene and keys: chunks of a sweep reuse it
     if fast is not None or not changes:
         q_body, w_body = _body_frame(scene)
-        moments, omega = fast or (_repeat(scene.body.moments, count), _repeat(w_body, count))
+        moments, omega, position, velocity = fast or (
+            _repeat(scene.body.moments, count), _repeat(w_body, count),
+            *((_repeat(scene.position, count), _repeat(scene.velocity, count))
+              if scene.moves else (None, None)),
+        )  # fmt: skip
         return SceneSamples(
             scene,
             moments,
@@ -386,15 +427,21 @@ def scene_samples(scene, changes=None, n: int | None = None) -> SceneSamples:
             omega,
             _repeat(base_params, count),
             _repeat(scene.principal_rotation, count),
+            motion=_repeat(_motion_rows(scene), count) if scene.moves else None,
+            position=position,
+            velocity=velocity,
         )
     inertia, q0, w0 = _columns(count, 3), np.empty((count, 4)), _columns(count, 3)
     params, principal = _columns(count, base_params.size), _columns(count, 4)
-    names = [t.name for t in scene.torques()]
+    motion = position = velocity = None
+    if scene.moves:
+        motion, position, velocity = _columns(count, 4), _columns(count, 3), _columns(count, 3)
+    names = [t.name for t in _terms(scene)]
     sets: dict[tuple, int] = {}  # the samples' kernels (as a tuple) -> index in terms
     terms, kernels = [], np.empty(count, dtype=np.int64)
     for i in range(count):
         one = _sample_scene(scene, changes, i)
-        own = tuple(one.torques())
+        own = _terms(one)
         if [t.name for t in own] != names:
             raise InputError(f"sample {i}: changes the scene's declared effects {names}")
         key = tuple(t.kernel for t in own)
@@ -410,7 +457,22 @@ def scene_samples(scene, changes=None, n: int | None = None) -> SceneSamples:
                 )
         inertia[i], (q0[i], w0[i]) = one.body.moments, _body_frame(one)
         params[i], principal[i] = _params(one), one.principal_rotation
-    return SceneSamples(scene, inertia, q0, w0, params, principal, tuple(terms), kernels)
+        if scene.moves:
+            motion[i], position[i], velocity[i] = _motion_rows(one), one.position, one.velocity
+    return SceneSamples(scene, inertia, q0, w0, params, principal, tuple(terms), kernels,
+                        motion, position, velocity)  # fmt: skip
+
+
+def _terms(scene) -> tuple:
+    """The scene's declared terms as a batch's problem takes them: its torques, then (for a
+    body moving through space) its forces."""
+    return (*scene.torques(), *scene.forces()) if scene.moves else tuple(scene.torques())
+
+
+def _motion_rows(scene) -> tuple[float, ...]:
+    """The mass and centre of mass (principal axes) of a moving scene's body, as the
+    motion kind's loop reads them after the moments (``Problem.body``)."""
+    return _problem(scene, _terms(scene)).body[3:]
 
 
 def _body_frame(scene) -> tuple[np.ndarray, np.ndarray]:
@@ -443,9 +505,7 @@ def _sample_scene(scene, changes: dict, i: int):
 
 
 def _params(scene) -> np.ndarray:
-    from .integrators.base import Problem
-
-    return Problem(scene.body.moments, scene.torques()).params()
+    return _problem(scene, _terms(scene)).params()
 
 
 @dataclass
@@ -464,11 +524,15 @@ class EnsembleRun:
 
     ``t`` (k,) the times, ``q`` (k, n, 4) orientations (w, x, y, z), ``w`` (k, n, 3) body
     angular velocities; a sample whose state stopped being finite holds NaN from then on.
+    For a body moving through space, ``position`` and ``velocity`` (k, n, 3): the body
+    origin's, in space (as ``Trajectory.positions()`` and ``velocities()``); else None.
     """
 
     t: np.ndarray
     q: np.ndarray
     w: np.ndarray
+    position: np.ndarray | None = None
+    velocity: np.ndarray | None = None
 
 
 def run_samples(
@@ -524,25 +588,52 @@ def run_samples(
     w0 = samples.angular_velocity
     if turned:  # into the principal frame the loops integrate in: q ⊗ P, P* ω P
         q0, w0 = Q.multiply(q0, principal), Q.rotate(Q.conjugate(principal), w0)
-    x0 = module.initial_state(q0)
+    moves = samples.motion is not None
+    if moves:
+        x0, w0 = _motion_starts(module, q0, w0, samples)
+        body = np.ascontiguousarray(np.hstack([samples.inertia, samples.motion]))
+    else:
+        x0, body = module.initial_state(q0), samples.inertia
     if len(samples.terms) == 1:
-        batch = Batch(_problem(scene, samples.terms[0]), samples.inertia, samples.params)
+        batch = Batch(_problem(scene, samples.terms[0]), body, samples.params)
         run = method.run(batch, path, x0, w0, t0, h, nsteps, marks, chunk=chunk,
                          parallel=parallel)  # fmt: skip
         out_x, out_w = run.x, run.w
     else:  # one batch per set of kernels, their samples gathered and scattered back
         n = len(samples)
-        out_x, out_w = np.empty((marks.size, n, x0.shape[1])), np.empty((marks.size, n, 3))
+        out_x = np.empty((marks.size, n, x0.shape[1]))
+        out_w = np.empty((marks.size, n, w0.shape[1]))
         for k, terms in enumerate(samples.terms):
             mine = np.flatnonzero(samples.kernels == k)
-            batch = Batch(_problem(scene, terms), samples.inertia[mine], samples.params[mine])
+            batch = Batch(_problem(scene, terms), body[mine], samples.params[mine])
             run = method.run(batch, path, x0[mine], w0[mine], t0, h, nsteps, marks,
                              chunk=chunk, parallel=parallel)  # fmt: skip
             out_x[:, mine], out_w[:, mine] = run.x, run.w
+    position = velocity = None
+    if moves:  # the body origin's, in space, as a single run's trajectory reads them
+        com = samples.motion[:, 1:]
+        position, velocity = module.positions(out_x, com), module.velocities(out_x, out_w, com)
+        out_w = out_w[..., :3]
+        if turned:
+            out_x = module.to_user_frame(out_x, principal)
     q, w = module.quaternions(out_x), out_w
     if turned:  # back to the scene's body axes: q_P ⊗ P*, P ω_P P*
-        q, w = Q.multiply(q, Q.conjugate(principal)), Q.rotate(principal, w)
-    return EnsembleRun(t0 + marks * h, np.ascontiguousarray(q), np.ascontiguousarray(w))
+        if not moves:
+            q = Q.multiply(q, Q.conjugate(principal))
+        w = Q.rotate(principal, w)
+    return EnsembleRun(t0 + marks * h, np.ascontiguousarray(q), np.ascontiguousarray(w),
+                       position, velocity)  # fmt: skip
+
+
+def _motion_starts(module, q0, w0, samples):
+    """The motion path's start (x, rates) of each sample, as a single run makes it
+    (``initial_state`` of one body: one call per distinct start)."""
+    starts = np.hstack([q0, w0, samples.position, samples.velocity, samples.motion[:, 1:]])
+    unique, which = np.unique(starts, axis=0, return_inverse=True)
+    made = [module.initial_state(u[:4], u[7:10], u[4:7], u[10:13], u[13:16]) for u in unique]
+    x = np.array([m[0] for m in made])[which.reshape(-1)]
+    r = np.array([m[1] for m in made])[which.reshape(-1)]
+    return np.ascontiguousarray(x), np.ascontiguousarray(r)
 
 
 def _method_and_path(scene):
@@ -558,6 +649,10 @@ def _method_and_path(scene):
             f"{spec_method['method']!r} is adaptive"
         )
     path = scene.paths[0]
+    if scene.moves:  # the path's whole-motion variant (the motor, or q and the centre of mass)
+        from .paths import resolve
+
+        return method, path, resolve(path, moves=True).load()
     pspec = get_path(path)
     if not pspec.on_unit_sphere:
         raise InputError(
@@ -568,11 +663,19 @@ def _method_and_path(scene):
 
 
 def _problem(scene, terms):
-    """The integrator's problem for a batch of the scene's samples with these torques."""
+    """The integrator's problem for a batch of the scene's samples with these terms (for a
+    body moving through space, its torques and forces, its mass and centre of mass in the
+    principal axes, as :func:`~ga_rotors.simulation.simulate` makes it)."""
     from .integrators import base
 
     lower = scene.data["integrator"].get("accept_lower_order", False)
-    return base.Problem(scene.body.moments, terms, accept_lower_order=lower)
+    if not scene.moves:
+        return base.problem_for(scene.body.moments, terms, lower)
+    body = scene.body
+    forces = tuple(t for t in terms if isinstance(t, base.ForceTerm))
+    torques = tuple(t for t in terms if not isinstance(t, base.ForceTerm))
+    return base.problem_for(body.moments, torques, lower, mass=body.mass, forces=forces,
+                            centre_of_mass=body.to_principal_axes(body.centre_of_mass))  # fmt: skip
 
 
 def _marks(times, t0: float, h: float, nsteps: int, file: str) -> np.ndarray:

@@ -81,9 +81,22 @@ class SweepEstimate(Estimate):
 
 
 def _stored(sweep) -> list[int]:
-    """Values per sample of each variable a chunk writes (one file each)."""
+    """Values per sample of each variable a chunk writes (one file each): q, w, and for a
+    body moving through space its position and velocity."""
     k = sweep.times.size
-    return [4 * k, 3 * k] + ([k] + [1] * len(sweep.draws) if sweep.draws else [])
+    moving = [3 * k, 3 * k] if sweep.scene.moves else []
+    return [4 * k, 3 * k, *moving] + ([k] + [1] * len(sweep.draws) if sweep.draws else [])
+
+
+def _state_rows(sweep) -> int:
+    """Numbers in one sample's state on the loop: 7 for a rotation (q, ω); for a body
+    moving through space 13 or 14 (the path's q and centre of mass, or its motor, then
+    ω and the velocity)."""
+    if not sweep.scene.moves:
+        return 7
+    from ..paths import resolve
+
+    return resolve(sweep.scene.paths[0], moves=True).dim + 6
 
 
 def _fixed_files(sweep, chunked: int) -> int:
@@ -112,19 +125,30 @@ def estimate(sweep, threads: int | None = None) -> SweepEstimate:
     ... ''')
     >>> print(estimate(s, threads=2))
     3e+10 steps, 1e+06 samples: about 90.9 MiB of memory, 72.1 MiB of files in 16 chunks (108 files)
+
+    A body moving through space also writes its position and velocity:
+
+    >>> text = s.text.replace("heavy_top", "thrown_racket")
+    >>> s = load_sweep(text.replace("body.mass", "initial.velocity[0]"))
+    >>> print(estimate(s, threads=2))
+    2e+09 steps, 1e+06 samples: about 129 MiB of memory, 120 MiB of files in 16 chunks (144 files)
     """
     threads = threads or os.cpu_count() or 1
     values, k = _stored(sweep), sweep.times.size
     chunk = min(sweep.chunk, sweep.size)
     per_chunk = sum(max(8 * v * chunk, BLOCK_BYTES) for v in values) + BLOCK_BYTES  # + flag
-    per_sample = 8 * (_INPUT_VALUES + _OUTPUT_COPIES * sum(values))
+    # the inputs (a moving body's larger state and body rows twice more: as drawn, as
+    # laid out for the loop) and the outputs' copies
+    inputs = _INPUT_VALUES + 2 * (_state_rows(sweep) - 7)
+    per_sample = 8 * (inputs + _OUTPUT_COPIES * sum(values))
     points = sweep.grid_points if sweep.draws else 0  # the nominal runs
     summary = 3 * 8 * sweep.samples * k if sweep.draws else 0  # a point's angles, sorted
+    nominal = points * 8 * 7 * k  # the nominal runs' q and w, kept
     return SweepEstimate(
         steps=(sweep.size + points) * sweep.scene.steps,
         samples=sweep.size,
-        bytes=min(threads, sweep.chunks) * chunk * per_sample + points * 8 * 7 * k * 3 + summary,
-        disk=sweep.chunks * per_chunk + points * 8 * 7 * k,
+        bytes=min(threads, sweep.chunks) * chunk * per_sample + nominal * 3 + summary,
+        disk=sweep.chunks * per_chunk + nominal,
         chunks=sweep.chunks,
         files=sweep.chunks * (len(values) + 1) + _fixed_files(sweep, len(values) + 1),
     )

@@ -295,16 +295,9 @@ def local_cluster(workers: int | None = None):
 
 
 def _run(sweep: Sweep, values: dict, lo: int, what: str, parallel: bool = True):
-    """The runs of the samples with ``values`` (the first is sample ``lo``): on the
-    batched ensemble loops, or one scene run each for a body moving through space
-    (:mod:`ga_rotors.sweep.motion`); a refused sample is one line naming it."""
-    if sweep.scene.moves:
-        from .motion import run_motion_samples
-
-        try:
-            return run_motion_samples(sweep.scene, values, sweep.run_times())
-        except InputError as exc:
-            raise _refused(sweep, lo, values, exc, what) from None
+    """The runs of the samples with ``values`` (the first is sample ``lo``) on the batched
+    ensemble loops (a body moving through space on the motion kind's, answering its
+    position and velocity too); a refused sample is one line naming it."""
     from ..ensemble import run_samples, scene_samples
 
     try:

@@ -1,0 +1,156 @@
+"""Ensembles and sweeps of bodies moving through space, on the batched loops.
+
+The oracle of every batched sample is the single run of the same scene with the sample's
+values (``run_scene``, the path the sweep integrates on), which the batched loop must
+equal bit for bit: the same step compiled into the motion kind's batched loop template.
+The runs are short (tens of steps) and serial, the loop the sweep's tasks compile.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from ga_rotors.ensemble import run_samples, scene_samples
+from ga_rotors.errors import InputError, SceneError
+from ga_rotors.scene import load_scene, run_scene
+from ga_rotors.sweep import budget, load_sweep, open_sweep, run_sweep
+
+TIMES = [0.025, 0.05]
+
+
+@pytest.fixture(scope="module")
+def racket():
+    return load_scene("thrown_racket").replace({"time.duration": 0.05})
+
+
+def single_runs(scene, changes, times):
+    """Each sample's (q, w, position, velocity) at ``times`` from its own scene run."""
+    t0, h = scene.data["time"]["start"], scene.step
+    marks = np.rint((np.asarray(times) - t0) / h).astype(int)
+    every = int(np.gcd.reduce(marks))
+    n = len(next(iter(changes.values())))
+    out = []
+    for i in range(n):
+        change = {k: np.asarray(v)[i].tolist() for k, v in changes.items()}
+        change.update({"time.output_step": every * h, "integrator.paths": [scene.paths[0]],
+                       "output.quantities": [], "output.plots": []})  # fmt: skip
+        tr = run_scene(scene.replace(change))
+        rows = marks // every
+        out.append((tr.quaternions()[rows], tr.w[rows], tr.positions()[rows],
+                    tr.velocities()[rows]))  # fmt: skip
+    return out
+
+
+def assert_equals_single_runs(scene, changes, times=TIMES, exact=True):
+    run = run_samples(scene_samples(scene, changes), times, parallel=False)
+    assert run.position.shape == run.velocity.shape == (len(times), len(run.q[0]), 3)
+    for i, expected in enumerate(single_runs(scene, changes, times)):
+        got = (run.q[:, i], run.w[:, i], run.position[:, i], run.velocity[:, i])
+        for name, a, b in zip(("q", "w", "position", "velocity"), got, expected, strict=True):
+            if exact:
+                assert np.array_equal(a, b), (name, i, np.abs(a - b).max())
+            else:
+                np.testing.assert_allclose(a, b, rtol=0, atol=1e-12, err_msg=f"{name} {i}")
+    return run
+
+
+@pytest.mark.parametrize("first", ["motor", "quaternion"])
+def test_thrown_racket_samples_equal_their_single_runs_bit_for_bit(racket, first):
+    scene = racket.replace({"integrator.paths": [first]})
+    # the start in space and the spin: mapped without a scene per sample
+    changes = {"initial.velocity[0]": [1.0, 3.0],
+               "initial.position": [[0.0, 0.0, 1.5], [1.0, -2.0, 0.5]],
+               "initial.angular_velocity.body[0]": [11.0, 12.5]}  # fmt: skip
+    assert_equals_single_runs(scene, changes)
+
+
+def test_body_and_force_parameters_vary_per_sample(racket):
+    # mass, centre of mass and the force's g: a scene per sample, the force's parameters
+    # (m g) in each body's own row of the batch
+    scene = racket.replace({"integrator.paths": ["motor"]})
+    changes = {"body.mass": [0.3, 0.5, 0.32], "body.centre_of_mass[1]": [0.3, 0.1, 0.0],
+               "forces[0].g": [[0.0, 0.0, -9.8], [0.0, 0.0, -1.6], [1.0, 0.0, -9.8]]}  # fmt: skip
+    samples = scene_samples(scene, changes)
+    assert samples.params[:, 2].tolist() == pytest.approx([-0.3 * 9.8, -0.5 * 1.6, -0.32 * 9.8])
+    assert samples.motion[:, 0].tolist() == [0.3, 0.5, 0.32]
+    assert len(samples.terms) == 1  # one kernel set: one batch
+    run = assert_equals_single_runs(scene, changes)
+    # the lighter pull and the centre of mass at the origin show in the flight
+    assert run.position[-1, 1, 2] > run.position[-1, 0, 2]
+
+
+def test_a_full_inertia_tensor_turns_in_and_out_as_the_single_run(racket):
+    tensor = [[0.0151, 0.001, 0.0], [0.001, 0.0015, 0.0], [0.0, 0.0, 0.0166]]
+    scene = racket.replace({"body": {"tensor": tensor, "mass": 0.32,
+                                     "centre_of_mass": [0.0, 0.33, 0.0]},
+                            "integrator.paths": ["motor"]})  # fmt: skip
+    assert scene.principal_rotation != (1.0, 0.0, 0.0, 0.0)
+    assert_equals_single_runs(scene, {"initial.velocity[2]": [1.0, 2.0]}, exact=False)
+
+
+def test_satellite_moments_reach_the_gravity_gradient_parameters():
+    # the central field's parameters hold the moments: a scene per sample, never the
+    # vectorised mapping that would leave them the scene's
+    scene = load_scene("satellite_orbit").replace({"time.duration": 40.0, "time.output_step": 20.0,
+                                                   "integrator.paths": ["motor"]})  # fmt: skip
+    changes = {"body.moments[0]": [250.0, 200.0]}
+    samples = scene_samples(scene, changes)
+    assert samples.params[1].tolist() != samples.params[0].tolist()
+    assert_equals_single_runs(scene, changes, times=[20.0, 40.0])
+
+
+def test_a_bad_sample_is_named():
+    with pytest.raises(SceneError, match=r"body.mass: sample 1: expected a finite positive"):
+        scene_samples("thrown_racket", {"body.mass": [0.3, -1.0]})
+    with pytest.raises(SceneError, match="velocity"):
+        scene_samples("thrown_racket", {"initial.velocity[0]": [1.0, np.inf]})
+
+
+SWEEP = """
+[sweep]
+scene = "thrown_racket"
+samples = 3
+seed = 5
+chunk = 2
+times = [0.025, 0.05]
+[set]
+"time.duration" = 0.05
+"integrator.paths" = ["motor"]
+[grid]
+"body.mass" = [0.3, 0.4]
+[[draw]]
+key = "initial.velocity[0]"
+uniform = [1.0, 3.0]
+"""
+
+
+def test_a_motion_sweep_runs_batched_and_equals_the_single_runs(tmp_path):
+    ds = open_sweep(run_sweep(SWEEP, tmp_path / "s.zarr", client="sync"))
+    assert ds["position"].attrs["units"] == "m" and ds["velocity"].attrs["units"] == "m/s"
+    sweep = load_sweep(SWEEP)
+    values = sweep.values(0, sweep.size)
+    position = ds["position"].values.reshape(sweep.size, 2, 3)
+    q = ds["q"].values.reshape(sweep.size, 2, 4)
+    for i, (q1, _, p1, _) in enumerate(single_runs(sweep.scene, values, TIMES)):
+        assert np.array_equal(position[i], p1) and np.array_equal(q[i], q1)
+    # the nominal run's angle is zero where the draw sits on its centre; elsewhere finite
+    assert np.isfinite(ds["angle_from_nominal"].values).all()
+
+
+def test_the_budget_counts_a_moving_body_s_position_and_velocity():
+    moving = load_sweep(SWEEP)
+    text = SWEEP.replace("thrown_racket", "intermediate_axis_flip")
+    text = text.replace('"integrator.paths" = ["motor"]', "")
+    turning = load_sweep(text.replace("initial.velocity[0]", "initial.angular_velocity.body[0]"))
+    a, b = budget.estimate(moving, threads=1), budget.estimate(turning, threads=1)
+    assert a.files > b.files and a.bytes > b.bytes  # two more variables, a longer state
+
+
+def test_a_refused_sample_of_a_motion_sweep_is_one_line(tmp_path):
+    text = SWEEP.replace("[0.3, 0.4]", "[0.3, -0.4]")
+    with pytest.raises(InputError) as info:
+        run_sweep(text, tmp_path / "bad.zarr", client="sync")
+    message = str(info.value)
+    assert "\n" not in message and "body.mass" in message and "grid point 1" in message
+    assert not (tmp_path / "bad.zarr").exists()
