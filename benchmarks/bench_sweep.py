@@ -4,6 +4,8 @@ Usage (from the repository root)::
 
     python benchmarks/bench_sweep.py [--samples 1000000] [--steps 100 1000]
         [--repeats 5] [--local-cluster] [--dir DIR]
+    python benchmarks/bench_sweep.py --motion [--samples 100000] [--steps 1000]
+        [--repeats 5] [--quick]
 
 For each ``--steps``: a Monte-Carlo sweep of ``--samples`` samples (two normal draws, a
 torque-free RK4 scene, output at the end, chunks of 65,536) run with ``run_sweep`` as
@@ -22,6 +24,17 @@ adds to the kernel's work. The targets (issue 28): within 5 % of the kernel at 1
 steps a sample, within 25 % at 100. Every repeat's store is kept until the end (in a
 temporary directory, or ``--dir``): deleting stores between repeats makes the next
 ones' file creations slower on ext4, a cost no sweep meets on its own.
+
+``--motion`` measures instead the sweeps of a body moving through space (issue 32: "6-DOF
+ensembles and sweeps at the same body-steps/s as the rotational ones within 1.5x"): the
+thrown racket (uniform gravity, RK4, its throw speed and spin drawn) on the motor path
+and on the quaternion path (q and the centre of mass), against the sweep of the same
+size of the same racket turning freely about its centre of mass (its spin and middle
+rate drawn), each end to end with ``run_sweep`` and as the raw batched kernel
+(``run_samples`` on every core, inputs built beforehand), interleaved in each repeat;
+body-steps/s as medians with their range, and the ratio of each motion row to the
+rotational one of its kind, repeat by repeat, against the 1.5x target. ``--quick``:
+2,048 samples x 50 steps, 3 repeats (a smoke run, not a measurement).
 """
 
 from __future__ import annotations
@@ -43,6 +56,9 @@ from ga_rotors.sweep import load_sweep, local_cluster, run_sweep  # noqa: E402
 
 #: The overhead each number of steps a sample must stay within (issue 28).
 TARGETS = {100: 25.0, 1000: 5.0}
+
+#: A moving body's sweep's body-steps/s within this factor of a rotating one's (issue 32).
+MOTION_TARGET = 1.5
 
 
 def sweep_text(samples: int, steps: int) -> str:
@@ -135,7 +151,84 @@ def overhead(samples: int, steps: int, repeats: int, client=None, where=None) ->
         print(f"  {'':47s} CPU  {_range(cpu, '.1f')} %")
 
 
-def main() -> None:
+def motion_sweep_text(samples: int, steps: int, path: str | None) -> str:
+    """The thrown racket's sweep on ``path`` (None: the same racket turning freely about
+    its centre of mass, a rotation alone on the quaternion path)."""
+    h = 0.0005
+    scene, body, second = "thrown_racket", "", ("initial.velocity[0]", 2.0, 0.2)
+    if path is None:
+        scene, body = "intermediate_axis_flip", '"body" = {moments = [0.0151, 0.0015, 0.0166]}'
+        second = ("initial.angular_velocity.body[1]", 0.05, 0.01)
+    return f"""
+[sweep]
+scene = "{scene}"
+samples = {samples}
+seed = 1
+chunk = 65536
+
+[set]
+"time.duration" = {steps * h}
+"integrator.step" = {h}
+"time.output_step" = {steps * h}
+"integrator.method" = "rk4"
+"integrator.paths" = ["{path or "quaternion"}"]
+"initial.angular_velocity" = {{body = [12.0, 0.05, 0.05], units = "rad/s"}}
+{body}
+
+[[draw]]
+key = "initial.angular_velocity.body[0]"
+normal = [12.0, 0.5]
+
+[[draw]]
+key = "{second[0]}"
+normal = [{second[1]}, {second[2]}]
+"""
+
+
+def motion_sweeps(samples: int, steps: int, repeats: int, where=None) -> None:
+    """The moving racket's sweeps and kernels against the turning racket's (issue 32)."""
+    kinds = {"motion, motor path": "motor", "motion, quaternion path": "quaternion",
+             "rotation alone": None}  # fmt: skip
+    texts = {name: motion_sweep_text(samples, steps, path) for name, path in kinds.items()}
+    stores = Path(tempfile.mkdtemp(prefix="bench-motion-sweeps-", dir=where))
+    made = iter(range(10**6))
+    rows = {}
+    for name, path in kinds.items():
+        sweep = load_sweep(texts[name])
+        inputs, times = scene_samples(sweep.scene, sweep.values(0, sweep.size)), sweep.run_times()
+        # compiled or loaded from the cache, the store's libraries imported: not timed
+        run_samples(scene_samples(sweep.scene, n=8), times)
+        run_sweep(motion_sweep_text(8, steps, path), stores / f"warm{next(made)}.zarr")
+        rows[f"{name}: kernel"] = lambda i=inputs, t=times: run_samples(i, t)
+        rows[f"{name}: sweep"] = lambda text=texts[name]: run_sweep(
+            text, stores / f"s{next(made)}.zarr"
+        )
+    measured: dict[str, list[float]] = {name: [] for name in rows}
+    try:
+        for _ in range(repeats):
+            for name, f in rows.items():
+                measured[name].append(_timed(f)[0])
+    finally:
+        shutil.rmtree(stores)
+    rates = {name: [samples * steps / t / 1e6 for t in ts] for name, ts in measured.items()}
+    print(
+        f"motion sweeps: {samples} samples x {steps} RK4 steps, {os.cpu_count()} cores, "
+        f"{repeats} interleaved repeats; M body-steps/s, median (min to max)"
+    )
+    for name, r in rates.items():
+        print(f"  {name:38s} {_range(r, '.2f')}")
+    for what in ("kernel", "sweep"):
+        for name, path in kinds.items():
+            if path is None:
+                continue
+            pairs = zip(measured[f"{name}: {what}"], measured[f"rotation alone: {what}"],
+                        strict=True)  # fmt: skip
+            ratio = [a / b for a, b in pairs]
+            print(f"  {name} / rotation alone, {what:6s} {_range(ratio, '.2f')}x "
+                  f"(target: within {MOTION_TARGET:g}x)")  # fmt: skip
+
+
+def main(argv=None) -> None:
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("--samples", type=int, default=1_000_000)
     p.add_argument("--steps", type=int, nargs="+", default=[100, 1000])
@@ -146,8 +239,27 @@ def main() -> None:
         action="store_true",
         help="add a row on a local distributed cluster of one worker process per core",
     )
-    a = p.parse_args()
+    p.add_argument(
+        "--motion",
+        action="store_true",
+        help="the moving racket's sweeps against the turning racket's (issue 32)",
+    )
+    p.add_argument(
+        "--quick",
+        action="store_true",
+        help="with --motion: 2048 samples x 50 steps, 3 repeats (a smoke run)",
+    )
+    a = p.parse_args(argv)
     print(f"load average before: {os.getloadavg()[0]:.1f}")
+    if a.motion:
+        if a.quick:
+            a.samples, a.steps, a.repeats = 2048, [50], 3
+        elif a.samples == 1_000_000 and a.steps == [100, 1000]:  # the defaults: a smaller size
+            a.samples, a.steps = 100_000, [1000]
+        for steps in a.steps:
+            motion_sweeps(a.samples, steps, a.repeats, a.dir)
+        print(f"load average after: {os.getloadavg()[0]:.1f}")
+        return
     cluster = client = None
     if a.local_cluster:
         import distributed

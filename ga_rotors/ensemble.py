@@ -626,13 +626,11 @@ def run_samples(
 
 
 def _motion_starts(module, q0, w0, samples):
-    """The motion path's start (x, rates) of each sample, as a single run makes it
-    (``initial_state`` of one body: one call per distinct start)."""
-    starts = np.hstack([q0, w0, samples.position, samples.velocity, samples.motion[:, 1:]])
-    unique, which = np.unique(starts, axis=0, return_inverse=True)
-    made = [module.initial_state(u[:4], u[7:10], u[4:7], u[10:13], u[13:16]) for u in unique]
-    x = np.array([m[0] for m in made])[which.reshape(-1)]
-    r = np.array([m[1] for m in made])[which.reshape(-1)]
+    """The motion path's start (x, rates) of each sample: the path's ``initial_state`` on
+    rows of samples (its arithmetic is elementwise, so each row is a single run's start)."""
+    com = samples.motion[:, 1:]
+    q0, w0 = np.broadcast_to(q0, (len(samples), 4)), np.ascontiguousarray(w0)
+    x, r = module.initial_state(q0, samples.position, w0, samples.velocity, com)
     return np.ascontiguousarray(x), np.ascontiguousarray(r)
 
 

@@ -329,7 +329,8 @@ def initial_state(q0, position, w0, velocity, centre_of_mass):
     q0 = np.asarray(q0, dtype=np.float64)
     v_body = Q.rotate(Q.conjugate(q0), np.asarray(velocity, dtype=np.float64))
     x = motor.from_pose(q0, position)
-    return x, np.concatenate([np.asarray(w0, dtype=np.float64), v_body])
+    # along the last axis: rows of many bodies' starts at once, as an ensemble makes them
+    return x, np.concatenate([np.asarray(w0, dtype=np.float64), v_body], axis=-1)
 
 
 def quaternions(states: np.ndarray) -> np.ndarray:

@@ -141,7 +141,9 @@ def initial_state(q0, position, w0, velocity, centre_of_mass):
     lever = Q.rotate(q0, np.asarray(centre_of_mass, dtype=np.float64))
     c = np.asarray(position, dtype=np.float64) + lever
     vc = np.asarray(velocity, dtype=np.float64) + np.cross(Q.rotate(q0, w0), lever)
-    return np.concatenate([q0, c]), np.concatenate([np.asarray(w0, dtype=np.float64), vc])
+    # along the last axis: rows of many bodies' starts at once, as an ensemble makes them
+    return (np.concatenate([q0, c], axis=-1),
+            np.concatenate([np.asarray(w0, dtype=np.float64), vc], axis=-1))  # fmt: skip
 
 
 def quaternions(states: np.ndarray) -> np.ndarray:
