@@ -582,6 +582,7 @@ def _derive(plan: _Plan, grid, results: dict, status: dict) -> Trajectory:
         meta["mass"] = rigid.mass
         meta["centre_of_mass"] = rigid.centre_of_mass
         meta["forces"] = [f.name for f in plan.problem.forces]
+        meta["force_params"] = [list(f.params) for f in plan.problem.forces]
     return Trajectory(arrays, components, meta)
 
 

@@ -154,3 +154,66 @@ def test_a_refused_sample_of_a_motion_sweep_is_one_line(tmp_path):
     message = str(info.value)
     assert "\n" not in message and "body.mass" in message and "grid point 1" in message
     assert not (tmp_path / "bad.zarr").exists()
+
+
+def test_a_moving_body_s_result_file_has_one_unit_a_variable_and_its_body_and_forces(
+    racket, tmp_path
+):
+    pytest.importorskip("pint_xarray")
+    import json
+
+    import cf_xarray.units
+
+    from ga_rotors import results
+
+    tr = run_scene(racket)  # both paths: the motor and q with the centre of mass
+    ds = results.to_dataset(tr, racket)
+    assert {"motor", "q_com"}.isdisjoint(ds.data_vars)
+    assert ds["motor_dual"].attrs["units"] == "m" and ds["com_position"].attrs["units"] == "m"
+    assert ds["motor_rotor"].attrs["units"] == ds["q"].attrs["units"] == "1"
+    # the parts are the raw states' columns, nothing lost
+    motor, q_com = tr["motor"], tr["q_com"]
+    assert np.array_equal(ds["motor_rotor"].values, motor[:, [0, 4, 5, 6]])
+    assert np.array_equal(ds["motor_dual"].values, motor[:, [1, 2, 3, 7]])
+    assert np.array_equal(ds["com_position"].values, q_com[:, 4:])
+    # the centre of mass the quaternion path carries is the origin's position moved by q s
+    from ga_rotors import quaternion as Q
+
+    lever = Q.rotate(Q.normalize(ds["q"].values), [0.0, 0.33, 0.0])
+    np.testing.assert_allclose(ds["com_position"].values - lever, ds["position"].values,
+                               atol=1e-9)  # fmt: skip
+    for registry in (None, cf_xarray.units.units):
+        quantified = ds.pint.quantify(unit_registry=registry)
+        metre = quantified["position"].data.units
+        assert quantified["motor_dual"].data.units == metre
+        assert quantified["com_position"].data.units == metre
+    assert (ds.attrs["body_mass"], ds.attrs["body_mass_units"]) == (0.32, "kg")
+    assert ds.attrs["body_centre_of_mass"] == [0.0, 0.33, 0.0]
+    assert ds.attrs["body_centre_of_mass_units"] == "m"
+    assert ds.attrs["forces"] == "uniform_gravity"
+    (force,) = json.loads(ds.attrs["forces_json"])
+    assert force["type"] == "uniform_gravity"
+    assert force["parameters"] == pytest.approx([0.0, 0.0, -0.32 * 9.80665])
+    # written and read back, and as CSV columns with their units
+    back = results.read(results.write(tr, tmp_path / "run.nc", scene=racket))
+    assert back["motor_dual"].attrs["units"] == "m" and back.attrs["body_mass"] == 0.32
+    header = results.write_csv(tr).splitlines()[0]
+    assert "motor_dual_e01 [m]" in header and "com_position_x [m]" in header
+    assert "motor_rotor_1 [1]" in header and "q_w [1]" in header
+
+
+def test_an_npz_archive_keeps_the_raw_states_and_names_their_parts_units(racket, tmp_path):
+    import json
+    import zipfile
+
+    from ga_rotors import results
+
+    tr = run_scene(racket)
+    path = results.write_npz(tr, tmp_path / "run.npz", scene=racket)
+    with zipfile.ZipFile(path) as zf:
+        info = json.loads(zf.read("attributes.json"))
+    assert np.array_equal(np.load(path)["motor"], tr["motor"])  # what the viewer reads
+    parts = info["variables"]["motor"]["parts"]
+    assert parts["motor_dual"]["units"] == "m" and parts["motor_dual"]["columns"] == [1, 2, 3, 7]
+    assert info["variables"]["q_com"]["parts"]["com_position"]["units"] == "m"
+    assert info["attributes"]["body_mass"] == 0.32

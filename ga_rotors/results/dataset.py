@@ -25,7 +25,7 @@ import numpy as np
 
 from ..optional import require
 from .provenance import provenance
-from .variables import COMPONENT_DIMS, STANDARD, describe
+from .variables import COMPONENT_DIMS, STANDARD, describe, one_unit
 
 __all__ = [
     "EXACT_BOUND_TIMES",
@@ -94,6 +94,7 @@ def time_rows(trajectory) -> dict[str, np.ndarray]:
     >>> {name: a.shape for name, a in time_rows(tr).items()}
     {'t': (3,), 'euler': (3, 3)}
     """
+    trajectory = one_unit(trajectory)  # an array of mixed units: its parts
     n = trajectory.t.shape[0]
     out = {}
     for name in trajectory.names:
@@ -128,6 +129,7 @@ def to_dataset(trajectory, scene=None):
     ('CF-1.10', 'rk4', True)
     """
     xr = require("xarray", "results")
+    trajectory = one_unit(trajectory)  # an array of mixed units: its parts, one unit each
     t = trajectory.t
     coords: dict = {"time": ("time", t, variable_attrs("t"))}
     variables = {}

@@ -37,7 +37,9 @@ COPY_BUFFER = 4 << 20
 
 def attributes_json(trajectory, scene=None) -> str:
     """The ``attributes.json`` member of ``trajectory``'s archive: the run's attributes
-    and each array's units and long name.
+    and each array's units and long name (for an array whose columns carry different
+    units, a raw state of a moving body, those of each part and the columns it takes:
+    :data:`~ga_rotors.results.variables.PARTS`).
 
     Examples
     --------
@@ -48,9 +50,14 @@ def attributes_json(trajectory, scene=None) -> str:
     ('the body axes the inertia was given in', 'J')
     """
     from .dataset import variable_attrs
+    from .variables import PARTS
 
     variables = {}
     for name in trajectory.names:
+        if name in PARTS:
+            variables[name] = {"parts": {part: {**variable_attrs(part), "columns": list(columns)}
+                                         for part, columns, _ in PARTS[name]}}  # fmt: skip
+            continue
         try:
             variables[name] = variable_attrs(name)
         except InputError:  # an array a user added: no unit is known

@@ -108,6 +108,7 @@ def provenance(meta: dict, scene=None) -> dict:
         attrs["principal_rotation"] = [float(x) for x in meta["principal_rotation"]]
     if "torques" in meta:
         attrs["torques"] = ", ".join(meta["torques"])
+    attrs.update(_motion(meta))
     if "paths" in meta:
         paths = {
             name: {k: v for k, v in status.items() if k in _PATH_KEYS}
@@ -126,6 +127,39 @@ def provenance(meta: dict, scene=None) -> dict:
     if "scene" in attrs:
         attrs["title"] = f"ga_rotors run of the scene {attrs['scene']}"
     attrs.update(_versions())
+    return attrs
+
+
+def _motion(meta: dict) -> dict:
+    """A moving body's attributes: its mass and centre of mass (from the body-frame
+    origin, in the body frame) with their units, and its declared forces: their names (as
+    the torques'), and each one's type and parameters as JSON (the parameters as the
+    force's kernel takes them, SI units, space frame: :mod:`ga_rotors.forces`).
+
+    Examples
+    --------
+    >>> a = _motion({"mass": 0.32, "centre_of_mass": (0.0, 0.33, 0.0),
+    ...              "forces": ["uniform_gravity"], "force_params": [[0.0, 0.0, -3.1]]})
+    >>> a["body_mass"], a["body_mass_units"], a["body_centre_of_mass_units"], a["forces"]
+    (0.32, 'kg', 'm', 'uniform_gravity')
+    >>> a["forces_json"]
+    '[{"parameters": [0.0, 0.0, -3.1], "type": "uniform_gravity"}]'
+    """
+    attrs: dict = {}
+    if meta.get("mass") is not None:
+        attrs["body_mass"], attrs["body_mass_units"] = float(meta["mass"]), "kg"
+    if meta.get("centre_of_mass") is not None:
+        attrs["body_centre_of_mass"] = [float(x) for x in meta["centre_of_mass"]]
+        attrs["body_centre_of_mass_units"] = "m"
+    if "forces" in meta:
+        names = list(meta["forces"])
+        attrs["forces"] = ", ".join(names)
+        params = meta.get("force_params") or [None] * len(names)
+        declared = [
+            {"type": name, **({} if p is None else {"parameters": [float(x) for x in p]})}
+            for name, p in zip(names, params, strict=True)
+        ]
+        attrs["forces_json"] = json.dumps(declared, sort_keys=True)
     return attrs
 
 

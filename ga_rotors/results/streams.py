@@ -73,6 +73,9 @@ class _RunStream:
     def _take(self, piece) -> None:
         """Count the piece's rows (and pick its bound times)."""
         from .store import CHUNK_ROWS
+        from .variables import one_unit
+
+        piece = one_unit(piece)  # the arrays as the files hold them
 
         if self.rows == 0:
             meta = piece.meta

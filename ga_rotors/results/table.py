@@ -41,7 +41,7 @@ import numpy as np
 
 from ..errors import InputError
 from ..files import checked_path, output_set, shown_path
-from .variables import COMPONENT_DIMS, describe
+from .variables import COMPONENT_DIMS, describe, one_unit
 
 __all__ = [
     "CSVW_CONTEXT",
@@ -132,7 +132,7 @@ def csv_header(trajectory) -> list[str]:
     ['t [s]', 'x']
     """
     out = []
-    for header, name, _ in trajectory.columns():
+    for header, name, _ in one_unit(trajectory).columns():
         try:
             out.append(f"{header} [{describe(name)[0]}]")
         except InputError:
@@ -174,6 +174,7 @@ class CsvRows:
 
     def write(self, piece) -> None:
         """Append the rows of ``piece`` (the header line first, once)."""
+        piece = one_unit(piece)  # an array of mixed units: its parts, one unit each
         if not self._started:
             self.fh.write(_header_line(piece))
             self._started = True
@@ -286,6 +287,7 @@ body_axis 1'})
     ('body_frame', 'the body axes the inertia was given in')
     """
     columns = []
+    trajectory = one_unit(trajectory)
     headers = csv_header(trajectory)
     for header, (plain, name, index) in zip(headers, trajectory.columns(), strict=True):
         if index is None:

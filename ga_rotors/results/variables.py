@@ -15,7 +15,7 @@ from __future__ import annotations
 
 from ..errors import InputError
 
-__all__ = ["COMPONENT_DIMS", "STANDARD", "VARIABLES", "describe"]
+__all__ = ["COMPONENT_DIMS", "PARTS", "STANDARD", "VARIABLES", "describe", "one_unit"]
 
 #: array name -> (unit, long name). Units follow SI; "1" is dimensionless.
 VARIABLES: dict[str, tuple[str, str]] = {
@@ -38,15 +38,34 @@ VARIABLES: dict[str, tuple[str, str]] = {
     "omega_error": ("rad/s", "|w - w_exact| of the primary path"),
     "position": ("m", "position of the body-frame origin in space, primary path"),
     "velocity": ("m/s", "velocity of the body-frame origin in space, primary path"),
-    "motor": (
+    # the raw states of a moving body's paths, each split into parts of one unit (PARTS)
+    "motor_rotor": (
         "1",
-        "motor path's raw state: the body frame's motor on the blades (1, e01, e02, e03, "
-        "e12, e13, e23, e0123), the e0 blades in m",
+        "motor path's raw state, its rotor part: the body frame's motor on the blades "
+        "(1, e12, e13, e23)",
+    ),
+    "motor_dual": (
+        "m",
+        "motor path's raw state, its e0 part: the body frame's motor on the blades "
+        "(e01, e02, e03, e0123)",
+    ),
+    "com_position": ("m", "position of the centre of mass in space, quaternion path"),
+}
+
+#: A trajectory array whose components carry different units -> its parts, each of one
+#: unit, as every results file holds it: (part's name, columns, component labels). The
+#: motor's rotor blades are numbers and its e0 blades metres; the quaternion path of a
+#: moving body holds q and the centre of mass in space (m). Neither part is derivable from
+#: the other variables (``position`` is the primary path's, which may be the other path),
+#: so the parts are kept, not dropped.
+PARTS: dict[str, tuple[tuple[str, tuple[int, ...], tuple[str, ...]], ...]] = {
+    "motor": (
+        ("motor_rotor", (0, 4, 5, 6), ("1", "e12", "e13", "e23")),
+        ("motor_dual", (1, 2, 3, 7), ("e01", "e02", "e03", "e0123")),
     ),
     "q_com": (
-        "1",
-        "quaternion path's raw state for a moving body: q (w, x, y, z) and the centre of "
-        "mass in space (cx, cy, cz) in m",
+        ("q", (0, 1, 2, 3), ("w", "x", "y", "z")),
+        ("com_position", (4, 5, 6), ("x", "y", "z")),
     ),
 }
 
@@ -61,8 +80,7 @@ COMPONENT_DIMS: dict[tuple[str, ...], str] = {
     ("1", "2", "3"): "body_axis",
     ("x", "y", "z"): "space_axis",
     ("psi", "theta", "phi"): "zyz_angle",
-    ("1", "e01", "e02", "e03", "e12", "e13", "e23", "e0123"): "motor_blade",
-    ("w", "x", "y", "z", "cx", "cy", "cz"): "pose_component",
+    ("e01", "e02", "e03", "e0123"): "motor_dual_blade",
 }
 
 
@@ -86,3 +104,35 @@ def describe(name: str) -> tuple[str, str]:
         path = name[len("error_") :]  # one per path: error_rotor, error_quaternion, ...
         return "rad", f"geodesic angle from the exact orientation, {path} path"
     raise InputError(f"{name}: no unit is known for this array")
+
+
+def one_unit(trajectory):
+    """``trajectory`` with each array of :data:`PARTS` replaced by its parts, so every
+    array has one unit (the same Trajectory when it has none of them).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from ga_rotors.trajectory import Trajectory
+    >>> tr = Trajectory({"t": np.zeros(1), "q_com": np.arange(7.0)[None]},
+    ...                 {"q_com": ("w", "x", "y", "z", "cx", "cy", "cz")})
+    >>> split = one_unit(tr)
+    >>> split.names, split["com_position"].tolist(), describe("com_position")[0]
+    (('t', 'q', 'com_position'), [[4.0, 5.0, 6.0]], 'm')
+    """
+    if not any(name in PARTS for name in trajectory.names):
+        return trajectory
+    from ..trajectory import Trajectory
+
+    arrays, components = {}, {}
+    for name in trajectory.names:
+        labels = trajectory.components.get(name)
+        if name not in PARTS:
+            arrays[name] = trajectory[name]
+            if labels:
+                components[name] = labels
+            continue
+        for part, columns, part_labels in PARTS[name]:
+            arrays[part] = trajectory[name][:, list(columns)]
+            components[part] = part_labels
+    return Trajectory(arrays, components, trajectory.meta)
