@@ -312,6 +312,21 @@ class Scene:
                     f"½ m v² of {self.mass:.3g} kg at {speed:.3g} m/s overflows float64; "
                     "rescale the units",
                 )
+            # The lever s enters the inertia about the origin (m|s|²) and the origin's
+            # velocity (ω×s); the position the momentum about the space origin (m r×v):
+            # their squares must fit as the energy's does (s = 1e308 m gave NaN samples).
+            lever = math.hypot(*self.body.centre_of_mass)
+            reach = math.hypot(*self.position)
+            for where, value, what in (
+                ("body.centre_of_mass", self.mass * lever * max(lever, rate * lever),
+                 "the moment m|s|² and momentum m|ω×s| it adds about the body-frame origin"),
+                ("initial.position", self.mass * reach * (speed + rate * lever),
+                 "the angular momentum about the space origin, m|r||v|,"),
+            ):  # fmt: skip
+                if not value * value * 16.0 < sys.float_info.max:
+                    raise reader.error(
+                        where, f"{what} overflow float64 when squared; rescale the units"
+                    )
         h = self.data["integrator"]["step"]
         turn = rate * h
         if not turn <= MAX_TURN_PER_STEP:
