@@ -316,6 +316,17 @@ def _fast(scene, changes: dict, n: int):
             target[:, index] = values.reshape(n) * scale
     if _refused(arrays[_MOMENTS], arrays[_RATE], np.finfo(float).tiny, MIN_MOMENT_RATIO):
         return None  # let the per-sample path name the bad value
+    from .scene.model import MAX_TURN_PER_STEP  # the scene's limit (scene imports this module)
+
+    w = arrays[_RATE]
+    rate = np.hypot(np.hypot(w[:, 0], w[:, 1]), w[:, 2])  # no square to overflow
+    with np.errstate(over="ignore"):  # an overflow is what is being tested for
+        momentum = arrays[_MOMENTS].max(axis=1) * rate
+        turn = rate * scene.data["integrator"]["step"]
+        beyond = ~((momentum * momentum * 16.0 < np.finfo(float).max)
+                   & (turn <= MAX_TURN_PER_STEP))  # fmt: skip
+    if beyond.any():
+        return None  # the scene's own magnitude checks, per sample, name it
     if scene.moves:
         p, v = arrays[_POSITION], arrays[_VELOCITY]
         energy = 0.5 * scene.mass * np.einsum("ij,ij->i", v, v) * 16.0  # as the scene's check

@@ -383,3 +383,18 @@ def test_the_vectorised_gate_refuses_exactly_what_its_conditions_say():
                 omega = np.tile(rates[0], (7, 1))
                 moments[where], omega[where] = m, w
                 assert _refused(moments, omega, tiny, MIN_MOMENT_RATIO) == expected(m, w), (m, w)
+
+
+@pytest.mark.parametrize(
+    ("spin", "says"),
+    [(1e9, "rad per step, beyond 1000"), (1e160, "the kinetic energy overflows float64")],
+)
+def test_a_vectorised_sample_beyond_the_scene_s_magnitude_checks_is_named(spin, says):
+    # The fast route (rates set in one pass, only its first and last samples built as
+    # scenes) once skipped the checks a scene makes of its own rate for the samples between,
+    # so a sample spinning 1e6 rad a step ran as if it could be integrated.
+    scene = load_scene("spinning_disk").replace(
+        {"initial.angular_velocity": {"body": [0.0, 0.0, 15.0], "units": "rad/s"}}
+    )
+    with pytest.raises(SceneError, match=f"initial.angular_velocity: sample 1: .*{says}"):
+        scene_samples(scene, {"initial.angular_velocity.body[2]": np.array([1.0, spin, 1.0])})
