@@ -423,6 +423,33 @@ def test_ctrl_c_while_the_command_starts_is_one_line_and_130(tmp_path, delay):
     assert not (tmp_path / "out").exists()  # nothing half-written
 
 
+
+def test_ctrl_c_dropped_in_a_callback_still_stops_the_run(tmp_path, monkeypatch, capsys):
+    """An interrupt that lands where Python drops exceptions (llvmlite's object-cache
+    callback while numba loads a loop; here a ``__del__``) is raised again once the callback
+    has returned: the run stops with one line and 130 and writes nothing. It used to go on
+    and write its whole output (the flaky [0.1] case of the test above)."""
+    import signal
+
+    from ga_rotors import scene as scene_module
+
+    real = scene_module.stream_scene
+
+    class Callback:
+        def __del__(self):
+            signal.getsignal(signal.SIGINT)(signal.SIGINT, None)  # Ctrl-C arrives here
+
+    def interrupted_in_a_callback(*args, **kwargs):
+        Callback()  # collected at once: its exception goes to sys.unraisablehook
+        return real(*args, **kwargs)
+
+    monkeypatch.setattr(scene_module, "stream_scene", interrupted_in_a_callback)
+    out = tmp_path / "out"
+    assert main(["run", "spinning_disk", "--out", str(out), "--no-progress"]) == 130
+    assert capsys.readouterr().err.splitlines() == ["ga-rotors: interrupted"]
+    assert not out.exists()
+
+
 # ---------------------------------------------------------------------------- compile budget
 
 

@@ -12,19 +12,23 @@ on stdout and exits 0.
 
 Errors a user can cause (:class:`ga_rotors.errors.GaRotorsError`) are printed as one line
 on stderr with exit code 2, never as a traceback. Ctrl-C at any moment after ``main``
-starts, importing a command's modules included, ends with one line and exit 130, even
-when the interrupt lands where Python cannot raise it (a callback, a lookup that drops
-exceptions) or where a library turns it into another error: the handler records it, and
-a command that goes on to finish still exits 130.
+starts, importing a command's modules included, ends with one line and exit 130, and a
+command that writes leaves its previous output. An interrupt that lands where Python cannot
+raise it (a callback such as llvmlite's object cache while numba compiles, a ``__del__``)
+is dropped there and delivered again as soon as the callback has returned, so the command
+stops rather than finishing; where a library turns it into another error, the handler has
+recorded it, and a command that goes on to finish still exits 130.
 """
 
 from __future__ import annotations
 
+import _thread
 import argparse
 import importlib
 import signal
 import sys
 import threading
+import time
 
 from ..errors import GaRotorsError
 
@@ -135,9 +139,13 @@ def main(argv: list[str] | None = None) -> int:
     (2, 'ga-rotors: error: no_such_scene: no such file, and no bundled scene of that name')
     """
     _INTERRUPTED.clear()
-    previous = _on_sigterm(_terminated), _on_sigint(_interrupted), sys.unraisablehook
-    sys.unraisablehook = _unraisable
+    # The handlers go in inside the try: an interrupt right after SIGINT's is installed
+    # is then one line and 130 too.
+    previous = _handler(signal.SIGTERM), _handler(signal.SIGINT), sys.unraisablehook
     try:
+        sys.unraisablehook = _unraisable
+        _on_sigterm(_terminated)
+        _on_sigint(_interrupted)
         status = _main(argv)
     except GaRotorsError as exc:
         if _INTERRUPTED:
@@ -196,11 +204,29 @@ def _interrupted(signum, frame):
 
 def _unraisable(info) -> None:
     """Python's report of an exception it had to drop (raised in a callback), except the
-    interrupt, which the handler has recorded and the command reports in one line: a
-    Ctrl-C inside numba's compiler callback printed a traceback before that line."""
+    interrupt, which the handler has recorded and the command reports in one line (a
+    Ctrl-C inside numba's compiler callback printed a traceback before that line). The
+    dropped interrupt is raised again at the next point Python can raise it: without that
+    the command went on and wrote its whole output after Ctrl-C."""
     if isinstance(info.exc_value, KeyboardInterrupt) and _INTERRUPTED:
+        if threading.current_thread() is threading.main_thread():
+            _HOOK_DONE[0] = False
+            _thread.start_new_thread(_interrupt_again, ())
+            _HOOK_DONE[0] = True  # a plain store: the handler cannot run in here after it
         return
     sys.__unraisablehook__(info)
+
+
+#: Set as the last step of :func:`_unraisable`, for :func:`_interrupt_again`.
+_HOOK_DONE = [True]
+
+
+def _interrupt_again() -> None:
+    # Called in the main thread, the handler would raise inside the hook (dropped again):
+    # from this thread, once the hook is done, it runs at the main thread's next step.
+    while not _HOOK_DONE[0]:
+        time.sleep(0.001)
+    _thread.interrupt_main()
 
 
 def _interrupt_status() -> int:
@@ -225,6 +251,13 @@ def _on_sigterm(handler):
 def _on_sigint(handler):
     """Install ``handler`` for SIGINT (main thread only); return the previous one."""
     return _on_signal(signal.SIGINT, handler)
+
+
+def _handler(signum):
+    """The handler installed for ``signum`` now (None where none can be installed)."""
+    if threading.current_thread() is not threading.main_thread():
+        return None
+    return signal.getsignal(signum)
 
 
 def _on_signal(signum, handler):
