@@ -222,9 +222,6 @@ def test_a_file_the_system_refuses_is_one_line_naming_it(tmp_path, capsys, monke
 
     from ga_rotors.cli import main
 
-    if argv[0] == "view":
-        pytest.importorskip("plotly")
-
     def refused(*args, **kwargs):
         raise OSError(errno.ENOSPC, "No space left on device", "/somewhere/.tmp")
 
