@@ -154,7 +154,8 @@ class Case:
             return energy, Q.rotate(Q.normalize(state[:4]), inertia * rates[:3])
 
         (e0, s0), (e1, s1) = invariants(x0, w0), invariants(x[-1], w[-1])
-        return error, abs(e1 - e0) / abs(e0), float(np.linalg.norm(s1 - s0) / np.linalg.norm(s0))
+        drift = float(abs(e1 - e0) / abs(e0))
+        return error, drift, float(np.linalg.norm(s1 - s0) / np.linalg.norm(s0))
 
     def exact_final(self) -> np.ndarray:
         """The exact orientation (w, x, y, z) at ``duration``, computed once per case."""
