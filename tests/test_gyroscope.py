@@ -23,8 +23,17 @@ from ga_rotors.paper import models as paper_models
 from ga_rotors.paper.runs import run_all
 from ga_rotors.reference.symmetric_top import SymmetricTop
 
-ALL = run_all()
-BY_KEY = {s.key: s for s in ALL}
+# The paper's four runs, made once for the module by the first test that needs them (at
+# import they compiled three loops while the whole suite was being collected).
+KEYS = [f"{model}_{theta:g}deg" for model in paper_models.MODELS
+        for theta in paper_models.THETA0_DEG]  # fmt: skip
+
+
+@pytest.fixture(scope="module")
+def by_key():
+    runs = {s.key: s for s in run_all()}
+    assert sorted(runs) == sorted(KEYS)
+    return runs
 
 
 def rk4_rotation_error(w_norm: float, h: float, t: float) -> float:
@@ -32,55 +41,55 @@ def rk4_rotation_error(w_norm: float, h: float, t: float) -> float:
     return t * h**4 * w_norm**5 / 1920.0
 
 
-@pytest.mark.parametrize("key", sorted(BY_KEY))
-def test_rotor_and_quaternion_paths_agree_to_roundoff(key):
+@pytest.mark.parametrize("key", sorted(KEYS))
+def test_rotor_and_quaternion_paths_agree_to_roundoff(key, by_key):
     # Same ODE in isomorphic algebras, same arithmetic up to term order: they differ by
     # accumulated rounding, ~1e-16 per step over 1e4 steps in the worst case.
-    s = BY_KEY[key]
+    s = by_key[key]
     assert s.rotor_vs_quaternion <= 1e-12
     assert s.rotor_vs_quaternion <= 1e4 * np.finfo(float).eps
 
 
-@pytest.mark.parametrize("key", sorted(BY_KEY))
-def test_rotor_path_error_is_rk4s_rotation_error(key):
+@pytest.mark.parametrize("key", sorted(KEYS))
+def test_rotor_path_error_is_rk4s_rotation_error(key, by_key):
     # Both bodies spin at |ω| ≈ 15.72 rad/s about an axis ω is nearly parallel to; the
     # transverse part (0.02 rad/s) changes the error by O(|ω⊥|/|ω|) ~ 1e-3 relative, and the
     # truncation of the series by O(y²) ~ 6e-5: 2% covers both with margin.
-    s = BY_KEY[key]
+    s = by_key[key]
     tr = s.trajectory
     predicted = rk4_rotation_error(np.linalg.norm(tr.w[0]), tr.meta["step"], tr.t[-1])
     for name in ("R", "q"):
         assert 0.98 <= s.max_error[name] / predicted <= 1.02, (name, s.max_error[name], predicted)
 
 
-def test_omega_along_the_papers_x3_axis_stays_exactly_constant():
+def test_omega_along_the_papers_x3_axis_stays_exactly_constant(by_key):
     # I_y3 = I_z3 exactly, so ω̇_x3 = (I_y3 - I_z3) ω_y3 ω_z3 / I_x3 is exactly 0.0 every stage.
     for theta in paper_models.THETA0_DEG:
-        w = BY_KEY[f"paper_{theta:g}deg"].trajectory.w
+        w = by_key[f"paper_{theta:g}deg"].trajectory.w
         assert np.all(w[:, 0] == w[0, 0])
     # while (ω_y3, ω_z3) turn at rate ω_x3 = -0.0052 rad/s: ω_z3 drops by ~0.021 in 10 s
-    w = BY_KEY["paper_15deg"].trajectory.w
+    w = by_key["paper_15deg"].trajectory.w
     assert np.ptp(w[:, 2]) > 1e-2
 
 
-def test_disk_spin_along_its_symmetry_axis_stays_exactly_constant():
+def test_disk_spin_along_its_symmetry_axis_stays_exactly_constant(by_key):
     for theta in paper_models.THETA0_DEG:
-        w = BY_KEY[f"disk_{theta:g}deg"].trajectory.w
+        w = by_key[f"disk_{theta:g}deg"].trajectory.w
         assert np.all(w[:, 2] == w[0, 2])
 
 
-def test_euler_angle_path_is_fine_away_from_the_pole():
+def test_euler_angle_path_is_fine_away_from_the_pole(by_key):
     for model in paper_models.MODELS:
-        s = BY_KEY[f"{model}_15deg"]
+        s = by_key[f"{model}_15deg"]
         assert s.watch["unresolved_steps"] == 0 and s.watch["pole_crossings"] == 0
         assert s.watch["complete"] and s.watch["first_unresolved"] is None
         # the angle rates are slow here: this path is even more accurate than RK4 on q
         assert s.max_error["euler"] < s.max_error["R"]
 
 
-def test_euler_angle_path_trouble_near_theta_zero_is_detected_and_reported():
+def test_euler_angle_path_trouble_near_theta_zero_is_detected_and_reported(by_key):
     for model in paper_models.MODELS:
-        s = BY_KEY[f"{model}_0.001deg"]
+        s = by_key[f"{model}_0.001deg"]
         w = s.watch
         assert w["complete"]  # it never produced a non-finite state
         assert w["unresolved_steps"] > 10 and w["pole_crossings"] >= 1
@@ -93,12 +102,12 @@ def test_euler_angle_path_trouble_near_theta_zero_is_detected_and_reported():
         assert s.max_error["euler"] > 1e3 * s.max_error["R"]
 
 
-def test_psi_plus_phi_is_well_defined_through_the_near_pole_passes():
+def test_psi_plus_phi_is_well_defined_through_the_near_pole_passes(by_key):
     # ψ and φ swing by ~π each as θ passes near 0; their sum does not. From the rotor path:
     # the largest jump of ψ + φ between samples is the spin ω·h (~0.016 rad), while ψ alone
     # jumps by about π.
     for model in paper_models.MODELS:
-        a = BY_KEY[f"{model}_0.001deg"].trajectory.angles
+        a = by_key[f"{model}_0.001deg"].trajectory.angles
         psi_jump = np.abs(np.diff(a[:, 0])).max()
         sum_jump = np.abs(np.diff(np.unwrap(a[:, 0] + a[:, 2]))).max()
         assert psi_jump > 1.0 and sum_jump < 0.02
@@ -219,12 +228,12 @@ def test_invariant_drift_stays_within_rk4s_h4_t_model():
     assert np.all(orders > 3.9), orders
 
 
-def test_invariants_of_the_paper_scenes():
+def test_invariants_of_the_paper_scenes(by_key):
     # Symmetric bodies: RK4 rotates (ω1, ω2) with a per-step amplitude error (νh)⁶/144, far
     # below round-off here, so energy and |L| hold to rounding (~1e4 steps × eps); the
     # space-frame L inherits the orientation error, bounded by |L| × the geodesic error.
     eps = np.finfo(float).eps
-    for s in ALL:
+    for s in by_key.values():
         tr = s.trajectory
         body = s.model.moments
         e = 0.5 * np.einsum("ni,i,ni->n", tr.w, np.array(body), tr.w)
@@ -238,18 +247,18 @@ def test_invariants_of_the_paper_scenes():
         assert drift.max() <= s.max_error["R"] + 1e4 * eps
 
 
-def test_non_unit_orientation_norm_drift_matches_rk4_amplitude_error():
+def test_non_unit_orientation_norm_drift_matches_rk4_amplitude_error(by_key):
     # |R| after T/h steps: RK4's amplification |P4(iy)|² = 1 - y⁶/72 + O(y⁸) per step,
     # so | |R| - 1 | ≈ (T/h) y⁶/144 with y = h|ω|/2: 1.6e-11 for the paper's run.
-    for s in ALL:
+    for s in by_key.values():
         tr = s.trajectory
         y = tr.meta["step"] * np.linalg.norm(tr.w[0]) / 2
         predicted = tr.t[-1] / tr.meta["step"] * y**6 / 144
         assert 0.95 <= s.norm_drift / predicted <= 1.05, (s.key, s.norm_drift, predicted)
 
 
-def test_gimbal_warning_is_not_raised_for_the_papers_near_pole_samples():
+def test_gimbal_warning_is_not_raised_for_the_papers_near_pole_samples(by_key):
     # θ comes within ~1e-7 rad of 0, still far above the gimbal tolerance (1e-14 rad).
     with warnings.catch_warnings():
         warnings.simplefilter("error")
-        euler.from_quaternion(BY_KEY["disk_0.001deg"].trajectory.quaternions("rotor"), "ZYZ")
+        euler.from_quaternion(by_key["disk_0.001deg"].trajectory.quaternions("rotor"), "ZYZ")
