@@ -20,6 +20,27 @@ settings.register_profile(
 settings.register_profile("thorough", deadline=None, max_examples=2000)
 settings.load_profile(os.environ.get("HYPOTHESIS_PROFILE", "default"))
 
+#: The long mode (``GA_ROTORS_LONG=1``, run before a release): tests marked ``long`` run,
+#: the exhaustive versions of what the default suite checks on one representative each.
+LONG = os.environ.get("GA_ROTORS_LONG") == "1"
+
+
+def pytest_configure(config):
+    config.addinivalue_line(
+        "markers",
+        "long: the exhaustive version of a default test (every integrator, every case); "
+        "runs with GA_ROTORS_LONG=1",
+    )
+
+
+def pytest_collection_modifyitems(config, items):
+    if LONG:
+        return
+    skip = pytest.mark.skip(reason="long mode: set GA_ROTORS_LONG=1 (every integrator or case)")
+    for item in items:
+        if item.get_closest_marker("long") is not None:
+            item.add_marker(skip)
+
 
 @pytest.fixture
 def tests_code(monkeypatch):

@@ -151,14 +151,25 @@ def test_command_rejects_unknown_case_and_method(capsys):
     assert "unknown integrator 'nope'" in capsys.readouterr().err
 
 
-def test_quick_study_runs_end_to_end_on_every_case_with_every_peer(tmp_path, capsys):
-    # The whole command, every case, every method and every peer installed here, in its
-    # quick mode: lgvi refuses the coarse steps of its sweep (h·|ω| ≥ 1 on the fast
-    # spinner), which is a point "not run there", not a crash; missing peers are notices.
+@pytest.mark.parametrize(
+    "methods",
+    [
+        # one method of each family that runs every kind of case (rotation, torque,
+        # motion): an explicit RK, a splitting, and lgvi, which has no motion loop
+        ["--methods", "rk4,split4,lgvi"],
+        pytest.param([], marks=pytest.mark.long, id="every-method"),  # 35 loops, ~1 min
+    ],
+    ids=lambda m: "representatives" if m else "every-method",
+)
+def test_quick_study_runs_end_to_end_on_every_case_with_every_peer(tmp_path, capsys, methods):
+    # The whole command, every case and every peer installed here, in its quick mode:
+    # lgvi refuses the coarse steps of its sweep (h·|ω| ≥ 1 on the fast spinner), which
+    # is a point "not run there", not a crash; missing peers are notices.
     doc = tmp_path / "accuracy.md"
     doc.write_text(f"{R.BEGIN}\n{R.END}\n")
     figures = tmp_path / "figures"
-    code = main(["bench", "accuracy", "--quick", "--figures", str(figures), "--doc", str(doc)])
+    argv = ["bench", "accuracy", "--quick", "--figures", str(figures), "--doc", str(doc)]
+    code = main(argv + methods)
     out = capsys.readouterr().out
     assert code == 0
     text = doc.read_text()

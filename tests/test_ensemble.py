@@ -224,7 +224,10 @@ EVERY_EFFECT = [
 ]
 
 
-@pytest.mark.parametrize("method", ["rk4", "split4"])
+# Each case compiles a batch of its own (~20 s on an empty cache). split4 calls every
+# effect through the torque slot and reads the moments through rates(L, inertia); rk4's
+# way (accel) is checked by default in the tests below (a user kernel, gravity kernels).
+@pytest.mark.parametrize("method", [pytest.param("rk4", marks=pytest.mark.long), "split4"])
 def test_every_built_in_effect_at_once_follows_the_single_run_bit_for_bit(method):
     # The built-in torques read their parameters as a tuple per sample (so the loop over
     # bodies vectorises); the single run reads them from an array: same values, same sums.
@@ -296,11 +299,12 @@ def test_samples_whose_gravity_kernels_differ_each_run_their_single_runs_kernel(
         assert np.array_equal(run.q[:, i], q) and np.array_equal(run.w[:, i], w), i
 
 
-@pytest.mark.parametrize("method", ["lgvi", "cf4"])
+@pytest.mark.parametrize("method", ["lgvi", pytest.param("cf4", marks=pytest.mark.long)])
 def test_samples_of_other_fixed_step_methods_follow_single_runs_bit_for_bit(method):
     # Their steps read the 9-tuple inertia the batch passes (moments, then each body's
     # stored Euler coefficients): lgvi indexes the moments, cf4 goes through accel (as
-    # rk4, split4 above and dp8 do; dp8 left out: 23 s of compiling on an empty cache).
+    # rk4 and split4 above and dp8 do: by default only lgvi's way is added to rk4's; dp8
+    # left out even in the long mode: 23 s of compiling on an empty cache).
     scene = load_scene("heavy_top").replace(
         {"time.duration": 0.005, "integrator.method": method, "integrator.paths": ["quaternion"]}
     )

@@ -18,7 +18,7 @@ OverflowError, an empty message, a NaN in the result) fails the test and prints 
 
 Fast by default (:data:`EXAMPLES` draws per function, part of the normal run); set
 ``GA_ROTORS_FUZZ=long`` for the deep search (:data:`LONG_EXAMPLES` per function).
-``pytest -s tests/test_fuzz_api.py`` prints how many calls ran and how they ended.
+``pytest -n 0 -s tests/test_fuzz_api.py`` prints how many calls ran and how they ended.
 """
 
 from __future__ import annotations

@@ -43,7 +43,7 @@ N = 100  # steps per run: long enough for the local errors to add up, fast to bo
 LGVI_THINNEST = 1e9
 
 #: Each run's worst (error / bound), by method and invariant: printed by
-#: ``pytest -s tests/test_stability_fuzz.py`` for docs/stability.md.
+#: ``pytest -n 0 -s tests/test_stability_fuzz.py`` for docs/stability.md.
 WORST: dict[tuple[str, str], float] = {}
 
 
