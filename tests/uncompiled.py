@@ -6,9 +6,11 @@ Use in a test module::
     from uncompiled import uncompiled_twin
     test_agrees_uncompiled = uncompiled_twin(__file__)
 
-Every module that does so registers its file at import; the first twin that runs starts
-ONE subprocess for all registered files (interpreter, NumPy, SciPy and hypothesis start
-once instead of once per file), and each twin then checks its own file's outcome.
+Every module that does so registers its file at import; in one process, the first twin
+that runs starts ONE subprocess for all registered files (interpreter, NumPy, SciPy and
+hypothesis start once instead of once per file), and each twin then checks its own file's
+outcome. Under pytest-xdist, where the files are spread over the workers, each twin runs
+its own file (the registered ones together would run once per worker).
 """
 
 from __future__ import annotations
@@ -25,12 +27,13 @@ _REGISTERED: list[str] = []
 _RUN: dict[str, subprocess.CompletedProcess] = {}
 
 
-def _run_all() -> subprocess.CompletedProcess:
-    key = "\n".join(_REGISTERED)
+def _run(files: list[str]) -> subprocess.CompletedProcess:
+    key = "\n".join(files)
     if key not in _RUN:
         env = {**os.environ, "NUMBA_DISABLE_JIT": "1"}
         _RUN[key] = subprocess.run(
-            [sys.executable, "-m", "pytest", "-q", "-rf", "-p", "no:cacheprovider", *_REGISTERED],
+            [sys.executable, "-m", "pytest", "-q", "-rf", "-p", "no:cacheprovider", "-n", "0",
+             *files],
             cwd=ROOT, env=env, capture_output=True, text=True,
         )  # fmt: skip
     return _RUN[key]
@@ -45,7 +48,7 @@ def uncompiled_twin(test_file: str):
 
     @pytest.mark.skipif(os.environ.get("NUMBA_DISABLE_JIT") == "1", reason="already uncompiled")
     def test_agrees_uncompiled():
-        proc = _run_all()
+        proc = _run([test_file] if os.environ.get("PYTEST_XDIST_WORKER") else _REGISTERED)
         failed = [
             line
             for line in proc.stdout.splitlines()
