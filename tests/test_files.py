@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import pytest
 
 from ga_rotors import files
@@ -94,8 +96,9 @@ def test_a_complete_set_killed_while_moving_in_is_finished_by_the_next_run(tmp_p
     assert (out / "b.csv").read_text() == "new b" and _listing(out) == ["a.csv", "b.csv"]
 
 
-def test_a_folder_where_an_output_file_goes_replaces_nothing(tmp_path):
-    out = tmp_path / "out"
+def test_a_folder_where_an_output_file_goes_replaces_nothing(tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)  # a relative --out: a long one would be shortened when shown
+    out = Path("out")
     write_together(out, _plan(**{"a.csv": "old a"}))
     (out / "b.png").mkdir()
     with pytest.raises(InputError, match=r"--out: .*b\.png is a folder; the output file b\.png"):
@@ -140,10 +143,11 @@ def test_an_empty_out_is_refused_not_the_current_folder(tmp_path, monkeypatch):
     assert _listing(tmp_path) == []
 
 
-def test_control_characters_in_a_path_are_echoed_escaped(tmp_path):
-    (tmp_path / "f\x1b]0;title\x07").write_text("x")  # a file where the folder goes
+def test_control_characters_in_a_path_are_echoed_escaped(tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)  # a relative --out: a long one would be shortened when shown
+    Path("f\x1b]0;title\x07").write_text("x")  # a file where the folder goes
     with pytest.raises(InputError) as e:
-        write_together(tmp_path / "f\x1b]0;title\x07", _plan(a="a"), "--out")
+        write_together("f\x1b]0;title\x07", _plan(a="a"), "--out")
     message = str(e.value)
     assert "\\x1b]0;title\\x07 exists and is not a directory" in message
     assert not any(ord(c) < 32 or ord(c) == 127 for c in message)
