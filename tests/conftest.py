@@ -33,13 +33,50 @@ def pytest_configure(config):
     )
 
 
+#: Test files that take long (mostly compiling batched loops on an empty cache), longest
+#: first: the suite runs them first, so that two workers finish together (pytest-xdist
+#: would otherwise order the files by their number of tests, and a long file with few
+#: tests would start last).
+LONG_FILES = [
+    "tests/test_ensemble.py",
+    "tests/test_docs.py",
+    "tests/test_accuracy.py",
+    "tests/test_motion.py",
+    "tests/test_stream.py",
+    "tests/test_integrator_orders.py",
+]
+#: Files whose tests compile the same loops, run in one worker one after the other (in two
+#: workers at once, an empty cache compiles each loop twice): docs/ensembles.md's examples
+#: and the ensemble tests share their batched RK4 loops.
+SAME_WORKER = {"tests/test_docs.py": "tests/test_ensemble.py"}
+
+
 def pytest_collection_modifyitems(config, items):
+    rank = {name: i for i, name in enumerate(LONG_FILES)}
+    items.sort(key=lambda item: rank.get(item.nodeid.split("::", 1)[0], len(rank)))
     if LONG:
         return
     skip = pytest.mark.skip(reason="long mode: set GA_ROTORS_LONG=1 (every integrator or case)")
     for item in items:
         if item.get_closest_marker("long") is not None:
             item.add_marker(skip)
+
+
+@pytest.hookimpl(optionalhook=True)
+def pytest_xdist_make_scheduler(config, log):
+    """pytest-xdist's ``--dist loadfile`` in the order of the collection (see
+    :data:`LONG_FILES`), the files of :data:`SAME_WORKER` as one unit."""
+    from xdist.scheduler import LoadFileScheduling
+
+    class Scheduling(LoadFileScheduling):
+        def _split_scope(self, nodeid):
+            scope = super()._split_scope(nodeid)
+            return SAME_WORKER.get(scope, scope)
+
+    if config.getvalue("dist") != "loadfile":
+        return None
+    config.option.loadscopereorder = False
+    return Scheduling(config, log)
 
 
 @pytest.fixture
