@@ -425,7 +425,6 @@ def test_ctrl_c_while_the_command_starts_is_one_line_and_130(tmp_path, delay):
     assert not (tmp_path / "out").exists()  # nothing half-written
 
 
-
 def test_ctrl_c_dropped_in_a_callback_still_stops_the_run(tmp_path, monkeypatch, capsys):
     """An interrupt that lands where Python drops exceptions (llvmlite's object-cache
     callback while numba loads a loop; here a ``__del__``) is raised again once the callback
