@@ -122,8 +122,6 @@ def one_unit(trajectory):
     """
     if not any(name in PARTS for name in trajectory.names):
         return trajectory
-    from ..trajectory import Trajectory
-
     arrays, components = {}, {}
     for name in trajectory.names:
         labels = trajectory.components.get(name)
@@ -135,4 +133,5 @@ def one_unit(trajectory):
         for part, columns, part_labels in PARTS[name]:
             arrays[part] = trajectory[name][:, list(columns)]
             components[part] = part_labels
-    return Trajectory(arrays, components, trajectory.meta)
+    # its own class, not an import of ga_rotors.trajectory (which imports this module)
+    return type(trajectory)(arrays, components, trajectory.meta)
