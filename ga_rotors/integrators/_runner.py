@@ -320,7 +320,10 @@ def run_batch(integrator: Integrator, batch: Batch, path: str, x0, w0, t0, h, ns
 
     ``parallel``: spread the chunks of ``chunk`` bodies over numba's threads, or run them
     in the calling thread (for several batches at once in one process, which numba's
-    default threading layer does not allow for parallel loops).
+    default threading layer does not allow for parallel loops). A batch of one chunk runs
+    in the calling thread either way: there is nothing to spread, and the serial loop
+    compiles in about half the time of the parallel one (10.6 against 19.2 s for a
+    thrown body under gravity).
 
     Examples
     --------
@@ -354,6 +357,7 @@ def run_batch(integrator: Integrator, batch: Batch, path: str, x0, w0, t0, h, ns
     # motion's body, Problem.body) take the kernels their single runs take, without the
     # lever's terms
     form = _source.BATCH_CENTRED if kind.moves and not body[-3:].any() else _source.BATCH
+    parallel = parallel and n > chunk
     spec = specialise(integrator, problem, path, form)
     try:
         (spec.module.loop if parallel else spec.module.serial)(*call)
