@@ -14,6 +14,7 @@ import shutil
 import subprocess
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 CHROMIUM = shutil.which("chromium") or shutil.which("chromium-browser")
@@ -164,3 +165,26 @@ class DevTools:
         finally:
             self.process.kill()
             self.process.wait(timeout=30)
+
+
+def one_browser(tmp_path_factory, size=(1300, 900)):
+    """One headless Chromium for a whole test module: the body of a module-scoped
+    fixture (``yield from one_browser(tmp_path_factory)``), skipping where it is absent."""
+    require_chromium()
+    browser = DevTools("about:blank", tmp_path_factory.mktemp("chrome"), size=size)
+    try:
+        yield browser
+    finally:
+        browser.close()
+
+
+def rgb(hex_colour: str):
+    """``#rrggbb`` as three numbers in [0, 1], the scale of a screenshot's pixels."""
+    return np.array([int(hex_colour[k : k + 2], 16) for k in (1, 3, 5)]) / 255
+
+
+def share_near(shot, xy, colour, radius=4, tolerance=0.25) -> float:
+    """The share of pixels within ``radius`` of ``xy`` whose colour is within ``tolerance``."""
+    x, y = int(np.rint(xy[0])), int(np.rint(xy[1]))
+    window = shot[y - radius : y + radius + 1, x - radius : x + radius + 1]
+    return float((np.linalg.norm(window - colour, axis=-1) < tolerance).mean())

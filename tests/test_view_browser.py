@@ -15,7 +15,7 @@ import re
 
 import numpy as np
 import pytest
-from browser import DevTools, require_chromium
+from browser import one_browser, rgb, share_near
 from scipy.spatial.transform import Rotation
 
 from ga_rotors import simulate
@@ -28,12 +28,7 @@ PAGE_BYTES = 1_500_000
 
 @pytest.fixture(scope="module")
 def chrome(tmp_path_factory):
-    require_chromium()
-    browser = DevTools("about:blank", tmp_path_factory.mktemp("chrome"), size=(1300, 900))
-    try:
-        yield browser
-    finally:
-        browser.close()
+    yield from one_browser(tmp_path_factory)
 
 
 @pytest.fixture(scope="module")
@@ -207,17 +202,6 @@ def heavy_top(tmp_path_factory):
     return out, scene, run_scene(scene)
 
 
-def _rgb(hex_colour: str) -> np.ndarray:
-    return np.array([int(hex_colour[k : k + 2], 16) for k in (1, 3, 5)]) / 255
-
-
-def _near(shot, xy, colour, radius=4, tolerance=0.25) -> float:
-    """The share of pixels within ``radius`` of ``xy`` whose colour is within ``tolerance``."""
-    x, y = int(np.rint(xy[0])), int(np.rint(xy[1]))
-    window = shot[y - radius : y + radius + 1, x - radius : x + radius + 1]
-    return float((np.linalg.norm(window - colour, axis=-1) < tolerance).mean())
-
-
 def test_the_heavy_top_page_draws_each_element_where_the_run_puts_it(chrome, heavy_top):
     page, scene, tr = heavy_top
     size = page.stat().st_size
@@ -275,12 +259,12 @@ def test_the_heavy_top_page_draws_each_element_where_the_run_puts_it(chrome, hea
             assert np.allclose(reported, at, atol=0.6), key
             if key.startswith("e"):  # a body axis may be behind the body: placed, not seen
                 continue
-            colour = _rgb(ELEMENTS[key][1])
-            found = _near(shot, xy, colour, radius=5 if key == "pivot" else 3)
+            colour = rgb(ELEMENTS[key][1])
+            found = share_near(shot, xy, colour, radius=5 if key == "pivot" else 3)
             assert found > 0.05, f"{key}: not drawn at {xy} in {ELEMENTS[key][1]}"
         # ω and L: their shafts too, beyond the body (ω, thinner, is painted over L).
         for key in ("omega", "L"):
-            along = [_near(shot, screen(f * places[key]), _rgb(ELEMENTS[key][1])) > 0.05
+            along = [share_near(shot, screen(f * places[key]), rgb(ELEMENTS[key][1])) > 0.05
                      for f in (0.72, 0.8, 0.88, 0.95)]  # fmt: skip
             assert sum(along) >= 3, f"{key}: its shaft is not drawn ({along})"
         # The body: a shaded grey disk around its centre of mass.
@@ -316,7 +300,7 @@ def test_the_heavy_top_page_draws_each_element_where_the_run_puts_it(chrome, hea
     ))  # fmt: skip
     for key, left, top, width, height in boxes:
         swatch = shot[int(top) : int(top + height), int(left) : int(left + width)]
-        assert (np.linalg.norm(swatch - _rgb(ELEMENTS[key][1]), axis=-1) < 0.15).any(), key
+        assert (np.linalg.norm(swatch - rgb(ELEMENTS[key][1]), axis=-1) < 0.15).any(), key
 
 
 def test_a_moving_body_and_a_line_in_space_are_drawn(chrome, tmp_path):
@@ -336,5 +320,5 @@ def test_a_moving_body_and_a_line_in_space_are_drawn(chrome, tmp_path):
         boxes.append(panel["elements"]["body"])
         shot = chrome.screenshot()
         lx, ly = panel["elements"]["velocity"]
-        assert _near(shot, (panel["left"] + lx, panel["top"] + ly), _rgb("#7b3294"), 6) > 0
+        assert share_near(shot, (panel["left"] + lx, panel["top"] + ly), rgb("#7b3294"), 6) > 0
     assert boxes[1][0] > boxes[0][0] + 50  # the body moved right (+y is to the right here)

@@ -15,7 +15,7 @@ import time
 
 import numpy as np
 import pytest
-from browser import DevTools, require_chromium
+from browser import one_browser, rgb, share_near
 
 from ga_rotors import quaternion as Q
 from ga_rotors.view.data import VELOCITY_LINE
@@ -42,12 +42,7 @@ _STATE = """JSON.stringify({
 
 @pytest.fixture(scope="module")
 def chrome(tmp_path_factory):
-    require_chromium()
-    browser = DevTools("about:blank", tmp_path_factory.mktemp("chrome"), size=(1300, 900))
-    try:
-        yield browser
-    finally:
-        browser.close()
+    yield from one_browser(tmp_path_factory)
 
 
 @pytest.fixture(scope="module")
@@ -65,16 +60,6 @@ def racket(tmp_path_factory):
 
 def _state(chrome) -> dict:
     return json.loads(chrome.evaluate(_STATE))
-
-
-def _rgb(hex_colour: str) -> np.ndarray:
-    return np.array([int(hex_colour[k : k + 2], 16) for k in (1, 3, 5)]) / 255
-
-
-def _near(shot, xy, colour, radius=4, tolerance=0.25) -> float:
-    x, y = int(np.rint(xy[0])), int(np.rint(xy[1]))
-    window = shot[y - radius : y + radius + 1, x - radius : x + radius + 1]
-    return float((np.linalg.norm(window - colour, axis=-1) < tolerance).mean())
 
 
 def _affine(drawn, metres):
@@ -149,8 +134,8 @@ def test_every_element_is_drawn_the_flight_is_framed_and_the_body_moves(chrome, 
                 assert 0 <= sx <= panel["width"] and 0 <= sy <= panel["height"]
             # the trail is drawn in its colour where it says (its current point)
             lx, ly = panel["elements"]["trail"]
-            found = _near(shot, (panel["left"] + lx, panel["top"] + ly),
-                          _rgb(ELEMENTS["trail"][1]), 6)  # fmt: skip
+            found = share_near(shot, (panel["left"] + lx, panel["top"] + ly),
+                          rgb(ELEMENTS["trail"][1]), 6)  # fmt: skip
             assert found > 0.02, f"trail not drawn at ({lx:.0f}, {ly:.0f})"
             # the velocity line: anchored at its point of the run, and drawn along its axis
             # in its colour (dashed, and here and there under the body or a vector)
@@ -162,7 +147,7 @@ def test_every_element_is_drawn_the_flight_is_framed_and_the_body_moves(chrome, 
                 sx, sy = screen(point + s * direction)
                 if 8 < sx < panel["width"] - 8 and 8 < sy < panel["height"] - 8:
                     xy = (panel["left"] + sx, panel["top"] + sy)
-                    seen += _near(shot, xy, _rgb(VELOCITY_LINE[1]), 5) > 0.02
+                    seen += share_near(shot, xy, rgb(VELOCITY_LINE[1]), 5) > 0.02
             assert seen >= 3, f"the velocity line is seen at {seen} of 6 points along it"
             # the body's box holds its centre of mass, the trail's current point
             k = int(p["trailUpTo"][i]) - 1
