@@ -59,6 +59,19 @@ def _kernel_location(kernel, what: str) -> tuple[str, str]:
     return module, name
 
 
+def _check_kernel(term, what: str, arity: int, signature: str) -> None:
+    """Check that ``term.kernel`` imports as itself and takes ``arity`` arguments, and
+    name ``term`` after it unless it has a name (the one rule of every kernel term)."""
+    location = _kernel_location(term.kernel, f"{what} {term.name}" if term.name else what)
+    if not term.name:
+        object.__setattr__(term, "name", location[1])
+    if _arity(term.kernel) not in (None, arity):
+        raise InputError(
+            f"{what} {term.name}: expected signature {signature}, "
+            f"got {_arity(term.kernel)} parameters"
+        )
+
+
 def _params(values, what: str) -> tuple[float, ...]:
     arr = np.asarray(values, dtype=np.float64).reshape(-1)
     if not np.isfinite(arr).all():
@@ -95,14 +108,7 @@ class TorqueTerm:
             raise InputError(
                 f"depends_on_omega: expected True or False, got {self.depends_on_omega!r}"
             )
-        _kernel_location(self.kernel, "torque kernel")
-        if not self.name:
-            object.__setattr__(self, "name", _kernel_location(self.kernel, "torque kernel")[1])
-        if _arity(self.kernel) not in (None, 4):
-            raise InputError(
-                f"torque kernel {self.name}: expected signature kernel(t, q, w, p), "
-                f"got {_arity(self.kernel)} parameters"
-            )
+        _check_kernel(self, "torque kernel", 4, "kernel(t, q, w, p)")
 
     @property
     def location(self) -> tuple[str, str]:
@@ -171,14 +177,7 @@ class ForceTerm:
         object.__setattr__(self, "conserves", conserves)
         if self.point is not None:
             object.__setattr__(self, "point", _params(self.point, "point"))
-        if not self.name:
-            object.__setattr__(self, "name", _kernel_location(self.kernel, "force kernel")[1])
-        _kernel_location(self.kernel, f"force kernel {self.name}")
-        if _arity(self.kernel) not in (None, 6):
-            raise InputError(
-                f"force kernel {self.name}: expected signature kernel(t, q, c, w, v, p), "
-                f"got {_arity(self.kernel)} parameters"
-            )
+        _check_kernel(self, "force kernel", 6, "kernel(t, q, c, w, v, p)")
 
     @property
     def location(self) -> tuple[str, str]:
@@ -210,14 +209,7 @@ class PrescribedOmega:
 
     def __post_init__(self):
         object.__setattr__(self, "params", _params(self.params, "omega params"))
-        _kernel_location(self.kernel, "omega kernel")
-        if not self.name:
-            object.__setattr__(self, "name", _kernel_location(self.kernel, "omega kernel")[1])
-        if _arity(self.kernel) not in (None, 2):
-            raise InputError(
-                f"omega kernel {self.name}: expected signature kernel(t, p), "
-                f"got {_arity(self.kernel)} parameters"
-            )
+        _check_kernel(self, "omega kernel", 2, "kernel(t, p)")
 
     @property
     def location(self) -> tuple[str, str]:
