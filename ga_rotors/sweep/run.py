@@ -133,7 +133,8 @@ def _run_chunk(job: _Job, c: int) -> int:
         points = tuple(region[d] for d in sweep.dims[:-1])
         q = job.root["q_nominal"][points]
         nominal = (lo // sweep.samples, q.reshape(-1, *q.shape[-2:]))
-    zstore.write_chunk(job.root, sweep, c, _outputs(sweep, lo, hi, nominal), job.store)
+    outputs = _outputs(sweep, lo, hi, nominal)  # before job.root: it waits for the store
+    zstore.write_chunk(job.root, sweep, c, outputs, job.store)
     return c
 
 
