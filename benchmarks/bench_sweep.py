@@ -51,7 +51,7 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
 
-from ga_rotors.ensemble import run_samples, scene_samples  # noqa: E402
+from ga_rotors.ensemble import CHUNK, run_samples, scene_samples  # noqa: E402
 from ga_rotors.sweep import load_sweep, local_cluster, run_sweep  # noqa: E402
 
 #: The overhead each number of steps a sample must stay within (issue 28).
@@ -114,7 +114,7 @@ def overhead(samples: int, steps: int, repeats: int, client=None, where=None) ->
     stores = Path(tempfile.mkdtemp(prefix="bench-sweeps-", dir=where))
     made = iter(range(10**6))
     # compiled or loaded from the cache, the store's libraries imported: not timed
-    run_samples(scene_samples(sweep.scene, n=8), times)
+    run_samples(scene_samples(sweep.scene, n=2 * CHUNK), times)  # the parallel loop
     run_sweep(sweep_text(8, steps), stores / "warm.zarr")
     if client is not None:
         run_sweep(sweep_text(8, steps), stores / "warm-cluster.zarr", client=client)
@@ -197,7 +197,7 @@ def motion_sweeps(samples: int, steps: int, repeats: int, where=None) -> None:
         sweep = load_sweep(texts[name])
         inputs, times = scene_samples(sweep.scene, sweep.values(0, sweep.size)), sweep.run_times()
         # compiled or loaded from the cache, the store's libraries imported: not timed
-        run_samples(scene_samples(sweep.scene, n=8), times)
+        run_samples(scene_samples(sweep.scene, n=2 * CHUNK), times)  # the parallel loop
         run_sweep(motion_sweep_text(8, steps, path), stores / f"warm{next(made)}.zarr")
         rows[f"{name}: kernel"] = lambda i=inputs, t=times: run_samples(i, t)
         rows[f"{name}: sweep"] = lambda text=texts[name]: run_sweep(

@@ -137,6 +137,8 @@ def test_chunks_are_rectangles_of_consecutive_samples_covering_each_once(shape, 
         covered = flat[region].ravel()
         assert np.array_equal(covered, np.arange(covered[0], covered[0] + covered.size))
     assert (seen == 1).all()
+    # the axis cut is cut evenly: as few pieces as fit, none more than one shorter
+    assert all(b == -(-n // k) for n, b, k in zip(shape, block, counts, strict=True))
 
 
 def test_a_sweeps_chunk_regions_are_its_samples_in_order():

@@ -27,8 +27,10 @@ from ..optional import require
 __all__ = ["FORMAT", "create", "done", "open_store", "write_chunk"]
 
 #: The layout of the stores this version writes (attribute ``sweep_format``); a store of
-#: another layout is opened but never resumed.
-FORMAT = 2
+#: another layout is opened but never resumed. 3: the samples cut into chunks of equal
+#: size as far as they go (2 cut full chunks and a short last one: its chunk regions
+#: differ, so resuming one with the other would write samples where others belong).
+FORMAT = 3
 
 #: What the orientations and rates are expressed in (the ensemble's outputs).
 BODY_FRAME = (
