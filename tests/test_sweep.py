@@ -216,7 +216,7 @@ def test_the_store_follows_cf_and_quantifies_with_pint(store, tmp_path):
     assert ds.attrs["integrator"] == "rk4" and "time.duration" in ds.attrs["sweep_toml"]
 
 
-def test_threads_and_clusters_write_what_one_thread_writes(tmp_path, reference):
+def test_threads_and_clusters_write_what_one_thread_writes(tmp_path, reference, monkeypatch):
     for workers in (1, 2, 3):
         out = run_sweep(SWEEP, tmp_path / f"t{workers}.zarr", workers=workers)
         xr.testing.assert_identical(open_sweep(out).load(), reference)
@@ -232,6 +232,18 @@ def test_threads_and_clusters_write_what_one_thread_writes(tmp_path, reference):
         )
         xr.testing.assert_identical(open_sweep(out).load(), reference)
         assert seen[0] == (0, 4) and seen[-1] == (4, 4)
+        # a store that cannot be made (made here while the workers integrate): one line,
+        # and no task left waiting for it (the command below gets both workers)
+        from ga_rotors.sweep import store as zstore
+
+        def disk_full(*_):
+            raise InputError("cannot write e.zarr (creating it): No space left on device")
+
+        with monkeypatch.context() as m:
+            m.setattr(zstore, "create", disk_full)
+            with pytest.raises(InputError, match="No space left"):
+                run_sweep(SWEEP, tmp_path / "e.zarr", client=client)
+        assert not (tmp_path / "e.zarr").exists()
         # the command on this cluster's address leaves it running
         spec_file = tmp_path / "dispersion.toml"
         spec_file.write_text(SWEEP)

@@ -4,7 +4,7 @@ Each chunk is one task: draw its samples' values (:meth:`Sweep.values`), build t
 inputs (:func:`ga_rotors.ensemble.scene_samples`), integrate them on the serial batched
 loop (:func:`ga_rotors.ensemble.run_samples`), measure each sample's angle from its grid
 point's nominal run, and write the chunk's region of the store, then its flag
-(:func:`ga_rotors.sweep.store.write_chunk`). Where the tasks run:
+(:class:`ga_rotors.sweep.store.ChunkWriter`). Where the tasks run:
 
 * by default, on Dask's threaded scheduler in this process, one thread per core (a
   ``concurrent.futures`` thread pool when Dask is not installed): the compiled loops,
@@ -15,18 +15,22 @@ point's nominal run, and write the chunk's region of the store, then its flag
   which must be on a file system every worker sees;
 * ``client="sync"``: in this thread, one chunk after the other.
 
-The store is made before the first task runs (:func:`ga_rotors.sweep.store.create`),
-with each grid point's nominal run. Running the same sweep into the same store again
-does only the chunks not flagged: an interrupted sweep resumes, and a chunk cut off
-halfway is done again. A store records what it was begun with (the digests of the
-resolved scene and of the sweep's settings, and the versions that make its numbers):
-resuming it with any of them changed is refused.
+A new store is made (:func:`ga_rotors.sweep.store.create`, with each grid point's
+nominal run) while the first chunks integrate: their tasks wait for it before they write
+(on a cluster, for a ``distributed.Event`` set once it is made). Running the same sweep
+into the same store again does only the chunks not flagged: an interrupted sweep
+resumes, and a chunk cut off halfway is done again. A store records what it was begun
+with (the digests of the resolved scene and of the sweep's settings, and the versions
+that make its numbers): resuming it with any of them changed is refused.
 """
 
 from __future__ import annotations
 
+import functools
 import os
-from concurrent.futures import Future, ThreadPoolExecutor
+import uuid
+from collections.abc import Callable
+from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -46,21 +50,21 @@ __all__ = ["LOCAL_CLUSTER_CONFIG", "SCHEDULER_TIMEOUT", "local_cluster", "open_s
 # ---------------------------------------------------------------------- one chunk
 
 
-def _outputs(sweep: Sweep, lo: int, hi: int, nominal) -> dict[str, np.ndarray]:
-    """What samples ``lo`` to ``hi - 1`` write, by variable, samples first.
+def _outputs(sweep: Sweep, lo: int, values: dict, run, nominal) -> dict[str, np.ndarray]:
+    """What the samples from ``lo`` on, with ``values`` and ``run``, write, by variable,
+    samples first.
 
     ``nominal``: (first grid point, q of the nominal runs of the points from it on).
     """
-    values = sweep.values(lo, hi)
-    run = _run(sweep, values, lo, "sample", parallel=False)
     out = {"q": run.q.transpose(1, 0, 2), "w": run.w.transpose(1, 0, 2)}
     if sweep.scene.moves:
         out.update(position=run.position.transpose(1, 0, 2),
                    velocity=run.velocity.transpose(1, 0, 2))  # fmt: skip
     if sweep.draws:
         first, q_nominal = nominal
-        point = np.arange(lo, hi, dtype=np.int64) // sweep.samples - first
-        angle = np.empty((hi - lo, run.q.shape[0]))
+        n = run.q.shape[1]
+        point = np.arange(lo, lo + n, dtype=np.int64) // sweep.samples - first
+        angle = np.empty((n, run.q.shape[0]))
         _angles(run.q, q_nominal, point, angle)
         out["angle_from_nominal"] = angle
         out.update((sweep.names[d.key], values[d.key]) for d in sweep.draws)
@@ -101,47 +105,42 @@ def _refused(sweep: Sweep, lo: int, values: dict, exc: InputError, what="sample"
 
 @dataclass(frozen=True)
 class _Job:
-    """What a chunk's task needs in this process: the sweep, the store (its path, and its
-    zarr group once the store is made: ``made``, a future), and the nominal runs'
-    orientations (all grid points, or None to read them from the store)."""
+    """What a chunk's task needs in this process: the sweep, the writer of its store
+    (``writer()`` waits until the store is made), and the nominal runs' orientations
+    (all grid points, or None to read them from the store)."""
 
     sweep: Sweep
-    store: Path
-    made: Future
+    writer: Callable[[], zstore.ChunkWriter]
     nominal: np.ndarray | None
-
-    @property
-    def root(self):
-        """The store's zarr group, once it is made (raises what making it raised)."""
-        return self.made.result()
-
-
-def _done(value) -> Future:
-    future = Future()
-    future.set_result(value)
-    return future
 
 
 def _run_chunk(job: _Job, c: int) -> int:
-    """Integrate chunk ``c`` and write it into the store; return ``c``."""
+    """Integrate chunk ``c`` and write it into the store; return ``c``.
+
+    The samples are integrated before the task asks for the store: a new store is made
+    while the first chunks integrate."""
     sweep = job.sweep
     lo, hi, region = sweep.chunk_region(c)
+    values = sweep.values(lo, hi)
+    run = _run(sweep, values, lo, "sample", parallel=False)
+    writer = job.writer()
     nominal = None
     if job.nominal is not None:
         nominal = (0, job.nominal)
     elif sweep.draws:  # a worker: its grid points' nominal runs, read from the store
         points = tuple(region[d] for d in sweep.dims[:-1])
-        q = job.root["q_nominal"][points]
+        q = writer.root["q_nominal"][points]
         nominal = (lo // sweep.samples, q.reshape(-1, *q.shape[-2:]))
-    outputs = _outputs(sweep, lo, hi, nominal)  # before job.root: it waits for the store
-    zstore.write_chunk(job.root, sweep, c, outputs, job.store)
+    writer.write(sweep, c, _outputs(sweep, lo, values, run, nominal))
     return c
 
 
 @dataclass(frozen=True)
 class _Remote:
     """What a Dask worker gets to rebuild a chunk's job: text, not objects (a scene holds
-    compiled functions, which do not pickle), checked against the digests it was sent."""
+    compiled functions, which do not pickle), checked against the digests it was sent;
+    ``made``, the name of the ``distributed.Event`` set once a new store is made (None
+    for a store that exists)."""
 
     text: str
     file: str
@@ -150,9 +149,30 @@ class _Remote:
     base_dir: str | None
     store: str
     digests: tuple
+    made: str | None
 
+
+#: Seconds a worker's task waits for the sweep's new store to be made before it gives up.
+STORE_WAIT = 300
 
 _REBUILT: dict = {}
+
+
+def _writer_when_made(remote: _Remote) -> Callable[[], zstore.ChunkWriter]:
+    """The worker's ``writer()``: once the store's event is set, a writer of it."""
+
+    @functools.cache
+    def writer() -> zstore.ChunkWriter:
+        if remote.made is not None:
+            distributed = require("distributed", "dask")
+            if not distributed.Event(remote.made).wait(STORE_WAIT):
+                raise InputError(
+                    f"{remote.file}: the store {remote.store} was not made within "
+                    f"{STORE_WAIT} s", key="--out"
+                )  # fmt: skip
+        return zstore.ChunkWriter(remote.store)
+
+    return writer
 
 
 def run_chunk(remote: _Remote, c: int) -> int:
@@ -169,7 +189,7 @@ def run_chunk(remote: _Remote, c: int) -> int:
                 f"was sent ({sweep.digests} against {dict(remote.digests)})"
             )
         _REBUILT.clear()  # one sweep at a time per process
-        _REBUILT[key] = _Job(sweep, Path(remote.store), _done(zstore.group(remote.store)), None)
+        _REBUILT[key] = _Job(sweep, _writer_when_made(remote), None)
     return _run_chunk(_REBUILT[key], c)
 
 
@@ -198,9 +218,12 @@ def _client(client, scheduler: str | None):
         ) from None
 
 
-def _on_cluster(client, job: _Job, todo: list[int], store: Path, done) -> None:
+def _on_cluster(client, sweep: Sweep, todo: list[int], store: Path, make, done) -> None:
+    """The chunks as tasks of ``client``'s cluster; ``make()``, when given, makes the store
+    here while the workers integrate their first chunks (they wait for its event before
+    they write)."""
     distributed = require("distributed", "dask")
-    sweep = job.sweep
+    event = f"ga_rotors-store-{uuid.uuid4().hex}" if make is not None else None
     remote = _Remote(
         sweep.text,
         sweep.file,
@@ -209,9 +232,15 @@ def _on_cluster(client, job: _Job, todo: list[int], store: Path, done) -> None:
         None if sweep.scene.base_dir is None else str(sweep.scene.base_dir),
         str(store.resolve()),
         tuple(sweep.digests.items()),
+        event,
     )
     futures = client.map(run_chunk, [remote] * len(todo), todo, pure=False)
     try:
+        if make is not None:
+            try:
+                make()
+            finally:  # made or not, no task waits on: without a store they fail to open it
+                distributed.Event(event, client=client).set()
         for _ in distributed.as_completed(futures, with_results=True):
             done()
     finally:  # an interrupted sweep: the running chunks finish, no others start
@@ -436,26 +465,30 @@ def run_sweep(
         dask_client, owned = _client(client, scheduler)
     else:
         dask_client, owned = None, False
-    threaded = dask_client is None and client != "sync"
+    make = None if store.exists() else functools.partial(zstore.create, sweep, store, both)
+    if progress is not None:
+        progress(count[0], sweep.chunks)
+    if not todo:
+        return store
     maker = ThreadPoolExecutor(1, thread_name_prefix="ga_rotors-store")
     try:
-        if store.exists():
-            made = _done(zstore.group(store))
-        elif threaded and todo:
-            # made while the threads integrate their first chunks, which wait for it
-            # before they write: its Python and files overlap their integration
-            made = maker.submit(lambda: zstore.create(sweep, store, both) or zstore.group(store))
-        else:
-            zstore.create(sweep, store, both)
-            made = _done(zstore.group(store))
-        if progress is not None:
-            progress(count[0], sweep.chunks)
-        if not todo:
-            return store
-        job = _Job(sweep, store, made, nominal)
         if dask_client is not None:
-            _on_cluster(dask_client, job, todo, store, done)
-        elif client == "sync":
+            _on_cluster(dask_client, sweep, todo, store, make, done)
+            return store
+        if make is not None and client == "sync":
+            make()
+            make = None
+        # a new store is made while the threads integrate their first chunks
+        pending = maker.submit(make) if make is not None else None
+
+        @functools.cache
+        def writer() -> zstore.ChunkWriter:
+            if pending is not None:
+                pending.result()  # raises what making the store raised
+            return zstore.ChunkWriter(store)
+
+        job = _Job(sweep, writer, nominal)
+        if client == "sync":
             for c in todo:
                 _run_chunk(job, c)
                 done()

@@ -6,7 +6,7 @@ orientations and rates are full-precision noise to a compressor), in a staging d
 renamed into place, so a store is there whole or not at all. The per-sample variables
 are written as placeholders of their fill value, which zarr stores as no chunk at all;
 the grid's coordinates, the output times and the nominal runs are written then.
-:func:`write_chunk` then writes one chunk's region of every per-sample variable through
+:class:`ChunkWriter` then writes one chunk's region of every per-sample variable through
 zarr, and last its flag in ``chunk_done``: a chunk counts as written only once all of it
 is. What the store holds (names, dimensions, attributes) is described in
 docs/ensembles.md, "The store".
@@ -24,7 +24,7 @@ import numpy as np
 from ..errors import InputError, first_line
 from ..optional import require
 
-__all__ = ["FORMAT", "create", "done", "open_store", "write_chunk"]
+__all__ = ["FORMAT", "ChunkWriter", "create", "done", "open_store"]
 
 #: The layout of the stores this version writes (attribute ``sweep_format``); a store of
 #: another layout is opened but never resumed. 3: the samples cut into chunks of equal
@@ -245,15 +245,16 @@ def write_error(store, exc: OSError, what: str) -> InputError:
 
 
 def group(path, mode: str = "r+"):
-    """The store's zarr group, for writing chunks (or reading its flags)."""
+    """The store's zarr group (for reading its flags or nominal runs)."""
     zarr = require("zarr", "results")
     return zarr.open_group(str(path), mode=mode, zarr_format=2, use_consolidated=True)
 
 
-def write_chunk(root, sweep, c: int, outputs: dict, path) -> None:
-    """Write chunk ``c``'s ``outputs`` (name -> array, the chunk's samples first, flat)
-    into its region of each variable of the group ``root`` (the store ``path``), then its
-    flag.
+class ChunkWriter:
+    """Writes chunks into the store at ``path``: each chunk's region of every
+    per-sample variable, then its flag in ``chunk_done`` (a chunk counts as written only
+    once all of it is). Each array is opened once, at its first chunk: opening reads its
+    metadata, which per chunk cost 30 ms of a 10⁶-sample sweep's 200 ms of writes.
 
     Examples
     --------
@@ -264,21 +265,34 @@ def write_chunk(root, sweep, c: int, outputs: dict, path) -> None:
     >>> path = pathlib.Path(tempfile.mkdtemp()) / "s.zarr"
     >>> create(s, path)
     >>> q = np.tile([1.0, 0.0, 0.0, 0.0], (2, 1, 1))  # the chunk's two samples, one time
-    >>> write_chunk(group(path), s, 0, {"q": q, "w": np.zeros((2, 1, 3))}, path)
+    >>> ChunkWriter(path).write(s, 0, {"q": q, "w": np.zeros((2, 1, 3))})
     >>> done(group(path)).tolist(), open_store(path)["q"][:, 0, 0].values.tolist()
     ([True, False], [1.0, 1.0, nan])
     """
-    region = sweep.chunk_region(c)[2]
-    extents = tuple(s.stop - s.start for s in region.values())
-    where = tuple(region.values())
-    try:
-        for name, a in outputs.items():
+
+    def __init__(self, path):
+        self.path = path
+        self.root = group(path)
+        self._arrays: dict = {}
+
+    def _array(self, name: str):
+        if name not in self._arrays:
             # every chunk holds samples: zarr need not check whether it is all fill value
-            array = root[name].with_config({"write_empty_chunks": True})
-            array[where] = a.reshape(extents + a.shape[1:])
-        root["chunk_done"][c] = 1
-    except OSError as exc:  # a full disk, a store removed under the sweep...
-        raise write_error(path, exc, f"chunk {c}") from None
+            self._arrays[name] = self.root[name].with_config({"write_empty_chunks": True})
+        return self._arrays[name]
+
+    def write(self, sweep, c: int, outputs: dict) -> None:
+        """Write chunk ``c``'s ``outputs`` (name -> array, the chunk's samples first,
+        flat), then its flag."""
+        region = sweep.chunk_region(c)[2]
+        extents = tuple(s.stop - s.start for s in region.values())
+        where = tuple(region.values())
+        try:
+            for name, a in outputs.items():
+                self._array(name)[where] = a.reshape(extents + a.shape[1:])
+            self._array("chunk_done")[c] = 1
+        except OSError as exc:  # a full disk, a store removed under the sweep...
+            raise write_error(self.path, exc, f"chunk {c}") from None
 
 
 def done(root) -> np.ndarray:
