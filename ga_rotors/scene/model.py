@@ -94,16 +94,6 @@ TIME_RESOLUTION = 1e-6
 MAX_TURN_PER_STEP = 1e3
 
 
-def _whole(reader: Reader, span: float, step: float, key: str, message: str) -> int:
-    """span / step as a whole number (simulate's rule), or a SceneError at ``key``."""
-    from ..simulation import whole_steps
-
-    try:
-        return whole_steps(span, step)
-    except InputError:
-        raise reader.error(key, message) from None
-
-
 class Scene:
     """A validated scene: the resolved data and what it implies.
 
@@ -253,13 +243,13 @@ class Scene:
             self.euler_angles = np.array(o["euler"]) * ANGLE_UNITS[o["units"]]
 
         time, integ = d["time"], d["integrator"]
-        self.steps = _whole(
-            reader, time["duration"], integ["step"], "integrator.step",
+        self.steps = reader.whole_steps(
+            time["duration"], integ["step"], "integrator.step",
             f"expected a step that divides time.duration ({time['duration']!r} s) into whole "
             f"steps, got {integ['step']!r} s",
         )  # fmt: skip
-        self.sample_every = _whole(
-            reader, time["output_step"], integ["step"], "time.output_step",
+        self.sample_every = reader.whole_steps(
+            time["output_step"], integ["step"], "time.output_step",
             f"expected a whole multiple of integrator.step ({integ['step']!r} s), got "
             f"{time['output_step']!r} s",
         )  # fmt: skip

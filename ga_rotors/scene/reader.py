@@ -15,7 +15,7 @@ import difflib
 import math
 from collections.abc import Iterable, Mapping
 
-from ..errors import SceneError
+from ..errors import InputError, SceneError
 
 __all__ = ["Reader", "join", "suggest"]
 
@@ -86,11 +86,14 @@ class Reader:
 
     # -------------------------------------------------------------- tables and keys
 
-    def table(self, value, key: str, allowed: Iterable[str], required: Iterable[str] = ()) -> dict:
-        """``value`` as a dict whose keys are all in ``allowed`` and include ``required``."""
+    def table(
+        self, value, key: str, allowed: Iterable[str] | None = None, required: Iterable[str] = ()
+    ) -> dict:
+        """``value`` as a dict whose keys are all in ``allowed`` (any, when None) and
+        include ``required``."""
         if not isinstance(value, Mapping):
             raise self.error(key, f"expected a table, got {_describe(value)}")
-        allowed = list(allowed)
+        allowed = value if allowed is None else list(allowed)
         for name in value:
             if name not in allowed:
                 raise self.error(
@@ -154,6 +157,16 @@ class Reader:
                     f"expected one of {', '.join(choices)}",
                 )
         return value
+
+    def whole_steps(self, span: float, step: float, key: str, message: str) -> int:
+        """``span / step`` as a whole number of steps (:func:`ga_rotors.simulation.
+        whole_steps`, simulate's rule), or ``message`` at ``key``."""
+        from ..simulation import whole_steps
+
+        try:
+            return whole_steps(span, step)
+        except InputError:
+            raise self.error(key, message) from None
 
     def boolean(self, value, key: str) -> bool:
         if not isinstance(value, bool):
