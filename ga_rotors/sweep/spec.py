@@ -1,41 +1,18 @@
-"""A sweep file: which scene, which keys vary over a grid or by random draws, and the seed.
+"""A sweep file read and validated: which scene, which keys vary over a grid or by
+random draws, and where each sample's values come from.
 
-A sweep is data (TOML, read with the scene files' guards and parsed with ``tomllib``,
-nothing evaluated)::
+The file's format, for users, is the section "The sweep file" of ``docs/ensembles.md``;
+it is data (TOML through the scene files' guards, nothing evaluated).
 
-    [sweep]
-    scene = "spinning_disk"   # a bundled scene's name, or a file relative to this one
-    samples = 1000            # random draws per grid point (with [[draw]] tables)
-    seed = 2026               # required with [[draw]] tables
-    chunk = 65536             # at most this many samples a chunk (default 65536)
-    times = [5.0, 10.0]       # output times in s (default: the end of the run)
-
-    [set]                     # fixed changes to the scene, any key (optional)
-    "time.duration" = 10.0
-
-    [grid]                    # every combination of these values (optional)
-    "initial.angular_velocity.euler_rates[2]" = [15.0, 15.7]
-
-    [[draw]]                  # one table per randomly drawn key (optional)
-    key = "body.mass"
-    normal = [2.0, 0.02]      # mean, standard deviation; or uniform = [low, high]
-
-The samples form an array with one axis per grid key (in the file's order) and, with
-draws, a last axis ``sample`` of ``samples`` draws per grid point. Sample ``s`` is its
-position in row-major order (the last axis varies fastest). Its draws come from the
-random stream of its block of :data:`BLOCK` consecutive samples,
-``Generator(PCG64(SeedSequence(seed, spawn_key=(block,))))``: sample ``s`` takes the
-uniform numbers ``(s mod BLOCK)·d`` to ``(s mod BLOCK)·d + d − 1`` of its block's stream
-(``d`` draws a sample, in the order of the ``[[draw]]`` tables), each ``u =
-Generator.random() + 2⁻⁵⁴`` (never 0); a normal draw is ``mean + std·ndtri(u)``
-(:func:`scipy.special.ndtri`, with ``u`` below 1), a uniform one ``low + u·(high −
-low)``. So a sample's numbers depend on the seed and its position only, never on how
-the sweep is chunked or which worker draws it.
-
-Grid and draw keys are single numbers under ``body``, ``initial`` or ``effects`` (what
-may differ between the samples of one ensemble; a vector key is varied by its
-components, ``initial.angular_velocity.body[2]``); ``time`` and ``integrator`` keys go
-in ``[set]``.
+The draws are a format too (the tests pin them bit for bit). Sample ``s`` is its
+position in row-major order over the grid's axes (in the file's order), then
+``sample``. It takes its numbers from the stream of its block of :data:`BLOCK`
+consecutive samples, ``Generator(PCG64(SeedSequence(seed, spawn_key=(s // BLOCK,))))``:
+the uniform numbers ``(s mod BLOCK)·d`` to ``(s mod BLOCK)·d + d − 1`` (``d`` draws a
+sample, in the order of the ``[[draw]]`` tables), each ``u = Generator.random() + 2⁻⁵⁴``
+(never 0). A normal draw is ``mean + std·ndtri(u)`` (:func:`scipy.special.ndtri`, ``u``
+kept below 1), a uniform one ``low + u·(high − low)``. So a sample's numbers depend on
+the seed and its position only, never on how the sweep is chunked or who draws it.
 """
 
 from __future__ import annotations
@@ -45,13 +22,12 @@ import hashlib
 import json
 import math
 import re
-import sys
 from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 
-from ..errors import ECHO_LIMIT, InputError, SceneError
+from ..errors import ECHO_LIMIT, InputError
 from ..scene.reader import Reader, join
 
 __all__ = [
@@ -224,11 +200,11 @@ class Sweep:
     @property
     def dims(self) -> tuple[str, ...]:
         """The samples' dimensions: one per grid key, then ``sample`` with draws."""
-        return tuple(coordinate_name(k) for k, _ in self.grid) + (("sample",) if self.draws else ())
+        return tuple(coordinate_name(k) for k, _ in self.grid) + ("sample",) * bool(self.draws)
 
     @property
     def shape(self) -> tuple[int, ...]:
-        return tuple(len(v) for _, v in self.grid) + ((self.samples,) if self.draws else ())
+        return tuple(len(v) for _, v in self.grid) + (self.samples,) * bool(self.draws)
 
     @property
     def grid_points(self) -> int:
@@ -288,15 +264,26 @@ class Sweep:
         >>> bool(np.array_equal(s.values(1, 3)["body.mass"], a[1:3])), bool(np.all(a > 1))
         (True, True)
         """
-        out: dict[str, np.ndarray] = {}
-        if self.grid:
-            point = np.arange(lo, hi, dtype=np.int64) // self.samples
-            index = np.unravel_index(point, [len(v) for _, v in self.grid])
-            out.update((key, v[i]) for (key, v), i in zip(self.grid, index, strict=True))
+        out = self._at_points(np.arange(lo, hi, dtype=np.int64) // self.samples)
         if self.draws:
             u = self._uniform(lo, hi)
             out.update((d.key, d.from_uniform(u[j])) for j, d in enumerate(self.draws))
         return out
+
+    def nominal_values(self) -> dict[str, np.ndarray]:
+        """Each varied key's value in each grid point's nominal run: the point's grid
+        values and the draws' centres (:attr:`Draw.centre`)."""
+        points = self.grid_points
+        return self._at_points(np.arange(points)) | {
+            d.key: np.full(points, d.centre) for d in self.draws
+        }
+
+    def _at_points(self, points: np.ndarray) -> dict[str, np.ndarray]:
+        """Each grid key's values at the grid points ``points`` (row-major numbers)."""
+        if not self.grid:
+            return {}
+        index = np.unravel_index(points, [len(v) for _, v in self.grid])
+        return {key: v[i] for (key, v), i in zip(self.grid, index, strict=True)}
 
     def _uniform(self, lo: int, hi: int) -> np.ndarray:
         """The uniform numbers of samples lo..hi-1 from their blocks, one row a draw."""
@@ -311,17 +298,6 @@ class Sweep:
         rows += 2.0**-54
         return rows
 
-    def nominal_values(self) -> dict[str, np.ndarray]:
-        """Each varied key's value in each grid point's nominal run: the point's grid
-        values and the draws' centres (:attr:`Draw.centre`)."""
-        points = self.grid_points
-        out = {}
-        if self.grid:
-            index = np.unravel_index(np.arange(points), [len(v) for _, v in self.grid])
-            out.update((key, v[i]) for (key, v), i in zip(self.grid, index, strict=True))
-        out.update((d.key, np.full(points, d.centre)) for d in self.draws)
-        return out
-
     def run_times(self) -> np.ndarray:
         """:attr:`times` on the scene's step grid, as the ensemble computes them."""
         t0, h = self.scene.data["time"]["start"], self.scene.step
@@ -334,14 +310,9 @@ class Sweep:
         """What a store begun by this sweep records, to refuse resuming it with other
         inputs: the resolved scene (``[set]`` applied), the sweep's settings, and the
         versions that make its numbers."""
-        settings = {
-            "samples": self.samples,
-            "seed": self.seed,
-            "chunk": self.chunk,
-            "times": self.times.tolist(),
-            "grid": [[key, v.tolist()] for key, v in self.grid],
-            "draws": [[d.key, d.distribution, d.a, d.b] for d in self.draws],
-        }
+        settings = dict(samples=self.samples, seed=self.seed, chunk=self.chunk,
+                        times=self.times.tolist(), grid=[[k, v.tolist()] for k, v in self.grid],
+                        draws=[[d.key, d.distribution, d.a, d.b] for d in self.draws])  # fmt: skip
         return {
             "scene_digest": _sha(self.scene.to_toml()),
             "sweep_digest": _sha(json.dumps(settings, sort_keys=True)),
@@ -357,13 +328,13 @@ def _sha(text: str) -> str:
 def _versions() -> str:
     """The packages whose versions make a sweep's numbers: ga_rotors, numpy (the
     streams), scipy (the normal quantile), numba (the loops)."""
-    import importlib.metadata
+    from importlib.metadata import PackageNotFoundError, version
 
     out = []
     for package in ("ga-rotors", "numpy", "scipy", "numba"):
         try:
-            out.append(f"{package} {importlib.metadata.version(package)}")
-        except importlib.metadata.PackageNotFoundError:
+            out.append(f"{package} {version(package)}")
+        except PackageNotFoundError:
             out.append(f"{package} (unknown)")
     return ", ".join(out)
 
@@ -414,7 +385,7 @@ def read_sweep(text: str, file: str = "<string>", base=".", scene=None) -> Sweep
         scene = _scene(r, sw, top.get("set", {}), Path(base))
     grid = tuple(
         (key, _grid_values(r, scene, key, values))
-        for key, values in r.table(top.get("grid", {}), "grid", _any_keys(top.get("grid"))).items()
+        for key, values in r.table(top.get("grid", {}), "grid").items()
     )
     draws = tuple(_draw(r, scene, i, d) for i, d in enumerate(r.array(top.get("draw", []), "draw")))
     keys = [k for k, _ in grid] + [d.key for d in draws]
@@ -434,13 +405,8 @@ def read_sweep(text: str, file: str = "<string>", base=".", scene=None) -> Sweep
         scene.replace(probe)
     except InputError as exc:
         shown = ", ".join(f"{k} = {v!r}" for k, v in probe.items())
-        raise SceneError(
-            r.file,
-            "",
-            f"the scene refuses the first grid point ({shown}): {exc.key}: {exc.detail}"
-            if exc.key
-            else str(exc),
-        ) from None
+        refused = f"{exc.key}: {exc.detail}" if exc.key else str(exc)
+        raise r.error("", f"the scene refuses the first grid point ({shown}): {refused}") from None
     # checked even when unused: a typo'd seed should not pass silently
     seed = _count(r, sw["seed"], "sweep.seed", low=0, high=MAX_SEED) if "seed" in sw else None
     if draws and seed is None:
@@ -453,10 +419,7 @@ def read_sweep(text: str, file: str = "<string>", base=".", scene=None) -> Sweep
             "tables would all be the same run; add a [[draw]] or leave samples out",
         )
     chunk = _count(r, sw.get("chunk", DEFAULT_CHUNK), "sweep.chunk")
-    times = _times(r, scene, sw["times"]) if "times" in sw else None
-    if times is None:
-        t = scene.data["time"]
-        times = np.array([t["start"] + t["duration"]])
+    times = _times(r, scene, sw.get("times"))
     return Sweep(scene, grid, draws, samples, seed if draws else None, chunk, times, text, r.file)
 
 
@@ -468,14 +431,12 @@ def _scene(r: Reader, sw: dict, changes, base: Path):
     try:
         scene = load_scene(candidate if candidate.suffix == ".toml" else name)
     except InputError as exc:
-        raise SceneError(r.file, "sweep.scene", str(exc)) from None
-    changes = r.table(changes, "set", _any_keys(changes))
-    if changes:
-        try:
-            scene = scene.replace(changes)
-        except InputError as exc:
-            raise SceneError(r.file, "set", str(exc)) from None
-    return scene
+        raise r.error("sweep.scene", str(exc)) from None
+    changes = r.table(changes, "set")
+    try:
+        return scene.replace(changes) if changes else scene
+    except InputError as exc:
+        raise r.error("set", str(exc)) from None
 
 
 def _printable(r: Reader, data) -> None:
@@ -484,51 +445,27 @@ def _printable(r: Reader, data) -> None:
     todo = [data]
     while todo:
         value = todo.pop()
-        items = value.items() if isinstance(value, dict) else enumerate(value)
-        for key, item in items:
-            for text in (key, item):
-                if isinstance(text, str) and not text.isprintable():
-                    shown = repr(text)[: 2 * ECHO_LIMIT]
-                    raise r.error(
-                        "",
-                        f"control characters in a key or string ({shown}); a "
-                        "sweep file has no use for them",
-                    )
-            if isinstance(item, dict | list):
-                todo.append(item)
+        if isinstance(value, dict):
+            todo += [*value, *value.values()]
+        elif isinstance(value, list):
+            todo += value
+        elif isinstance(value, str) and not value.isprintable():
+            shown = repr(value)[: 2 * ECHO_LIMIT]
+            raise r.error("", f"control characters in a key or string ({shown}); a sweep "
+                          "file has no use for them")  # fmt: skip
 
 
-def _any_keys(table) -> list:
-    return list(table) if isinstance(table, dict) else []
-
-
-def _count(r: Reader, value, key: str, low: int = 1, high: int | None = None) -> int:
-    if (
-        isinstance(value, bool)
-        or not isinstance(value, int)
-        or value < low
-        or (high is not None and value > high)
-    ):
+def _count(r: Reader, value, key: str, low: int = 1, high: float = math.inf) -> int:
+    if isinstance(value, bool) or not isinstance(value, int) or not low <= value <= high:
         shown = repr(value) if not isinstance(value, int) or abs(value) < 10**30 else "a larger one"
-        upper = f" and ≤ {high:.3g}" if high is not None else ""
+        upper = f" and ≤ {high:.3g}" if high < math.inf else ""
         raise r.error(key, f"expected an integer ≥ {low}{upper}, got {shown}")
-    return int(value)
-
-
-def _number(r: Reader, value, key: str) -> float:
-    """A finite number; an integer too large for a float is refused by name."""
-    if isinstance(value, int) and not isinstance(value, bool) and abs(value) > sys.float_info.max:
-        raise r.error(
-            key,
-            f"expected a finite number, got an integer of {len(str(abs(value)))} "
-            "digits, beyond float64",
-        )
-    return r.number(value, key)
+    return value
 
 
 def _varying(r: Reader, scene, key: str, where: str) -> None:
     """Refuse a key that cannot vary between samples, or that is not a single number."""
-    if not isinstance(key, str) or not key.startswith(_VARYING):
+    if not key.startswith(_VARYING):
         raise r.error(
             where,
             f"{key!r} cannot vary between the samples of one ensemble (they share the time "
@@ -536,11 +473,9 @@ def _varying(r: Reader, scene, key: str, where: str) -> None:
         )
     node = scene.data
     for part in _PARTS.findall(key):
-        if part.startswith("[") and isinstance(node, list) and int(part[1:-1]) < len(node):
-            node = node[int(part[1:-1])]
-        elif isinstance(node, dict) and part in node:
-            node = node[part]
-        else:
+        try:
+            node = node[int(part[1:-1]) if part.startswith("[") else part]
+        except (KeyError, IndexError, TypeError):
             return  # not in the resolved scene: the scene's own check names it
     if isinstance(node, list | dict):
         size = f"{len(node)} numbers" if isinstance(node, list) else "a table"
@@ -554,10 +489,10 @@ def _varying(r: Reader, scene, key: str, where: str) -> None:
 def _grid_values(r: Reader, scene, key: str, values) -> np.ndarray:
     where = join("grid", key)
     _varying(r, scene, key, where)
-    items = r.array(values, where)
-    if not items:
+    values = r.numbers(values, where)
+    if not values:
         raise r.error(where, "expected at least one value")
-    return np.array([_number(r, v, join(where, i)) for i, v in enumerate(items)])
+    return np.array(values)
 
 
 def _draw(r: Reader, scene, i: int, d) -> Draw:
@@ -566,46 +501,31 @@ def _draw(r: Reader, scene, i: int, d) -> Draw:
     key = r.string(d["key"], join(where, "key"))
     _varying(r, scene, key, join(where, "key"))
     dist = r.one_of(d, where, DISTRIBUTIONS)
-    pair = r.array(d[dist], join(where, dist))
-    if len(pair) != 2:
-        what = " and ".join(DISTRIBUTIONS[dist])
-        raise r.error(
-            join(where, dist), f"expected an array of 2 numbers ({what}), got {len(pair)} items"
-        )
-    a, b = (_number(r, v, join(join(where, dist), j)) for j, v in enumerate(pair))
+    where = join(where, dist)
+    a, b = r.vector(d[dist], where, 2, unit=" and ".join(DISTRIBUTIONS[dist]))
     if dist == "normal" and b < 0:
-        raise r.error(join(where, dist), f"expected std ≥ 0, got {b:g}")
+        raise r.error(where, f"expected std ≥ 0, got {b:g}")
     if dist == "uniform" and b < a:
-        raise r.error(join(where, dist), f"expected low ≤ high, got [{a:g}, {b:g}]")
+        raise r.error(where, f"expected low ≤ high, got [{a:g}, {b:g}]")
     if not math.isfinite(b - a if dist == "uniform" else a + 40 * b):
-        raise r.error(join(where, dist), "the draws would overflow float64; choose smaller values")
+        raise r.error(where, "the draws would overflow float64; choose smaller values")
     return Draw(key, dist, a, b)
 
 
 def _times(r: Reader, scene, value) -> np.ndarray:
-    """Increasing output times after the start, each a whole number of steps into the run."""
-    from ..simulation import whole_steps
-
-    items = r.array(value, "sweep.times")
-    if not items:
+    """Increasing output times after the start, each a whole number of steps into the run
+    (default, ``value`` None: the end of the run)."""
+    start, duration, h = scene.data["time"]["start"], scene.data["time"]["duration"], scene.step
+    times = r.numbers([start + duration] if value is None else value, "sweep.times")
+    if not times:
         raise r.error("sweep.times", "expected at least one output time (s)")
-    times = np.array([_number(r, v, join("sweep.times", i)) for i, v in enumerate(items)])
-    t, h = scene.data["time"], scene.step
-    last = -math.inf
-    for i, ti in enumerate(times.tolist()):
+    for i, (before, t) in enumerate(zip((-math.inf, *times), times, strict=False)):
         key = join("sweep.times", i)
-        span = f"from {t['start']!r} s to {t['start'] + t['duration']!r} s"
-        if not t["start"] < ti <= t["start"] + t["duration"] * (1 + 1e-12):
-            raise r.error(key, f"{ti!r} s is outside the run ({span}, the start excluded)")
-        try:
-            whole_steps(ti - t["start"], h)
-        except InputError:
-            raise r.error(
-                key,
-                f"{ti!r} s is not a whole number of steps ({h!r} s) after the "
-                f"start ({t['start']!r} s)",
-            ) from None
-        if ti <= last:
-            raise r.error(key, f"expected increasing times, got {ti!r} s after {last!r} s")
-        last = ti
-    return times
+        if not start < t <= start + duration * (1 + 1e-12):
+            raise r.error(key, f"{t!r} s is outside the run (from {start!r} s to "
+                          f"{start + duration!r} s, the start excluded)")  # fmt: skip
+        r.whole_steps(t - start, h, key, f"{t!r} s is not a whole number of steps ({h!r} s) "
+                      f"after the start ({start!r} s)")  # fmt: skip
+        if t <= before:
+            raise r.error(key, f"expected increasing times, got {t!r} s after {before!r} s")
+    return np.array(times)
