@@ -23,7 +23,7 @@ bill the exact.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, fields
 
 from ..errors import InputError
 
@@ -88,10 +88,10 @@ class Budget:
     max_disk_gib: float = 20.0
 
     def __post_init__(self):
-        for name in ("max_steps", "max_memory_gib", "max_disk_gib"):
-            value = getattr(self, name)
+        for field in fields(self):  # a subclass's limits too (a sweep's max_files)
+            value = getattr(self, field.name)
             if isinstance(value, bool) or not isinstance(value, int | float) or not value > 0:
-                raise InputError(f"expected a positive number, got {value!r}", key=name)
+                raise InputError(f"expected a positive number, got {value!r}", key=field.name)
 
 
 #: The budget ``ga-rotors run`` and :func:`ga_rotors.scene.run_scene` use by default.
