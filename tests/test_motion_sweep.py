@@ -132,10 +132,17 @@ uniform = [1.0, 3.0]
 """
 
 
-def test_a_motion_sweep_runs_batched_and_equals_the_single_runs(tmp_path):
-    ds = open_sweep(run_sweep(SWEEP, tmp_path / "s.zarr", client="sync"))
+# a force's parameter varies too: g's components (g set whole first, as the scene's
+# default is not a key of the file)
+FORCE_SWEEP = SWEEP.replace('"body.mass" = [0.3, 0.4]', '"forces[0].g[2]" = [-9.8, -1.6]')
+FORCE_SWEEP = FORCE_SWEEP.replace("[grid]", '"forces[0].g" = [0.0, 0.0, -9.8]\n[grid]')
+
+
+@pytest.mark.parametrize("text", [SWEEP, FORCE_SWEEP], ids=["mass", "gravity"])
+def test_a_motion_sweep_runs_batched_and_equals_the_single_runs(tmp_path, text):
+    ds = open_sweep(run_sweep(text, tmp_path / "s.zarr", client="sync"))
     assert ds["position"].attrs["units"] == "m" and ds["velocity"].attrs["units"] == "m/s"
-    sweep = load_sweep(SWEEP)
+    sweep = load_sweep(text)
     values = sweep.values(0, sweep.size)
     position = ds["position"].values.reshape(sweep.size, 2, 3)
     q = ds["q"].values.reshape(sweep.size, 2, 4)

@@ -53,7 +53,7 @@ DISTRIBUTIONS = {"normal": ("mean", "std"), "uniform": ("low", "high")}
 #: Largest seed (SeedSequence takes any, the store's attribute a 128-bit integer).
 MAX_SEED = 2**128 - 1
 
-_VARYING = ("body.", "initial.", "effects[")
+_VARYING = ("body.", "initial.", "effects[", "forces[")
 _PARTS = re.compile(r"[^.\[\]]+|\[\d+\]")
 
 #: The largest float64 below 1: where a normal draw's u that rounded to 1 goes.
@@ -469,7 +469,8 @@ def _varying(r: Reader, scene, key: str, where: str) -> None:
         raise r.error(
             where,
             f"{key!r} cannot vary between the samples of one ensemble (they share the time "
-            "grid and integrator); vary keys under body, initial or effects, or set it in [set]",
+            "grid and integrator); vary keys under body, initial, effects or forces, or set "
+            "it in [set]",
         )
     node = scene.data
     for part in _PARTS.findall(key):
