@@ -388,14 +388,11 @@ def read_sweep(text: str, file: str = "<string>", base=".", scene=None) -> Sweep
         for key, values in r.table(top.get("grid", {}), "grid").items()
     )
     draws = tuple(_draw(r, scene, i, d) for i, d in enumerate(r.array(top.get("draw", []), "draw")))
-    keys = [k for k, _ in grid] + [d.key for d in draws]
-    names = [coordinate_name(k) for k in keys]
-    if len(set(names)) != len(names):
-        twice = next(k for k, n in zip(keys, names, strict=True) if names.count(n) > 1)
-        raise r.error(
-            "draw" if draws else "grid",
-            f"{twice!r} is varied twice (or two keys differ only in punctuation)",
-        )
+    keys, first = [k for k, _ in grid] + [d.key for d in draws], {}
+    for i, key in enumerate(keys):
+        if first.setdefault(coordinate_name(key), i) != i:
+            raise r.error("draw" if draws else "grid", f"{key!r} is varied twice (or two keys "
+                          "differ only in punctuation)")  # fmt: skip
     if not keys:
         raise r.error("grid", "nothing varies; give [grid] values or [[draw]] tables")
     # the scene checks every key once now (an unknown key, a number where it wants a
