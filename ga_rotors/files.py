@@ -53,6 +53,7 @@ __all__ = [
     "NAME_MAX",
     "atomic_write",
     "checked_path",
+    "output_file",
     "output_set",
     "shown_path",
     "write_text",
@@ -69,6 +70,7 @@ NAME_MAX = 255
 SHOWN_CHARS = 80
 
 _COMPLETE = ".complete"  # inside a staging folder: every file is written, moves may begin
+_STAGING = ".ga_rotors-staging-"  # what every staging folder's name starts with
 
 
 def shown_path(path) -> str:
@@ -165,14 +167,13 @@ def write_text(path, text: str) -> Path:
 
 
 def _check_name(name: str, argument: str) -> None:
-    """A file name from a scene or a plan: one plain path component, short enough."""
+    """A file name from a scene, a plan or a path: one plain path component, short enough,
+    not one of the names staging uses."""
     if (
         not isinstance(name, str)
-        or name in ("", ".", "..")
-        or "/" in name
-        or "\\" in name
-        or "\0" in name
-        or name.startswith(".")
+        or name in ("", ".", "..", _COMPLETE)
+        or any(c in name for c in "/\\\0")
+        or name.startswith(_STAGING)
     ):
         raise InputError(
             f"{name!r} is not a plain file name; it must stay in {argument}",
@@ -180,8 +181,7 @@ def _check_name(name: str, argument: str) -> None:
         )
     if len(name.encode("utf-8", "surrogateescape")) > NAME_MAX:
         raise InputError(
-            f"file name {name[:40]!r}... is {len(name.encode())} bytes long; "
-            f"at most {NAME_MAX} (shorten the scene's name)",
+            f"file name {name[:40]!r}... is {len(name.encode())} bytes long; at most {NAME_MAX}",
             key=argument,
         )
 
@@ -189,7 +189,7 @@ def _check_name(name: str, argument: str) -> None:
 def _staging_prefix(out: Path) -> str:
     # A fixed-length prefix: long --out names never overflow NAME_MAX here.
     tag = hashlib.sha256(os.fsencode(out.name)).hexdigest()[:12]
-    return f".ga_rotors-staging-{tag}-"
+    return f"{_STAGING}{tag}-"
 
 
 @contextlib.contextmanager
@@ -339,21 +339,16 @@ def output_set(out_dir, argument: str = "out_dir") -> Iterator[Path]:
         try:
             try:
                 yield staging
-                names = sorted(f.name for f in staging.iterdir())
-                for name in names:
-                    _check_name(name, argument)
-                    target, folder = out / name, (staging / name).is_dir()
-                    if exists and target.is_dir() and not target.is_symlink() and not folder:
+                for staged in sorted(staging.iterdir()):
+                    _check_name(staged.name, argument)
+                    target, folder = out / staged.name, staged.is_dir()
+                    # a store (a folder) replaces a folder, a file replaces a file
+                    is_folder = target.is_dir() and not target.is_symlink()
+                    if exists and os.path.lexists(target) and folder != is_folder:
+                        kind = ("a folder", "file") if is_folder else ("not a folder", "folder")
                         raise InputError(
-                            f"{shown_path(target)} is a folder; the output file {name} "
-                            "goes there (nothing was replaced)",
-                            key=argument,
-                        )
-                    if exists and folder and os.path.lexists(target) and not target.is_dir():
-                        raise InputError(
-                            f"{shown_path(target)} is not a folder; the output folder "
-                            f"{name} (a store) "
-                            "goes there (nothing was replaced)",
+                            f"{shown_path(target)} is {kind[0]}; the output {kind[1]} "
+                            f"{staged.name} goes there (nothing was replaced)",
                             key=argument,
                         )
                 with _signals_held():
@@ -371,6 +366,35 @@ def output_set(out_dir, argument: str = "out_dir") -> Iterator[Path]:
             if not (staging / _COMPLETE).exists():
                 _remove(staging)
             raise
+
+
+@contextlib.contextmanager
+def output_file(path, argument: str = "path") -> Iterator[Path]:
+    """A staging path whose file, or folder (a zarr store), replaces ``path`` when the
+    block ends without an exception: :func:`output_set` of its folder, which must exist.
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> path = pathlib.Path(tempfile.mkdtemp()) / "run.txt"
+    >>> with output_file(path) as staged:
+    ...     _ = staged.write_text("new")
+    ...     path.exists()
+    False
+    >>> path.read_text()
+    'new'
+    >>> with output_file(path.parent / "missing" / "run.txt", "--out"):
+    ...     pass
+    Traceback (most recent call last):
+    ...
+    ga_rotors.errors.InputError: --out: directory ...missing does not exist
+    """
+    path = checked_path(path, argument)
+    _check_name(path.name, argument)
+    if not path.parent.is_dir():
+        raise InputError(f"directory {shown_path(path.parent)} does not exist", key=argument)
+    with output_set(path.parent, argument) as stage:
+        yield stage / path.name
 
 
 def write_together(

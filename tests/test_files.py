@@ -117,7 +117,7 @@ def test_a_file_or_a_dangling_link_as_out_is_one_line(tmp_path):
 
 
 @pytest.mark.parametrize(
-    "name", ["../up.csv", "/abs.csv", "a/b.csv", "..", ".hidden", "x" * 256 + ".csv"]
+    "name", ["../up.csv", "/abs.csv", "a/b.csv", "..", ".complete", "x" * 256 + ".csv"]
 )
 def test_names_can_never_leave_or_overflow_out(tmp_path, name):
     with pytest.raises(InputError, match="--out: "):

@@ -1,24 +1,19 @@
-"""Results on disk: netCDF (``.nc``) or zarr (``.zarr``), written whole or not at all.
+"""Results on disk: netCDF (``.nc``, through h5netcdf) or zarr (``.zarr``), written whole
+or not at all.
 
 :func:`write` takes a :class:`~ga_rotors.trajectory.Trajectory` (converted by
 :func:`ga_rotors.results.to_dataset`) or an :class:`xarray.Dataset`; :func:`read` gives
-back the Dataset that was written, values, units and attributes alike.
-
-Both are first written into a staging directory beside the target and then moved onto
-it: a netCDF file by one ``os.replace``; a zarr store (a directory) by renames, an
-existing store moved aside first and deleted after, so an interruption leaves the previous
-store, the new one, or the previous one under ``.<name>.previous-*`` — never a mix.
+back the Dataset that was written, values, units and attributes alike. Both formats are
+written into a staging folder and moved onto the target (:func:`ga_rotors.files.output_file`:
+an interruption leaves the previous file or store, or the new one, never a mix).
 """
 
 from __future__ import annotations
 
-import os
-import shutil
-import tempfile
 from pathlib import Path
 
 from ..errors import InputError, first_line
-from ..files import checked_path, shown_path
+from ..files import checked_path, output_file, shown_path
 from ..optional import require
 
 __all__ = ["CHUNK_ROWS", "FORMATS", "ZARR_FORMAT", "chunk_encoding", "format_of", "read", "write"]
@@ -54,30 +49,6 @@ def format_of(path) -> str:
     return FORMATS[suffix]
 
 
-def _netcdf_engine() -> str:
-    for module, engine in (("h5netcdf", "h5netcdf"), ("netCDF4", "netcdf4")):
-        try:
-            require(module, "results")
-            return engine
-        except ImportError:
-            continue
-    require("h5netcdf", "results")  # raises, naming the extra
-    raise AssertionError("unreachable")
-
-
-def _replace_dir(staging: Path, target: Path) -> None:
-    """Move the finished store ``staging`` onto ``target`` (a directory or nothing)."""
-    if not target.exists():
-        os.rename(staging, target)
-        return
-    if not target.is_dir():
-        raise InputError(f"path: {shown_path(target)} exists and is not a zarr store (a directory)")
-    old = Path(tempfile.mkdtemp(dir=target.parent, prefix=f".{target.name}.previous-"))
-    os.rename(target, old / "store")
-    os.rename(staging, target)
-    shutil.rmtree(old, ignore_errors=True)
-
-
 def write(data, path, scene=None) -> Path:
     """Write a trajectory or Dataset to ``path`` (``.nc`` or ``.zarr``), atomically.
 
@@ -108,20 +79,14 @@ def write(data, path, scene=None) -> Path:
     fmt = format_of(path)
     ds = data if hasattr(data, "data_vars") else to_dataset(data, scene)
     ds = ds.drop_encoding()
-    parent = path.parent if str(path.parent) else Path(".")
-    if not parent.is_dir():
-        raise InputError(f"path: directory {shown_path(parent)} does not exist")
-    if fmt == "netcdf":
-        engine = _netcdf_engine()
-        return _staged(path, lambda p: ds.to_netcdf(p, engine=engine))
-    require("zarr", "results")
+    require("h5netcdf" if fmt == "netcdf" else "zarr", "results")
     encoding = chunk_encoding(ds, "zarr", ds.sizes.get("time", 0))
-    return _staged(
-        path,
-        lambda p: ds.to_zarr(
-            p, mode="w", zarr_format=ZARR_FORMAT, consolidated=True, encoding=encoding
-        ),
-    )
+    with output_file(path) as staged:
+        if fmt == "netcdf":
+            ds.to_netcdf(staged, engine="h5netcdf")
+        else:
+            ds.to_zarr(staged, zarr_format=ZARR_FORMAT, consolidated=True, encoding=encoding)
+    return path
 
 
 def chunk_encoding(ds, fmt: str, rows: int) -> dict:
@@ -143,32 +108,6 @@ def chunk_encoding(ds, fmt: str, rows: int) -> dict:
         for name, var in ds.variables.items()
         if var.dims[:1] == ("time",)
     }
-
-
-def _staged(path: Path, writer) -> Path:
-    """``writer(p)`` into a staging directory beside ``path``, then moved onto ``path``
-    (what the system refuses, a name too long or a full disk, is one line naming it)."""
-    parent = path.parent if str(path.parent) else Path(".")
-    try:
-        staging = Path(tempfile.mkdtemp(dir=parent, prefix=f".{path.name[:200]}.staging-"))
-    except OSError as exc:
-        raise InputError(f"path: cannot write {shown_path(path)}: {exc.strerror or exc}") from None
-    try:
-        writer(staging / "new")
-        try:
-            if (staging / "new").is_dir():
-                _replace_dir(staging / "new", path)
-            elif path.is_dir():
-                raise InputError(f"path: {shown_path(path)} is a directory; expected a file name")
-            else:
-                os.replace(staging / "new", path)
-        except OSError as exc:
-            raise InputError(
-                f"path: cannot write {shown_path(path)}: {exc.strerror or exc}"
-            ) from None
-    finally:
-        shutil.rmtree(staging, ignore_errors=True)
-    return path
 
 
 #: Gibibytes :func:`read` loads at most unless told otherwise (as a run's memory budget).
@@ -216,10 +155,10 @@ def read(path, lazy: bool = False, max_memory_gib: float = READ_MEMORY_GIB):
     if not found:
         raise InputError(f"path: {shown_path(path)}: no such file or store")
     try:
+        require("h5netcdf" if fmt == "netcdf" else "zarr", "results")
         if fmt == "netcdf":
-            ds = xr.open_dataset(path, engine=_netcdf_engine())
+            ds = xr.open_dataset(path, engine="h5netcdf")
         else:
-            require("zarr", "results")
             ds = xr.open_zarr(path, consolidated=None)
     except (OSError, ValueError, KeyError) as exc:
         raise _unreadable(path, fmt, exc) from None
