@@ -12,8 +12,7 @@
 xarray, h5netcdf and zarr come with the results extra (``pip install ".[results]"`` in the
 repository); a function that needs a missing one says so in one line
 (:class:`ga_rotors.optional.MissingExtraError`).
-NPZ and CSV need nothing beyond numpy (CSV is written by polars or pyarrow when one is
-installed).
+NPZ and CSV need nothing beyond numpy (CSV is written by polars when it is installed).
 """
 
 from __future__ import annotations

@@ -10,9 +10,8 @@ so ``pandas.read_csv(path)``, ``polars.read_csv(path)``, ``numpy.loadtxt(path,
 delimiter=",", skiprows=1)`` and a spreadsheet read it with no options. Headers read
 ``name_component [unit]``. Each value is the shortest text that reads back as the same
 float64 (``0.1``, not ``0.10000000000000001``; ``nan``, ``inf`` and ``-0`` included),
-written by a CSV library: polars when it is installed, else pyarrow, else numpy
-(:data:`ENGINES`; each writes its own spelling, ``1.0`` or ``1``, ``NaN`` or ``nan``,
-and every one reads back bit for bit). A path that stopped early leaves its cells empty
+written by a CSV library: polars when it is installed, else numpy (:data:`ENGINES`;
+each spells a NaN its own way, ``NaN`` or ``nan``, and both read back bit for bit). A path that stopped early leaves its cells empty
 after its last sample, never NaN (``numpy.genfromtxt`` reads them as nan).
 
 What the columns are and how the run was made go beside it, in ``<file>.csv-metadata.json``
@@ -28,7 +27,7 @@ named as in the netCDF file. The two files are written together, or neither.
 from __future__ import annotations
 
 import csv
-import importlib
+import importlib.util
 import io
 import json
 import math
@@ -40,7 +39,7 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import InputError
-from ..files import checked_path, output_set, shown_path
+from ..files import output_file
 from .variables import COMPONENT_DIMS, describe, one_unit
 
 __all__ = [
@@ -66,14 +65,13 @@ METADATA_SUFFIX = "-metadata.json"
 # A CSVW column name must be a URI-template variable name, and may not start with "_".
 _COLUMN_NAME = re.compile(r"[A-Za-z0-9][A-Za-z0-9_]*")
 
-#: CSV writers, in the order they are chosen: the first whose module is installed.
-ENGINES = ("polars", "pyarrow", "numpy")
+#: CSV writers, in the order they are chosen: polars when it is installed, else numpy.
+ENGINES = ("polars", "numpy")
 
 
 #: True in a process made by ``os.fork`` (a ``multiprocessing`` pool's workers on Linux):
 #: polars' thread pool does not survive a fork, and a child writing with it waits forever
-#: once the parent has used it, so the default writer there is the next one (pyarrow
-#: re-makes its pool).
+#: once the parent has used it, so the default writer there is numpy.
 _FORKED = False
 
 
@@ -99,21 +97,13 @@ def csv_engine(engine: str | None = None) -> str:
     >>> csv_engine("pandas")
     Traceback (most recent call last):
     ...
-    ga_rotors.errors.InputError: engine: expected one of polars, pyarrow, numpy, got 'pandas'
+    ga_rotors.errors.InputError: engine: expected one of polars, numpy, got 'pandas'
     """
     if engine is not None:
         if engine not in ENGINES:
             raise InputError(f"expected one of {', '.join(ENGINES)}, got {engine!r}", key="engine")
         return engine
-    for name in ENGINES:
-        if name == "polars" and _FORKED:
-            continue
-        try:
-            importlib.import_module(name)
-            return name
-        except ImportError:
-            continue
-    return "numpy"
+    return "polars" if not _FORKED and importlib.util.find_spec("polars") else "numpy"
 
 
 def csv_header(trajectory) -> list[str]:
@@ -198,22 +188,6 @@ def _polars(fh, columns, n) -> None:
     pl.DataFrame(series).write_csv(fh, include_header=False)
 
 
-def _pyarrow(fh, columns, n) -> None:
-    import pyarrow as pa
-    import pyarrow.csv as pacsv
-
-    arrays = []
-    for values, rows in columns:
-        if rows == n:
-            arrays.append(pa.array(values, pa.float64()))
-        else:  # one masked array: a chunked one whose first chunk is empty wrote garbage
-            padded = np.zeros(n)
-            padded[:rows] = values
-            arrays.append(pa.array(padded, pa.float64(), mask=np.arange(n) >= rows))
-    table = pa.table(arrays, names=[f"c{j}" for j in range(len(arrays))])
-    pacsv.write_csv(table, fh, pacsv.WriteOptions(include_header=False))
-
-
 def _numpy(fh, columns, n) -> None:
     # numpy's float-to-text conversion is Python's repr: the shortest round-trip text
     cells = np.full((n, len(columns)), "", dtype=object)
@@ -222,7 +196,7 @@ def _numpy(fh, columns, n) -> None:
     fh.write("".join(",".join(row) + "\n" for row in cells.tolist()).encode())
 
 
-_WRITERS = {"polars": _polars, "pyarrow": _pyarrow, "numpy": _numpy}
+_WRITERS = {"polars": _polars, "numpy": _numpy}
 
 
 def metadata_path(path) -> Path:
@@ -278,7 +252,7 @@ def csv_metadata(trajectory, url: str, attributes: dict) -> dict:
     >>> from ga_rotors.results.dataset import run_attributes
     >>> tr = Trajectory({"t": np.zeros(2), "w": np.zeros((2, 3))}, {"w": ("1", "2", "3")},
     ...                 meta={"integrator": "rk4"})
-    >>> doc = csv_metadata(tr, "run.csv", run_attributes(tr))
+    >>> doc = csv_metadata(tr, "run.csv", run_attributes(tr.meta))
     >>> doc["url"], doc["tableSchema"]["columns"][1]
     ('run.csv', {'name': 'w_1', 'titles': 'w_1 [rad/s]', 'datatype': 'double', \
 'schema:unitText': 'rad/s', 'dc:description': 'body angular velocity of the primary path; \
@@ -345,7 +319,8 @@ def write_csv_files(trajectory, path, *, scene=None, engine: str | None = None) 
     with open(path, "wb") as fh:
         CsvRows(fh, engine).write(trajectory)
     sidecar = metadata_path(path)
-    text = metadata_text(trajectory, path.name, run_attributes(trajectory, scene))
+    attrs = run_attributes(trajectory.meta, scene, trajectory.t)
+    text = metadata_text(trajectory, path.name, attrs)
     sidecar.write_text(text, encoding="utf-8")
     return [path, sidecar]
 
@@ -363,21 +338,16 @@ def write_csv(trajectory, path=None, *, scene=None, engine: str | None = None) -
     >>> from ga_rotors.trajectory import Trajectory
     >>> tr = Trajectory({"t": np.array([0.0, 0.5]), "energy": np.array([1.0, 1.0 / 3])},
     ...                 meta={"integrator": "rk4"})
-    >>> print(write_csv(tr, engine="pyarrow"), end="")
+    >>> print(write_csv(tr, engine="polars"), end="")
     t [s],energy [J]
-    0,1
+    0.0,1.0
     0.5,0.3333333333333333
     """
     if path is None:
         out = io.BytesIO()
         CsvRows(out, engine).write(trajectory)
         return out.getvalue().decode("utf-8")
-    path = checked_path(path, "path")
     csv_engine(engine)  # an unknown engine: refused before any folder is touched
-    if path.is_dir():
-        raise InputError(f"{shown_path(path)} is a directory; expected a file name", key="path")
-    if not path.parent.is_dir():
-        raise InputError(f"directory {shown_path(path.parent)} does not exist", key="path")
-    with output_set(path.parent, "path") as stage:
-        write_csv_files(trajectory, stage / path.name, scene=scene, engine=engine)
-    return path
+    with output_file(path) as staged:
+        write_csv_files(trajectory, staged, scene=scene, engine=engine)
+    return Path(path)
