@@ -222,7 +222,7 @@ def test_a_failed_write_leaves_the_previous_results(tmp_path, suffix, monkeypatc
         raise OSError("disk full")
 
     monkeypatch.setattr(xr.Dataset, "to_netcdf" if suffix == ".nc" else "to_zarr", broken)
-    with pytest.raises(OSError, match="disk full"):
+    with pytest.raises(InputError, match=r"path: cannot write .*: disk full"):
         results.write(results.to_dataset(Trajectory({"t": np.zeros(1)})), path)
     monkeypatch.undo()
     xr.testing.assert_identical(results.read(path), before)
@@ -240,10 +240,11 @@ def test_bad_paths_and_files_are_one_line_errors(tmp_path):
     with pytest.raises(InputError, match="path: expected a file or folder name, got an empty"):
         results.write(ragged(), "")
     long = tmp_path / ("x" * 3000 + ".nc")
-    for call in (lambda: results.read(long), lambda: results.write(ragged(), long)):
-        with pytest.raises(InputError, match="File name too long") as e:
-            call()
-        assert len(str(e.value)) < 250 and f"({len(str(long))} characters)" in str(e.value)
+    with pytest.raises(InputError, match="File name too long") as e:
+        results.read(long)
+    assert len(str(e.value)) < 250 and f"({len(str(long))} characters)" in str(e.value)
+    with pytest.raises(InputError, match=r"path: file name 'x+'\.\.\. is 3003 bytes long; at most 255$"):
+        results.write(ragged(), long)
     assert sorted(p.name for p in tmp_path.iterdir()) == ["junk.nc"]
 
 
@@ -487,9 +488,9 @@ def test_csv_engines_write_the_same_values(heavy):
 
 
 def test_an_unknown_engine_is_one_line(tmp_path):
-    with pytest.raises(InputError, match="engine: expected one of polars, pyarrow, numpy"):
+    with pytest.raises(InputError, match="engine: expected one of polars, numpy"):
         results.write_csv(ragged(), engine="excel")
-    with pytest.raises(InputError, match="engine: expected one of polars, pyarrow, numpy"):
+    with pytest.raises(InputError, match="engine: expected one of polars, numpy"):
         results.write_csv(ragged(), tmp_path / "run.csv", engine="excel")
     assert list(tmp_path.iterdir()) == []
 
@@ -527,7 +528,6 @@ def test_a_forked_process_writes_csv_after_its_parent_used_polars(tmp_path):
     import signal
 
     pytest.importorskip("polars")
-    pytest.importorskip("pyarrow")
     results.write_csv(ragged(), engine="polars")  # the parent's pool is in use
     pid = os.fork()
     if pid == 0:  # pragma: no cover - the child reports by its exit status
@@ -539,5 +539,5 @@ def test_a_forked_process_writes_csv_after_its_parent_used_polars(tmp_path):
             os._exit(1)
     _, status = os.waitpid(pid, 0)
     assert os.WIFEXITED(status) and os.WEXITSTATUS(status) == 0, status
-    assert (tmp_path / "child.csv").read_text() == results.write_csv(ragged(), engine="pyarrow")
-    assert table.csv_engine() in ("polars", "pyarrow")  # the parent keeps its default
+    assert (tmp_path / "child.csv").read_text() == results.write_csv(ragged(), engine="numpy")
+    assert table.csv_engine() == "polars"  # the parent keeps its default

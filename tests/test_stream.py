@@ -241,7 +241,7 @@ def test_a_long_netcdf_stream_holds_its_file_open_between_pieces_and_lets_it_go(
         assert ds["time"].values.tolist() == list(range(8)) and ds.attrs["integrator"] == "rk4"
 
 
-@pytest.mark.parametrize("engine", ["polars", "pyarrow", "numpy"])
+@pytest.mark.parametrize("engine", ["polars", "numpy"])
 def test_csv_streamed_in_pieces_is_the_text_written_whole(tmp_path, engine):
     """Pieces of rows (a column stopped in the middle of one, an empty piece): the bytes
     of write_csv, whichever library writes them."""

@@ -29,6 +29,7 @@ from .variables import COMPONENT_DIMS, STANDARD, describe, one_unit
 
 __all__ = [
     "EXACT_BOUND_TIMES",
+    "bound_rows",
     "exact_bound_at",
     "run_attributes",
     "time_rows",
@@ -56,12 +57,17 @@ def variable_attrs(name: str) -> dict:
     return {"units": unit, "long_name": long_name, **STANDARD.get(name, {})}
 
 
-def _exact_bound(scene, t: np.ndarray) -> float | None:
-    """Largest rounding-error bound (rad) of the scene's exact reference over ``t``."""
-    if t.size == 0:
-        return None
-    pick = np.unique(np.linspace(0, t.size - 1, min(t.size, EXACT_BOUND_TIMES)).astype(int))
-    return exact_bound_at(scene, t[pick])
+def bound_rows(count: int) -> np.ndarray:
+    """The rows of a run of ``count`` samples at which its exact reference's largest
+    rounding-error bound is evaluated: at most :data:`EXACT_BOUND_TIMES`, evenly spread,
+    the first and the last included (the bounds grow smoothly with time).
+
+    Examples
+    --------
+    >>> bound_rows(3).tolist(), bound_rows(10**6).size, int(bound_rows(10**6)[-1])
+    ([0, 1, 2], 1000, 999999)
+    """
+    return np.unique(np.linspace(0, count - 1, min(count, EXACT_BOUND_TIMES)).astype(int))
 
 
 def exact_bound_at(scene, times: np.ndarray) -> float | None:
@@ -146,27 +152,29 @@ def to_dataset(trajectory, scene=None):
             coords.setdefault(dim, (dim, list(labels)))
             dims = ("time", dim)
         variables[name] = (dims, a, attrs)
-    return xr.Dataset(variables, coords=coords, attrs=run_attributes(trajectory, scene))
+    return xr.Dataset(variables, coords=coords, attrs=run_attributes(trajectory.meta, scene, t))
 
 
-def run_attributes(trajectory, scene=None) -> dict:
-    """What a run's files say about it: its :func:`~.provenance.provenance` and, for a scene
-    with an exact solution, that reference's largest rounding-error bound over the samples
-    (``exact_error_bound``, in rad). The Dataset's global attributes, the CSV sidecar's
-    properties.
+def run_attributes(meta: dict, scene=None, times=()) -> dict:
+    """What a run's files say about it: the :func:`~.provenance.provenance` of its ``meta``
+    and, for a scene with an exact solution, that reference's largest rounding-error bound
+    over the sample ``times`` (``exact_error_bound``, in rad; evaluated at those of
+    :func:`bound_rows`, which a stream picks as it goes). The Dataset's global attributes,
+    the CSV sidecar's properties.
 
     Examples
     --------
     >>> from ga_rotors.scene import load_scene, run_scene
     >>> scene = load_scene("heavy_top").replace({"time.duration": 0.01})
-    >>> attrs = run_attributes(run_scene(scene), scene)
+    >>> tr = run_scene(scene)
+    >>> attrs = run_attributes(tr.meta, scene, tr.t)
     >>> attrs["integrator"], attrs["exact_error_bound"] < 1e-12, attrs["exact_error_bound_units"]
     ('rk4', True, 'rad')
     """
-    attrs = provenance(trajectory.meta, scene)
-    if scene is not None:
-        bound = _exact_bound(scene, trajectory.t)
-        if bound is not None:
-            attrs["exact_error_bound"] = bound
-            attrs["exact_error_bound_units"] = "rad"
+    attrs = provenance(meta, scene)
+    times = np.asarray(times)
+    picked = times[bound_rows(times.size)]
+    bound = exact_bound_at(scene, picked) if scene is not None and times.size else None
+    if bound is not None:
+        attrs["exact_error_bound"], attrs["exact_error_bound_units"] = bound, "rad"
     return attrs

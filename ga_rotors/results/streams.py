@@ -4,8 +4,8 @@ Each writer takes the pieces of one run in order (:class:`~ga_rotors.trajectory.
 objects of consecutive samples, the first holding sample 0, as
 :func:`ga_rotors.simulation.simulate_chunks` hands them out) with ``append``, and
 finishes the file with ``close``, given the run's final ``meta`` (what the run became:
-which paths completed, how many samples each has). The file is the one the whole
-trajectory would give, written in one go:
+which paths completed, how many samples each has); ``abort`` drops it after a failure.
+The file is the one the whole trajectory would give, written in one go:
 
 * :class:`CsvStream` — CSV with units in the headers (:class:`~.table.CsvRows`), through
   one buffered file, and its CSVW metadata sidecar (:func:`~.table.csv_metadata`);
@@ -29,7 +29,10 @@ from pathlib import Path
 import numpy as np
 
 from ..optional import require
+from . import store
+from .dataset import bound_rows, run_attributes, time_rows, to_dataset
 from .npz import NpzStream
+from .variables import one_unit
 
 __all__ = ["ZARR_WRITE_CHUNKS", "CsvStream", "NetcdfStream", "NpzStream", "ZarrStream",
            "sample_count"]  # fmt: skip
@@ -59,53 +62,67 @@ def sample_count(meta: dict) -> int:
 
 class _RunStream:
     """What every streamed writer keeps of a run's pieces: their rows, each array's rows
-    (short for a stopped path), the exact reference's bound times; the run's attributes
-    at the end."""
+    (short for a stopped path), the times the exact reference's bound is evaluated at
+    (:func:`~.dataset.bound_rows` of the run's sample count); the rows not yet in the
+    file (:meth:`_dataset`); the open file."""
 
     def __init__(self, path, scene=None):
-        self.path = Path(path)
-        self.scene = scene
-        self.rows = 0
-        self.valid: dict[str, int] = {}  # array -> rows written (short for a stopped path)
-        self.bound = None
-        self.chunk_rows = 0  # rows per chunk along time, set by the first piece
+        self.path, self.scene = Path(path), scene
+        self.rows = self.written = 0  # rows taken, rows in the file
+        self.valid: dict[str, int] = {}  # array -> rows taken (short for a stopped path)
+        self.chunk_rows = store.CHUNK_ROWS  # rows per chunk along time, by the first piece
+        self._held: list[dict] = []  # rows taken, not yet in the file (time_rows)
+        self._bound_rows, self._bound_times = np.zeros(0, int), []
+        self._file = None
 
-    def _take(self, piece) -> None:
-        """Count the piece's rows (and pick its bound times)."""
-        from .store import CHUNK_ROWS
-        from .variables import one_unit
-
-        piece = one_unit(piece)  # the arrays as the files hold them
-
+    def _take(self, piece) -> dict:
+        """Count the piece's rows, pick its bound times; its arrays as the files hold them
+        (:func:`~.dataset.time_rows`)."""
+        piece = one_unit(piece)
         if self.rows == 0:
+            self.components = piece.components
             meta = piece.meta
             expected = sample_count(meta) if "steps" in meta and "sample_every" in meta else 0
-            self.chunk_rows = min(CHUNK_ROWS, expected) if expected > 0 else CHUNK_ROWS
+            self.chunk_rows = min(store.CHUNK_ROWS, expected or store.CHUNK_ROWS)
             if self.scene is not None:
-                self.bound = _BoundTimes(self.scene, piece)
-        if self.bound is not None:
-            self.bound.take(piece.t, self.rows)
+                self._bound_rows = bound_rows(expected)
+        pick = self._bound_rows[(self._bound_rows >= self.rows)
+                                & (self._bound_rows < self.rows + len(piece))]  # fmt: skip
+        self._bound_times.append(piece.t[pick - self.rows])
         for name in piece.names:
             self.valid[name] = self.valid.get(name, 0) + piece[name].shape[0]
         self.rows += len(piece)
+        return time_rows(piece)
 
-    def _attrs(self, meta: dict) -> tuple[dict, dict]:
-        """The run's attributes (those :func:`~.dataset.run_attributes` gives the whole
-        run), and each time variable's ``valid_samples`` (or None)."""
-        from .provenance import provenance
+    def _dataset(self, end: int):
+        """The held rows up to row ``end`` of the run as a Dataset; the rest stay held."""
+        from ..trajectory import Trajectory
 
-        attrs = provenance(meta, self.scene)
-        if self.bound is not None:
-            bound = self.bound.value()
-            if bound is not None:
-                attrs["exact_error_bound"] = bound
-                attrs["exact_error_bound_units"] = "rad"
-        valid = {
-            name: (rows if rows < self.rows else None)
-            for name, rows in self.valid.items()
-            if name != "t"
-        }
-        return attrs, valid
+        arrays = {name: np.concatenate([h[name] for h in self._held]) for name in self._held[0]}
+        take, self.written = end - self.written, end
+        self._held = [{name: a[take:] for name, a in arrays.items()}]
+        return to_dataset(Trajectory({n: a[:take] for n, a in arrays.items()}, self.components))
+
+    def _finish(self, attrs, variable_attrs, meta: dict) -> None:
+        """Replace the file's attributes ``attrs`` by the run's (those
+        :func:`~.dataset.run_attributes` gives the whole run, from the final ``meta``), and
+        set each short array's ``valid_samples`` (``variable_attrs(name)``), or remove it."""
+        times = np.concatenate(self._bound_times) if self._bound_times else ()
+        for key in list(attrs):
+            del attrs[key]
+        attrs.update(run_attributes(meta, self.scene, times))
+        for name, rows in self.valid.items():
+            if name != "t" and rows < self.rows:
+                variable_attrs(name)["valid_samples"] = int(rows)
+            elif name != "t" and "valid_samples" in variable_attrs(name):
+                del variable_attrs(name)["valid_samples"]
+
+    def abort(self) -> None:
+        """Drop the rows held and close the file (the staging folder goes away with it)."""
+        self._held = []
+        f, self._file = self._file, None
+        if f is not None:
+            f.close()
 
 
 class CsvStream(_RunStream):
@@ -134,8 +151,8 @@ class CsvStream(_RunStream):
         from .table import CsvRows
 
         super().__init__(path, scene)
-        self._fh = open(self.path, "wb", buffering=CSV_BUFFER)
-        self._rows = CsvRows(self._fh, engine)
+        self._file = open(self.path, "wb", buffering=CSV_BUFFER)
+        self._rows = CsvRows(self._file, engine)
         self._columns = None  # the first piece's arrays, no rows: what the columns are
 
     def append(self, piece) -> None:
@@ -154,55 +171,26 @@ class CsvStream(_RunStream):
         from ..trajectory import Trajectory
         from .table import metadata_path, metadata_text
 
-        self._fh.close()
+        self.abort()
         columns = self._columns if self._columns is not None else Trajectory({"t": np.zeros(0)})
-        text = metadata_text(columns, self.path.name, self._attrs(meta)[0])
-        metadata_path(self.path).write_text(text, encoding="utf-8")
-
-    def abort(self) -> None:
-        """Stop writing (the run failed; the staging folder goes away with the file)."""
-        self._fh.close()
-
-
-class _DatasetStream(_RunStream):
-    """What the netCDF and zarr writers share: xarray, per-piece Datasets."""
-
-    def __init__(self, path, scene=None):
-        require("xarray", "results")
-        super().__init__(path, scene)
+        attrs: dict = {}
+        self._finish(attrs, lambda name: {}, meta)
+        metadata_path(self.path).write_text(
+            metadata_text(columns, self.path.name, attrs), encoding="utf-8"
+        )
 
 
-class _BoundTimes:
-    """The sample times :func:`ga_rotors.results.to_dataset` evaluates the exact
-    reference's error bound at, picked from the pieces as they pass (their indices are
-    known from the run's sample count)."""
-
-    def __init__(self, scene, first_piece):
-        from .dataset import EXACT_BOUND_TIMES
-
-        count = sample_count(first_piece.meta)
-        self.scene = scene
-        self.pick = np.unique(np.linspace(0, count - 1, min(count, EXACT_BOUND_TIMES)).astype(int))
-        self.times: list = []
-
-    def take(self, t, offset: int) -> None:
-        inside = self.pick[(self.pick >= offset) & (self.pick < offset + t.shape[0])]
-        self.times.append(t[inside - offset])
-
-    def value(self):
-        from .dataset import exact_bound_at
-
-        return exact_bound_at(self.scene, np.concatenate(self.times))
-
-
-class NetcdfStream(_DatasetStream):
+class NetcdfStream(_RunStream):
     """netCDF (HDF5, through h5netcdf), growing along an unlimited ``time`` dimension.
 
     A run of at most :data:`~.store.CHUNK_ROWS` samples is held and written whole at
     :meth:`close`, contiguous, as :func:`ga_rotors.results.write` writes it (a chunked,
-    growing file costs HDF5 a few kB more per variable). Past that many rows, the rows
+    growing file of 61 rows takes 42 kB, against 28 kB). Past that many rows, the rows
     held make the file through xarray (variables, units, chunks of CHUNK_ROWS rows), which
-    stays open for the pieces after them, each extending every ``time`` variable.
+    stays open for the pieces after them: each :meth:`append` extends every ``time``
+    variable (the ``time`` coordinate, the dimension's scale, among them) through h5py,
+    the HDF5 library under h5netcdf, whose own variables looked each dataset up several
+    times per write (1 s of a 10⁷-step run's 2.7 s of CPU, against 0.3 s).
 
     Examples
     --------
@@ -220,81 +208,41 @@ class NetcdfStream(_DatasetStream):
     """
 
     def __init__(self, path, scene=None):
+        require("xarray", "results")
         super().__init__(path, scene)
-        self._held: list = []  # the pieces, until there are more than CHUNK_ROWS rows
-        self._file = None
-        self._variables: dict = {}  # trajectory array -> the file's variable
 
     def append(self, piece) -> None:
         """Hold the piece, or extend every ``time`` variable by its rows."""
-        from .dataset import time_rows
-        from .store import CHUNK_ROWS
-
-        self._take(piece)
-        if self._file is None:
-            self._held.append(piece)
-            if self.rows > CHUNK_ROWS:  # a long run: the file grows from here on
-                self._create(_joined(self._held))
-                self._held = []
+        rows = self._take(piece)
+        if self._file is not None:
+            for name, a in rows.items():
+                variable = self._file["time" if name == "t" else name]
+                variable.resize(self.rows, axis=0)
+                variable[self.written : self.rows, ...] = a
+            self.written = self.rows
             return
-        old = self.rows - len(piece)
-        for name, rows in time_rows(piece).items():
-            variable = self._variables[name]
-            variable.resize(self.rows, axis=0)
-            variable[old : self.rows, ...] = rows
-
-    def _create(self, rows) -> None:
-        """Make the file, along an unlimited ``time``, from the trajectory ``rows``; keep
-        it open.
-
-        The rows after these are appended through h5py, the HDF5 library under h5netcdf:
-        each variable along ``time`` (the ``time`` coordinate, which is the dimension's
-        scale, among them) grown by the piece's rows and filled. Through h5netcdf's
-        variables each write looked its dataset up several times over: 1 s of a 10⁷-step
-        run's 2.7 s of CPU, against 0.3 s this way."""
-        from .dataset import to_dataset
-        from .store import CHUNK_ROWS, _netcdf_engine, chunk_encoding
-
-        h5py = require("h5py", "results")
-        ds = to_dataset(rows)
-        ds.to_netcdf(self.path, engine=_netcdf_engine(), unlimited_dims=["time"],
-                     encoding=chunk_encoding(ds, "netcdf", CHUNK_ROWS))  # fmt: skip
-        self._file = h5py.File(self.path, "a")
-        self._variables = {name: self._file["time" if name == "t" else name] for name in rows.names}
+        self._held.append(rows)
+        if self.rows > store.CHUNK_ROWS:  # a long run: the file grows from here on
+            ds = self._dataset(self.rows)
+            ds.to_netcdf(self.path, engine="h5netcdf", unlimited_dims=["time"],
+                         encoding=store.chunk_encoding(ds, "netcdf", store.CHUNK_ROWS))  # fmt: skip
+            self._file = require("h5py", "results").File(self.path, "a")
 
     def close(self, meta: dict) -> None:
         """Write the run's attributes (the final ``meta``) and the short paths' counts (a
         short run: the whole file)."""
-        from .dataset import to_dataset
-        from .store import _netcdf_engine
-
         if self._file is None:
-            if self._held:
-                whole = _joined(self._held).extended({}, meta=meta)
-                to_dataset(whole, self.scene).to_netcdf(self.path, engine=_netcdf_engine())
+            if self.rows:
+                ds = self._dataset(self.rows)
+                self._finish(ds.attrs, lambda name: ds[name].attrs, meta)
+                ds.to_netcdf(self.path, engine="h5netcdf")
             return
-        self._file.close()
-        self._file = None
-        attrs, valid = self._attrs(meta)
-        h5netcdf = require("h5netcdf", "results")  # netCDF's attribute types
-        with h5netcdf.File(self.path, "a") as f:
-            for key in list(f.attrs):
-                if key not in attrs:
-                    del f.attrs[key]
-            for key, value in attrs.items():
-                f.attrs[key] = value
-            for name, rows in valid.items():
-                _set_valid(f.variables[name].attrs, rows)
-
-    def abort(self) -> None:
-        """Close the file (the staging folder goes away with it)."""
-        self._held = []
-        f, self._file = self._file, None
-        if f is not None:
-            f.close()
+        self.abort()
+        with require("h5netcdf", "results").File(self.path, "a") as f:  # netCDF's attr types
+            self._finish(f.attrs, lambda name: f.variables[name].attrs, meta)
 
 
-class ZarrStream(_DatasetStream):
+class ZarrStream(_RunStream):
     """A zarr store (format 2, as :func:`ga_rotors.results.write` writes) appended along
     ``time`` through xarray, its metadata consolidated at the end.
 
@@ -319,37 +267,28 @@ class ZarrStream(_DatasetStream):
     """
 
     def __init__(self, path, scene=None):
-        super().__init__(path, scene)
+        require("xarray", "results")
         require("zarr", "results")
-        self._held: list = []  # pieces not yet written
-        self._written = 0  # rows in the store
+        super().__init__(path, scene)
 
     def append(self, piece) -> None:
         """Hold the piece's rows; write the whole blocks of chunks held."""
-        self._take(piece)
-        self._held.append(piece)
+        self._held.append(self._take(piece))
         block = self.chunk_rows * ZARR_WRITE_CHUNKS
-        end = self._written + (self.rows - self._written) // block * block
-        if end > self._written:
+        end = self.written + (self.rows - self.written) // block * block
+        if end > self.written:
             self._write(end)
 
     def _write(self, end: int) -> None:
         """Write the rows held up to row ``end`` of the run; keep the rest."""
-        from .dataset import to_dataset
-        from .store import ZARR_FORMAT, chunk_encoding
-
-        rows, self._held = _joined(self._held), []
-        take = end - self._written
-        head, tail = _split(rows, take)
-        ds = to_dataset(head)
-        if self._written == 0:
-            ds.to_zarr(self.path, mode="w", zarr_format=ZARR_FORMAT, consolidated=False,
-                       encoding=chunk_encoding(ds, "zarr", self.chunk_rows))  # fmt: skip
+        first = self.written == 0
+        ds = self._dataset(end)
+        if first:
+            ds.to_zarr(self.path, mode="w", zarr_format=store.ZARR_FORMAT, consolidated=False,
+                       encoding=store.chunk_encoding(ds, "zarr", self.chunk_rows))  # fmt: skip
         else:
-            ds.to_zarr(self.path, append_dim="time", zarr_format=ZARR_FORMAT, consolidated=False)
-        self._written = end
-        if len(tail):
-            self._held = [tail]
+            ds.to_zarr(self.path, append_dim="time", zarr_format=store.ZARR_FORMAT,
+                       consolidated=False)  # fmt: skip
 
     def close(self, meta: dict) -> None:
         """Write the rows left, the run's attributes, the short paths' counts; consolidate
@@ -357,54 +296,8 @@ class ZarrStream(_DatasetStream):
         if self.rows == 0:
             return
         zarr = require("zarr", "results")
-        from .store import ZARR_FORMAT
-
-        if self.rows > self._written:
+        if self.rows > self.written:
             self._write(self.rows)
-        attrs, valid = self._attrs(meta)
-        group = zarr.open_group(str(self.path), mode="r+", zarr_format=ZARR_FORMAT)
-        group.attrs.clear()
-        group.attrs.update(attrs)
-        for name, rows in valid.items():
-            _set_valid(group[name].attrs, rows)
-        zarr.consolidate_metadata(str(self.path), zarr_format=ZARR_FORMAT)
-
-    def abort(self) -> None:
-        """Drop what is held (the staging folder goes away with the store)."""
-        self._held = []
-
-
-def _joined(pieces):
-    """The consecutive ``pieces`` as one trajectory (a stopped path's rows stay in front)."""
-    from ..trajectory import Trajectory
-
-    if len(pieces) == 1:
-        return pieces[0]
-    first = pieces[0]
-    arrays = {name: np.concatenate([p[name] for p in pieces]) for name in first.names}
-    return Trajectory(arrays, first.components, pieces[-1].meta)
-
-
-def _split(trajectory, rows: int):
-    """(the first ``rows`` samples of ``trajectory``, the rest)."""
-    from ..trajectory import Trajectory
-
-    if rows >= len(trajectory):
-        return trajectory, Trajectory({"t": trajectory.t[:0]})
-    parts = [
-        Trajectory(
-            {name: trajectory[name][part] for name in trajectory.names},
-            trajectory.components,
-            trajectory.meta,
-        )
-        for part in (slice(None, rows), slice(rows, None))
-    ]
-    return parts[0], parts[1]
-
-
-def _set_valid(attrs, rows) -> None:
-    if rows is None:
-        if "valid_samples" in attrs:
-            del attrs["valid_samples"]
-    else:
-        attrs["valid_samples"] = int(rows)
+        group = zarr.open_group(str(self.path), mode="r+", zarr_format=store.ZARR_FORMAT)
+        self._finish(group.attrs, lambda name: group[name].attrs, meta)
+        zarr.consolidate_metadata(str(self.path), zarr_format=store.ZARR_FORMAT)
