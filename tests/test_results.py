@@ -243,7 +243,7 @@ def test_bad_paths_and_files_are_one_line_errors(tmp_path):
     with pytest.raises(InputError, match="File name too long") as e:
         results.read(long)
     assert len(str(e.value)) < 250 and f"({len(str(long))} characters)" in str(e.value)
-    with pytest.raises(InputError, match=r"path: file name 'x+'\.\.\. is 3003 bytes long; at most 255$"):
+    with pytest.raises(InputError, match=r"path: file name 'x+'\.\.\. is 3003 bytes long; at most"):
         results.write(ragged(), long)
     assert sorted(p.name for p in tmp_path.iterdir()) == ["junk.nc"]
 

@@ -7,9 +7,8 @@ body frame, integrator, step, scene, versions) and each array's units and long n
 ``numpy.load`` reads the arrays by name; ``json.loads(numpy.load(path)["attributes.json"])``
 reads the attributes (numpy hands out a member that is not ``.npy`` as its bytes).
 
-:func:`write_npz` writes a whole trajectory; :class:`NpzStream` the same archive from a
-run's pieces, each array's rows kept in a file of its own until :meth:`NpzStream.close`
-copies them into the archive.
+:class:`NpzStream` writes it from a run's pieces, :func:`write_npz` from a whole
+trajectory (one piece).
 """
 
 from __future__ import annotations
@@ -66,14 +65,6 @@ def attributes_json(trajectory, scene=None) -> str:
     return json.dumps(body, indent=1, sort_keys=True, default=str)
 
 
-def _components(trajectory) -> dict[str, np.ndarray]:
-    return {
-        f"{name}__components": np.array(labels)
-        for name, labels in trajectory.components.items()
-        if name in trajectory
-    }
-
-
 def _member(name: str) -> zipfile.ZipInfo:
     """An archive member dated 1980-01-01 (zip's first date), not now: the same run
     written twice gives the same bytes."""
@@ -82,21 +73,10 @@ def _member(name: str) -> zipfile.ZipInfo:
     return info
 
 
-def _write_members(zf: zipfile.ZipFile, arrays, components: dict, attributes: str) -> None:
-    """Write ``arrays`` ((name, writer) pairs: ``writer(member)`` writes the ``.npy``),
-    the component labels and the attributes into ``zf``."""
-    for name, write in arrays:
-        with zf.open(_member(f"{name}.npy"), "w", force_zip64=True) as member:
-            write(member)
-    for name, labels in components.items():
-        with zf.open(_member(f"{name}.npy"), "w") as member:
-            np.lib.format.write_array(member, labels, allow_pickle=False)
-    zf.writestr(_member(ATTRIBUTES), attributes)
-
-
 def write_npz(trajectory, path, scene=None) -> Path:
     """Write every array of ``trajectory``, its component labels and its attributes to a
-    ``.npz`` archive at ``path``, atomically (uncompressed, as ``numpy.savez``).
+    ``.npz`` archive at ``path``, atomically (uncompressed, as ``numpy.savez``): the
+    archive of :class:`NpzStream` given the whole trajectory as one piece.
 
     Examples
     --------
@@ -108,14 +88,14 @@ def write_npz(trajectory, path, scene=None) -> Path:
     >>> data.files, data["w__components"].tolist()
     (['t', 'w', 'w__components', 'attributes.json'], ['1', '2', '3'])
     """
-    arrays = [
-        (name, lambda member, a=trajectory[name]: np.lib.format.write_array(member, a))
-        for name in trajectory.names
-    ]
 
     def write(fh) -> None:
-        with zipfile.ZipFile(fh, "w", zipfile.ZIP_STORED, allowZip64=True) as zf:
-            _write_members(zf, arrays, _components(trajectory), attributes_json(trajectory, scene))
+        out = NpzStream(path, scene)
+        try:
+            out.append(trajectory)
+            out.write(fh, trajectory.meta)
+        finally:
+            out.abort()
 
     return atomic_write(path, write)
 
@@ -123,7 +103,8 @@ def write_npz(trajectory, path, scene=None) -> Path:
 class NpzStream:
     """The archive :func:`write_npz` writes, from a run's pieces: each array's rows are
     appended to a file of their own (beside ``path``) as they come, and :meth:`close`
-    copies them into the archive, :data:`COPY_BUFFER` bytes at a time.
+    copies them into the archive, :data:`COPY_BUFFER` bytes at a time, each after its
+    ``.npy`` header.
 
     Examples
     --------
@@ -160,22 +141,32 @@ class NpzStream:
             entry[0].write(a.data)
             entry[2] += a.shape[0]
 
-    def close(self, meta: dict) -> None:
-        """Write the archive: each array's ``.npy`` header, then its rows, then the labels
-        and the attributes of the run's final ``meta``."""
-        try:
-            if self._first is None:
-                return
-            arrays = []
+    def write(self, out, meta: dict) -> None:
+        """Write the archive into the binary file ``out``: each array's ``.npy`` header
+        and rows, then the component labels and the attributes of the run's final
+        ``meta``."""
+        first = self._first.extended({}, meta=meta)
+        with zipfile.ZipFile(out, "w", zipfile.ZIP_STORED, allowZip64=True) as zf:
             for name, (fh, trailing, rows) in self._rows.items():
                 fh.close()
-                arrays.append((name, lambda member, f=fh.name, s=(rows, *trailing): _copy(
-                    member, f, s)))  # fmt: skip
-            first = self._first.extended({}, meta=meta)
-            attributes = attributes_json(first, self.scene)
-            with open(self.path, "wb") as out:
-                with zipfile.ZipFile(out, "w", zipfile.ZIP_STORED, allowZip64=True) as zf:
-                    _write_members(zf, arrays, _components(first), attributes)
+                with zf.open(_member(f"{name}.npy"), "w", force_zip64=True) as member:
+                    header = {"descr": "<f8", "fortran_order": False, "shape": (rows, *trailing)}
+                    np.lib.format.write_array_header_1_0(member, header)
+                    with open(fh.name, "rb") as rows_file:
+                        shutil.copyfileobj(rows_file, member, COPY_BUFFER)
+            for name, labels in first.components.items():
+                if name in first:
+                    with zf.open(_member(f"{name}__components.npy"), "w") as member:
+                        np.lib.format.write_array(member, np.array(labels), allow_pickle=False)
+            zf.writestr(_member(ATTRIBUTES), attributes_json(first, self.scene))
+
+    def close(self, meta: dict) -> None:
+        """Write the archive at ``path`` (nothing when no piece came), then remove the
+        rows collected."""
+        try:
+            if self._first is not None:
+                with open(self.path, "wb") as out:
+                    self.write(out, meta)
         finally:
             self.abort()
 
@@ -185,12 +176,3 @@ class NpzStream:
             fh.close()
         self._rows = {}
         shutil.rmtree(self._dir, ignore_errors=True)
-
-
-def _copy(member, rows_file: str, shape: tuple) -> None:
-    """Write a ``.npy`` header for float64 rows of ``shape``, then the rows from the file."""
-    header = {"descr": np.lib.format.dtype_to_descr(np.dtype(np.float64)),
-              "fortran_order": False, "shape": shape}  # fmt: skip
-    np.lib.format.write_array_header_1_0(member, header)
-    with open(rows_file, "rb") as rows:
-        shutil.copyfileobj(rows, member, COPY_BUFFER)

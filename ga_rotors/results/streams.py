@@ -63,8 +63,8 @@ def sample_count(meta: dict) -> int:
 class _RunStream:
     """What every streamed writer keeps of a run's pieces: their rows, each array's rows
     (short for a stopped path), the times the exact reference's bound is evaluated at
-    (:func:`~.dataset.bound_rows` of the run's sample count); the rows not yet in the
-    file (:meth:`_dataset`); the open file."""
+    (:func:`~.dataset.bound_rows` of the run's sample count, every time when the pieces
+    do not say it); the rows not yet in the file (:meth:`_dataset`); the open file."""
 
     def __init__(self, path, scene=None):
         self.path, self.scene = Path(path), scene
@@ -72,7 +72,7 @@ class _RunStream:
         self.valid: dict[str, int] = {}  # array -> rows taken (short for a stopped path)
         self.chunk_rows = store.CHUNK_ROWS  # rows per chunk along time, by the first piece
         self._held: list[dict] = []  # rows taken, not yet in the file (time_rows)
-        self._bound_rows, self._bound_times = np.zeros(0, int), []
+        self._bound_rows, self._bound_times = None, []
         self._file = None
 
     def _take(self, piece) -> dict:
@@ -84,11 +84,12 @@ class _RunStream:
             meta = piece.meta
             expected = sample_count(meta) if "steps" in meta and "sample_every" in meta else 0
             self.chunk_rows = min(store.CHUNK_ROWS, expected or store.CHUNK_ROWS)
-            if self.scene is not None:
-                self._bound_rows = bound_rows(expected)
-        pick = self._bound_rows[(self._bound_rows >= self.rows)
-                                & (self._bound_rows < self.rows + len(piece))]  # fmt: skip
-        self._bound_times.append(piece.t[pick - self.rows])
+            self._bound_rows = bound_rows(expected) if expected else None  # None: all
+        if self.scene is not None:
+            t, pick = piece.t, self._bound_rows
+            if pick is not None:
+                t = t[pick[(pick >= self.rows) & (pick < self.rows + len(t))] - self.rows]
+            self._bound_times.append(t)
         for name in piece.names:
             self.valid[name] = self.valid.get(name, 0) + piece[name].shape[0]
         self.rows += len(piece)

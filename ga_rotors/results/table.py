@@ -11,8 +11,9 @@ delimiter=",", skiprows=1)`` and a spreadsheet read it with no options. Headers 
 ``name_component [unit]``. Each value is the shortest text that reads back as the same
 float64 (``0.1``, not ``0.10000000000000001``; ``nan``, ``inf`` and ``-0`` included),
 written by a CSV library: polars when it is installed, else numpy (:data:`ENGINES`;
-each spells a NaN its own way, ``NaN`` or ``nan``, and both read back bit for bit). A path that stopped early leaves its cells empty
-after its last sample, never NaN (``numpy.genfromtxt`` reads them as nan).
+each spells a NaN its own way, ``NaN`` or ``nan``, and both read back bit for bit). A
+path that stopped early leaves its cells empty after its last sample, never NaN
+(``numpy.genfromtxt`` reads them as nan).
 
 What the columns are and how the run was made go beside it, in ``<file>.csv-metadata.json``
 (:func:`csv_metadata`), the name under which the W3C's *Metadata Vocabulary for Tabular
@@ -301,8 +302,10 @@ def metadata_text(trajectory, csv_name: str, attributes: dict) -> str:
 
 def write_csv_files(trajectory, path, *, scene=None, engine: str | None = None) -> list[Path]:
     """Write the CSV file ``path`` and its metadata sidecar (:func:`metadata_path`) where
-    they are, not atomically: for a folder whose files move into place together
-    (:func:`ga_rotors.files.output_set`). Returns both paths.
+    they are, not atomically, for a folder whose files move into place together
+    (:func:`ga_rotors.files.output_set`): the files of a
+    :class:`~ga_rotors.results.streams.CsvStream` given the whole trajectory as one piece.
+    Returns both paths.
 
     Examples
     --------
@@ -313,16 +316,15 @@ def write_csv_files(trajectory, path, *, scene=None, engine: str | None = None) 
     >>> [p.name for p in write_csv_files(tr, stage / "run.csv")]
     ['run.csv', 'run.csv-metadata.json']
     """
-    from .dataset import run_attributes
+    from .streams import CsvStream
 
-    path = Path(path)
-    with open(path, "wb") as fh:
-        CsvRows(fh, engine).write(trajectory)
-    sidecar = metadata_path(path)
-    attrs = run_attributes(trajectory.meta, scene, trajectory.t)
-    text = metadata_text(trajectory, path.name, attrs)
-    sidecar.write_text(text, encoding="utf-8")
-    return [path, sidecar]
+    out = CsvStream(path, scene, engine=engine)
+    try:
+        out.append(trajectory)
+        out.close(trajectory.meta)
+    finally:
+        out.abort()
+    return [Path(path), metadata_path(path)]
 
 
 def write_csv(trajectory, path=None, *, scene=None, engine: str | None = None) -> str | Path:
