@@ -25,7 +25,7 @@ import numpy as np
 
 from ..optional import require
 from .provenance import provenance
-from .variables import COMPONENT_DIMS, STANDARD, describe, one_unit
+from .variables import STANDARD, component_dim, describe, one_unit
 
 __all__ = [
     "EXACT_BOUND_TIMES",
@@ -147,8 +147,7 @@ def to_dataset(trajectory, scene=None):
             attrs["valid_samples"] = int(trajectory[name].shape[0])
         dims: tuple[str, ...] = ("time",)
         if a.ndim == 2:
-            labels = trajectory.components.get(name) or tuple(str(i) for i in range(a.shape[1]))
-            dim = COMPONENT_DIMS.get(tuple(labels), f"{name}_component")
+            dim, labels = component_dim(trajectory, name)
             coords.setdefault(dim, (dim, list(labels)))
             dims = ("time", dim)
         variables[name] = (dims, a, attrs)

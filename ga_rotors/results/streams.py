@@ -7,8 +7,8 @@ finishes the file with ``close``, given the run's final ``meta`` (what the run b
 which paths completed, how many samples each has); ``abort`` drops it after a failure.
 The file is the one the whole trajectory would give, written in one go:
 
-* :class:`CsvStream` — CSV with units in the headers (:class:`~.table.CsvRows`), through
-  one buffered file, and its CSVW metadata sidecar (:func:`~.table.csv_metadata`);
+* :class:`CsvStream` — CSV with units in the headers (:func:`~.table.csv_rows`), through
+  one buffered file, and its CSVW metadata sidecar (:func:`~.table.metadata_text`);
 * :class:`~.npz.NpzStream` — the ``.npz`` archive of :func:`~.npz.write_npz`;
 * :class:`NetcdfStream` — netCDF along an unlimited ``time`` dimension (h5netcdf),
   extended per piece;
@@ -149,22 +149,23 @@ class CsvStream(_RunStream):
     """
 
     def __init__(self, path, scene=None, *, engine: str | None = None):
-        from .table import CsvRows
+        from .table import csv_engine
 
         super().__init__(path, scene)
+        self.engine = csv_engine(engine)
         self._file = open(self.path, "wb", buffering=CSV_BUFFER)
-        self._rows = CsvRows(self._file, engine)
         self._columns = None  # the first piece's arrays, no rows: what the columns are
 
     def append(self, piece) -> None:
         """Write the rows of ``piece`` (the header line first, with the first piece)."""
         from ..trajectory import Trajectory
+        from .table import csv_rows
 
-        if self._columns is None:
-            arrays = {name: piece[name][:0] for name in piece.names}
-            self._columns = Trajectory(arrays, piece.components)
+        header = self._columns is None
+        if header:
+            self._columns = Trajectory({n: piece[n][:0] for n in piece.names}, piece.components)
+        csv_rows(self._file, piece, self.engine, header)
         self._take(piece)
-        self._rows.write(piece)
 
     def close(self, meta: dict) -> None:
         """Finish the file; write its metadata, with the run's attributes (the final

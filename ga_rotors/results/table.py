@@ -16,7 +16,7 @@ path that stopped early leaves its cells empty after its last sample, never NaN
 (``numpy.genfromtxt`` reads them as nan).
 
 What the columns are and how the run was made go beside it, in ``<file>.csv-metadata.json``
-(:func:`csv_metadata`), the name under which the W3C's *Metadata Vocabulary for Tabular
+(:func:`metadata_text`), the name under which the W3C's *Metadata Vocabulary for Tabular
 Data* (CSVW) looks for a CSV file's description: JSON-LD with the CSVW context, the CSV
 named by a relative ``url``, each column's ``name``, ``titles`` (its header), ``datatype``,
 unit (``schema:unitText``) and long name (``dc:description``), and the run's attributes,
@@ -41,16 +41,15 @@ import numpy as np
 
 from ..errors import InputError
 from ..files import output_file
-from .variables import COMPONENT_DIMS, describe, one_unit
+from .variables import component_dim, describe, one_unit
 
 __all__ = [
     "CSVW_CONTEXT",
     "ENGINES",
     "METADATA_SUFFIX",
-    "CsvRows",
     "csv_engine",
     "csv_header",
-    "csv_metadata",
+    "csv_rows",
     "metadata_path",
     "metadata_text",
     "write_csv",
@@ -131,52 +130,36 @@ def csv_header(trajectory) -> list[str]:
     return out
 
 
-def _header_line(trajectory) -> bytes:
-    line = io.StringIO()
-    csv.writer(line, lineterminator="\n").writerow(csv_header(trajectory))
-    return line.getvalue().encode("utf-8")
-
-
-class CsvRows:
-    """The rows of a trajectory's consecutive pieces, written to an open binary file.
-
-    The first :meth:`write` writes the header line first; the rows of all the pieces are
-    the rows of the whole trajectory (a path that stopped part-way through a
-    piece leaves its remaining cells empty).
+def csv_rows(fh, piece, engine: str, header: bool = False) -> None:
+    """Write the rows of ``piece`` to the open binary file ``fh`` with the writer
+    ``engine`` (:func:`csv_engine`), the header line first when ``header``. The rows of a
+    trajectory's consecutive pieces are those of the whole (a path that stopped part-way
+    through a piece leaves its remaining cells empty).
 
     Examples
     --------
     >>> from ga_rotors.trajectory import Trajectory
     >>> out = io.BytesIO()
-    >>> rows = CsvRows(out, "numpy")
-    >>> rows.write(Trajectory({"t": np.array([0.0, 0.1]), "energy": np.array([0.5, 1 / 3])}))
-    >>> rows.write(Trajectory({"t": np.array([0.2]), "energy": np.array([])}))
+    >>> csv_rows(out, Trajectory({"t": np.array([0.0, 0.1]), "energy": np.array([0.5, 1 / 3])}),
+    ...          "numpy", header=True)
+    >>> csv_rows(out, Trajectory({"t": np.array([0.2]), "energy": np.array([])}), "numpy")
     >>> print(out.getvalue().decode(), end="")
     t [s],energy [J]
     0.0,0.5
     0.1,0.3333333333333333
     0.2,
     """
-
-    def __init__(self, fh, engine: str | None = None):
-        self.fh = fh
-        self.engine = csv_engine(engine)
-        self._started = False
-
-    def write(self, piece) -> None:
-        """Append the rows of ``piece`` (the header line first, once)."""
-        piece = one_unit(piece)  # an array of mixed units: its parts, one unit each
-        if not self._started:
-            self.fh.write(_header_line(piece))
-            self._started = True
-        n = len(piece)
-        if n == 0:
-            return
+    piece = one_unit(piece)  # an array of mixed units: its parts, one unit each
+    if header:
+        line = io.StringIO()
+        csv.writer(line, lineterminator="\n").writerow(csv_header(piece))
+        fh.write(line.getvalue().encode("utf-8"))
+    if len(piece):
         columns = []  # (values, rows that hold a value)
         for _, name, component in piece.columns():
             a = piece[name]
             columns.append((a if component is None else a[:, component], a.shape[0]))
-        _WRITERS[self.engine](self.fh, columns, n)
+        _WRITERS[engine](fh, columns, len(piece))
 
 
 def _polars(fh, columns, n) -> None:
@@ -225,26 +208,25 @@ def _json_value(value):
     return value
 
 
-def _column(plain: str, header: str, name: str, component: str | None, dim: str | None):
-    """One column's description: ``plain``, its name (``w_1``); ``header``, its header
-    (``w_1 [rad/s]``); ``name``, its array; ``component``, its label along ``dim``."""
-    column: dict = {}
-    if _COLUMN_NAME.fullmatch(plain):  # else (a user's array) its titles name it
-        column["name"] = plain
-    column["titles"] = header
-    column["datatype"] = "double"
+def _column(plain: str, header: str, name: str, index: int | None, trajectory) -> dict:
+    """The description of the column ``plain`` (``w_1``), headed ``header``
+    (``w_1 [rad/s]``): the array ``name``, or its component ``index``."""
+    column: dict = {"name": plain} if _COLUMN_NAME.fullmatch(plain) else {}  # else: titles
+    column.update(titles=header, datatype="double")
     try:
         unit, long_name = describe(name)
     except InputError:  # an array a user added: no unit is known
         return column
-    column["schema:unitText"] = unit
-    column["dc:description"] = long_name if dim is None else f"{long_name}; {dim} {component}"
-    return column
+    if index is not None:
+        dim, labels = component_dim(trajectory, name)
+        long_name = f"{long_name}; {dim} {labels[index]}"
+    return {**column, "schema:unitText": unit, "dc:description": long_name}
 
 
-def csv_metadata(trajectory, url: str, attributes: dict) -> dict:
-    """The CSVW metadata document (JSON-LD) of ``trajectory``'s CSV file named ``url``
-    (relative to the sidecar: the CSV's own file name), carrying the run's ``attributes``
+def metadata_text(trajectory, url: str, attributes: dict) -> str:
+    """The CSVW metadata document (JSON-LD, indented, no NaN or Infinity) of
+    ``trajectory``'s CSV file named ``url`` (relative to the sidecar: the CSV's own file
+    name), carrying the run's ``attributes``
     (:func:`~ga_rotors.results.dataset.run_attributes`).
 
     Examples
@@ -253,7 +235,7 @@ def csv_metadata(trajectory, url: str, attributes: dict) -> dict:
     >>> from ga_rotors.results.dataset import run_attributes
     >>> tr = Trajectory({"t": np.zeros(2), "w": np.zeros((2, 3))}, {"w": ("1", "2", "3")},
     ...                 meta={"integrator": "rk4"})
-    >>> doc = csv_metadata(tr, "run.csv", run_attributes(tr.meta))
+    >>> doc = json.loads(metadata_text(tr, "run.csv", run_attributes(tr.meta)))
     >>> doc["url"], doc["tableSchema"]["columns"][1]
     ('run.csv', {'name': 'w_1', 'titles': 'w_1 [rad/s]', 'datatype': 'double', \
 'schema:unitText': 'rad/s', 'dc:description': 'body angular velocity of the primary path; \
@@ -261,18 +243,14 @@ body_axis 1'})
     >>> [(p["schema:name"], p["schema:value"]) for p in doc["schema:additionalProperty"]][3]
     ('body_frame', 'the body axes the inertia was given in')
     """
-    columns = []
     trajectory = one_unit(trajectory)
-    headers = csv_header(trajectory)
-    for header, (plain, name, index) in zip(headers, trajectory.columns(), strict=True):
-        if index is None:
-            columns.append(_column(plain, header, name, None, None))
-            continue
-        labels = trajectory.components.get(name) or ()  # the Dataset's component dimension
-        dim = COMPONENT_DIMS.get(tuple(labels), f"{name}_component")
-        component = labels[index] if labels else str(index)
-        columns.append(_column(plain, header, name, component, dim))
-    return {
+    columns = [
+        _column(plain, header, name, index, trajectory)
+        for header, (plain, name, index) in zip(
+            csv_header(trajectory), trajectory.columns(), strict=True
+        )
+    ]
+    document = {
         "@context": CSVW_CONTEXT,
         "url": urllib.parse.quote(url),
         "dc:title": attributes.get("title", "ga_rotors results"),
@@ -283,20 +261,6 @@ body_axis 1'})
         ],
         "tableSchema": {"columns": columns},
     }
-
-
-def metadata_text(trajectory, csv_name: str, attributes: dict) -> str:
-    """The sidecar's JSON text: :func:`csv_metadata`, indented, no NaN or Infinity.
-
-    Examples
-    --------
-    >>> from ga_rotors.trajectory import Trajectory
-    >>> tr = Trajectory({"t": np.array([0.0, 0.5])}, meta={"integrator": "rk4"})
-    >>> doc = json.loads(metadata_text(tr, "run.csv", {"body_frame": "body axes"}))
-    >>> doc["url"], [c["titles"] for c in doc["tableSchema"]["columns"]]
-    ('run.csv', ['t [s]'])
-    """
-    document = csv_metadata(trajectory, csv_name, attributes)
     return json.dumps(document, indent=1, allow_nan=False) + "\n"
 
 
@@ -345,11 +309,11 @@ def write_csv(trajectory, path=None, *, scene=None, engine: str | None = None) -
     0.0,1.0
     0.5,0.3333333333333333
     """
+    engine = csv_engine(engine)  # an unknown engine: refused before any folder is touched
     if path is None:
         out = io.BytesIO()
-        CsvRows(out, engine).write(trajectory)
+        csv_rows(out, trajectory, engine, header=True)
         return out.getvalue().decode("utf-8")
-    csv_engine(engine)  # an unknown engine: refused before any folder is touched
     with output_file(path) as staged:
         write_csv_files(trajectory, staged, scene=scene, engine=engine)
     return Path(path)

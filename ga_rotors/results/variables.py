@@ -15,7 +15,8 @@ from __future__ import annotations
 
 from ..errors import InputError
 
-__all__ = ["COMPONENT_DIMS", "PARTS", "STANDARD", "VARIABLES", "describe", "one_unit"]
+__all__ = ["COMPONENT_DIMS", "PARTS", "STANDARD", "VARIABLES", "component_dim", "describe",
+           "one_unit"]  # fmt: skip
 
 #: array name -> (unit, long name). Units follow SI; "1" is dimensionless.
 VARIABLES: dict[str, tuple[str, str]] = {
@@ -104,6 +105,24 @@ def describe(name: str) -> tuple[str, str]:
         path = name[len("error_") :]  # one per path: error_rotor, error_quaternion, ...
         return "rad", f"geodesic angle from the exact orientation, {path} path"
     raise InputError(f"{name}: no unit is known for this array")
+
+
+def component_dim(trajectory, name: str) -> tuple[str, tuple[str, ...]]:
+    """The dimension the columns of ``trajectory``'s array ``name`` run along, and their
+    labels (``0``, ``1``, ... when it has none).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from ga_rotors.trajectory import Trajectory
+    >>> tr = Trajectory({"t": np.zeros(1), "w": np.zeros((1, 3)), "x": np.zeros((1, 2))},
+    ...                 {"w": ("1", "2", "3")})
+    >>> component_dim(tr, "w"), component_dim(tr, "x")
+    (('body_axis', ('1', '2', '3')), ('x_component', ('0', '1')))
+    """
+    labels = trajectory.components.get(name)
+    labels = tuple(labels) if labels else tuple(str(i) for i in range(trajectory[name].shape[1]))
+    return COMPONENT_DIMS.get(labels, f"{name}_component"), labels
 
 
 def one_unit(trajectory):
