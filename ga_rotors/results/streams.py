@@ -1,25 +1,14 @@
-"""Results files written piece by piece, as a long run goes on: memory holds one piece.
+"""Results files written piece by piece as a long run goes on: memory holds one piece.
 
-Each writer takes the pieces of one run in order (:class:`~ga_rotors.trajectory.Trajectory`
-objects of consecutive samples, the first holding sample 0, as
-:func:`ga_rotors.simulation.simulate_chunks` hands them out) with ``append``, and
-finishes the file with ``close``, given the run's final ``meta`` (what the run became:
-which paths completed, how many samples each has); ``abort`` drops it after a failure.
-The file is the one the whole trajectory would give, written in one go:
-
-* :class:`CsvStream` — CSV with units in the headers (:func:`~.table.csv_rows`), through
-  one buffered file, and its CSVW metadata sidecar (:func:`~.table.metadata_text`);
-* :class:`~.npz.NpzStream` — the ``.npz`` archive of :func:`~.npz.write_npz`;
-* :class:`NetcdfStream` — netCDF along an unlimited ``time`` dimension (h5netcdf),
-  extended per piece;
-* :class:`ZarrStream` — a zarr store (format 2) appended along ``time`` through xarray,
-  whole chunks at a time.
-
-netCDF and zarr files read back (:func:`ga_rotors.results.read`) as the Dataset
-:func:`ga_rotors.results.to_dataset` makes of the whole trajectory; their chunks along
-``time`` are :data:`~.store.CHUNK_ROWS` rows, or the run's rows when it has fewer.
-Writers write where they are told: a scene run points them into its staging folder
-(:func:`ga_rotors.files.output_set`), which moves the finished set into place.
+Each writer takes a run's pieces in order (:class:`~ga_rotors.trajectory.Trajectory`
+objects of consecutive samples, as :func:`ga_rotors.simulation.simulate_chunks` hands them
+out) with ``append``; ``close`` finishes the file with the run's final ``meta`` (which
+paths completed, how many samples each has), ``abort`` drops it after a failure. The file
+is the one the whole trajectory gives written in one go (:class:`CsvStream`,
+:class:`~.npz.NpzStream`, :class:`NetcdfStream`, :class:`ZarrStream`), chunked along
+``time`` by :data:`~.store.CHUNK_ROWS` rows, or the run's rows when it has fewer. Writers
+write where they are told: a scene run points them into its staging folder
+(:func:`ga_rotors.files.output_set`).
 """
 
 from __future__ import annotations
@@ -73,14 +62,16 @@ class _RunStream:
         self.chunk_rows = store.CHUNK_ROWS  # rows per chunk along time, by the first piece
         self._held: list[dict] = []  # rows taken, not yet in the file (time_rows)
         self._bound_rows, self._bound_times = None, []
-        self._file = None
+        self._file = self.columns = None  # the first piece's arrays with no rows
 
     def _take(self, piece) -> dict:
         """Count the piece's rows, pick its bound times; its arrays as the files hold them
         (:func:`~.dataset.time_rows`)."""
+        from ..trajectory import Trajectory
+
         piece = one_unit(piece)
         if self.rows == 0:
-            self.components = piece.components
+            self.columns = Trajectory({n: piece[n][:0] for n in piece.names}, piece.components)
             meta = piece.meta
             expected = sample_count(meta) if "steps" in meta and "sample_every" in meta else 0
             self.chunk_rows = min(store.CHUNK_ROWS, expected or store.CHUNK_ROWS)
@@ -102,21 +93,19 @@ class _RunStream:
         arrays = {name: np.concatenate([h[name] for h in self._held]) for name in self._held[0]}
         take, self.written = end - self.written, end
         self._held = [{name: a[take:] for name, a in arrays.items()}]
-        return to_dataset(Trajectory({n: a[:take] for n, a in arrays.items()}, self.components))
+        head = {name: a[:take] for name, a in arrays.items()}
+        return to_dataset(Trajectory(head, self.columns.components))
 
     def _finish(self, attrs, variable_attrs, meta: dict) -> None:
-        """Replace the file's attributes ``attrs`` by the run's (those
-        :func:`~.dataset.run_attributes` gives the whole run, from the final ``meta``), and
-        set each short array's ``valid_samples`` (``variable_attrs(name)``), or remove it."""
+        """Set the file's attributes ``attrs`` to those :func:`~.dataset.run_attributes`
+        gives the whole run (from the final ``meta``; they overwrite every attribute the
+        first rows' Dataset had), and each short array's ``valid_samples``
+        (``variable_attrs(name)``; the rows written are padded, so none has one yet)."""
         times = np.concatenate(self._bound_times) if self._bound_times else ()
-        for key in list(attrs):
-            del attrs[key]
         attrs.update(run_attributes(meta, self.scene, times))
         for name, rows in self.valid.items():
             if name != "t" and rows < self.rows:
                 variable_attrs(name)["valid_samples"] = int(rows)
-            elif name != "t" and "valid_samples" in variable_attrs(name):
-                del variable_attrs(name)["valid_samples"]
 
     def abort(self) -> None:
         """Drop the rows held and close the file (the staging folder goes away with it)."""
@@ -154,17 +143,12 @@ class CsvStream(_RunStream):
         super().__init__(path, scene)
         self.engine = csv_engine(engine)
         self._file = open(self.path, "wb", buffering=CSV_BUFFER)
-        self._columns = None  # the first piece's arrays, no rows: what the columns are
 
     def append(self, piece) -> None:
         """Write the rows of ``piece`` (the header line first, with the first piece)."""
-        from ..trajectory import Trajectory
         from .table import csv_rows
 
-        header = self._columns is None
-        if header:
-            self._columns = Trajectory({n: piece[n][:0] for n in piece.names}, piece.components)
-        csv_rows(self._file, piece, self.engine, header)
+        csv_rows(self._file, piece, self.engine, header=self.columns is None)
         self._take(piece)
 
     def close(self, meta: dict) -> None:
@@ -174,7 +158,7 @@ class CsvStream(_RunStream):
         from .table import metadata_path, metadata_text
 
         self.abort()
-        columns = self._columns if self._columns is not None else Trajectory({"t": np.zeros(0)})
+        columns = Trajectory({"t": np.zeros(0)}) if self.columns is None else self.columns
         attrs: dict = {}
         self._finish(attrs, lambda name: {}, meta)
         metadata_path(self.path).write_text(
