@@ -210,16 +210,13 @@ def test_a_streamed_zarr_store_holds_the_rows_however_the_pieces_fall(
 
 @pytest.mark.skipif(not os.path.isdir("/proc/self/fd"), reason="needs /proc/self/fd (Linux)")
 @pytest.mark.parametrize("finish", ["close", "abort"])
-def test_a_long_netcdf_stream_holds_its_file_open_between_pieces_and_lets_it_go(
-    tmp_path, monkeypatch, finish
-):
-    """Past CHUNK_ROWS rows the file is made once and kept open for the pieces after (not
+def test_a_netcdf_stream_holds_its_file_open_between_pieces_and_lets_it_go(tmp_path, finish):
+    """The file is made once, by the first piece, and kept open for the pieces after (not
     opened once per piece), and closed by ``close`` (the rows and the attributes read
     back) and by ``abort`` (a failed run)."""
-    from ga_rotors.results import read, store, streams
+    from ga_rotors.results import read, streams
     from ga_rotors.trajectory import Trajectory
 
-    monkeypatch.setattr(store, "CHUNK_ROWS", 3)
     path = tmp_path / "run.nc"
     real = os.path.realpath(path)  # what /proc/self/fd shows (tmp_path may hold a link)
 
@@ -230,7 +227,7 @@ def test_a_long_netcdf_stream_holds_its_file_open_between_pieces_and_lets_it_go(
     out = streams.NetcdfStream(path)
     for lo in (0, 2, 4, 6):
         out.append(Trajectory({"t": np.arange(lo, lo + 2.0), "energy": np.ones(2)}))
-        assert handles() == (lo > 0)  # held: 2 rows; then made with 4 rows > 3
+        assert handles() == 1
     if finish == "close":
         out.close({"integrator": "rk4"})
     else:
@@ -526,8 +523,7 @@ def test_streamed_memory_does_not_grow_with_the_run(tmp_path):
     """Ten times the steps, the same peak of traced allocations (within 2x): the samples
     are written as they come (no time is measured). Both runs are many pieces long. (The
     NPZ archive is copied from its row files through a buffer of at most 4 MiB, a netCDF
-    file holds at most CHUNK_ROWS rows before it grows piece by piece: bounded, and the
-    larger run's peak holds more of them.)"""
+    file grows piece by piece.)"""
     import tracemalloc
 
     # no figure: its copy of a short run is every sample (bounded apart, above)

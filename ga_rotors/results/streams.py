@@ -92,7 +92,7 @@ class _RunStream:
 
         arrays = {name: np.concatenate([h[name] for h in self._held]) for name in self._held[0]}
         take, self.written = end - self.written, end
-        self._held = [{name: a[take:] for name, a in arrays.items()}]
+        self._held = [{name: a[take:] for name, a in arrays.items()}] if end < self.rows else []
         head = {name: a[:take] for name, a in arrays.items()}
         return to_dataset(Trajectory(head, self.columns.components))
 
@@ -169,14 +169,13 @@ class CsvStream(_RunStream):
 class NetcdfStream(_RunStream):
     """netCDF (HDF5, through h5netcdf), growing along an unlimited ``time`` dimension.
 
-    A run of at most :data:`~.store.CHUNK_ROWS` samples is held and written whole at
-    :meth:`close`, contiguous, as :func:`ga_rotors.results.write` writes it (a chunked,
-    growing file of 61 rows takes 42 kB, against 28 kB). Past that many rows, the rows
-    held make the file through xarray (variables, units, chunks of CHUNK_ROWS rows), which
-    stays open for the pieces after them: each :meth:`append` extends every ``time``
-    variable (the ``time`` coordinate, the dimension's scale, among them) through h5py,
-    the HDF5 library under h5netcdf, whose own variables looked each dataset up several
-    times per write (1 s of a 10⁷-step run's 2.7 s of CPU, against 0.3 s).
+    The first piece makes the file through xarray (variables, units, chunks of the run's
+    rows up to :data:`~.store.CHUNK_ROWS`: a 61-row run's file is 42 kB, where a
+    contiguous one is 28 kB), which stays open for the pieces after it: each
+    :meth:`append` extends every ``time`` variable (the ``time`` coordinate, the
+    dimension's scale, among them) through h5py, the HDF5 library under h5netcdf, whose
+    own variables looked each dataset up several times per write (1 s of a 10⁷-step run's
+    2.7 s of CPU, against 0.3 s).
 
     Examples
     --------
@@ -198,30 +197,24 @@ class NetcdfStream(_RunStream):
         super().__init__(path, scene)
 
     def append(self, piece) -> None:
-        """Hold the piece, or extend every ``time`` variable by its rows."""
-        rows = self._take(piece)
-        if self._file is not None:
-            for name, a in rows.items():
-                variable = self._file["time" if name == "t" else name]
-                variable.resize(self.rows, axis=0)
-                variable[self.written : self.rows, ...] = a
-            self.written = self.rows
-            return
-        self._held.append(rows)
-        if self.rows > store.CHUNK_ROWS:  # a long run: the file grows from here on
+        """Make the file of the first piece, or extend every ``time`` variable by the
+        piece's rows."""
+        self._held.append(self._take(piece))
+        if self._file is None:
             ds = self._dataset(self.rows)
             ds.to_netcdf(self.path, engine="h5netcdf", unlimited_dims=["time"],
-                         encoding=store.chunk_encoding(ds, "netcdf", store.CHUNK_ROWS))  # fmt: skip
+                         encoding=store.chunk_encoding(ds, "netcdf", self.chunk_rows))  # fmt: skip
             self._file = require("h5py", "results").File(self.path, "a")
+            return
+        for name, a in self._held.pop().items():
+            variable = self._file["time" if name == "t" else name]
+            variable.resize(self.rows, axis=0)
+            variable[self.written : self.rows, ...] = a
+        self.written = self.rows
 
     def close(self, meta: dict) -> None:
-        """Write the run's attributes (the final ``meta``) and the short paths' counts (a
-        short run: the whole file)."""
+        """Write the run's attributes (the final ``meta``) and the short paths' counts."""
         if self._file is None:
-            if self.rows:
-                ds = self._dataset(self.rows)
-                self._finish(ds.attrs, lambda name: ds[name].attrs, meta)
-                ds.to_netcdf(self.path, engine="h5netcdf")
             return
         self.abort()
         with require("h5netcdf", "results").File(self.path, "a") as f:  # netCDF's attr types
