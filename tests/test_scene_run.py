@@ -328,7 +328,7 @@ def test_a_run_longer_than_the_references_default_span_reports_its_bound():
     attributes state the bound (which grows with time) instead of aborting the run."""
     from ga_rotors import quaternion as Q
     from ga_rotors.errors import PrecisionError
-    from ga_rotors.results.dataset import exact_bound_at
+    from ga_rotors.results.dataset import run_attributes
     from ga_rotors.scene.summary import report
 
     s = load_scene("heavy_top").replace({
@@ -348,7 +348,8 @@ def test_a_run_longer_than_the_references_default_span_reports_its_bound():
     assert 1e-10 < rep.values["exact_bound"] < 1e-8
     assert f"rounding bound {rep.values['exact_bound']:.1e} rad" in str(rep)
     assert rep.values["error_rotor"] == tr.error_rotor.max()
-    assert exact_bound_at(s, tr.t) == pytest.approx(rep.values["exact_bound"], rel=0.05)
+    bound = run_attributes(tr.meta, s, tr.t)["exact_error_bound"]
+    assert bound == pytest.approx(rep.values["exact_bound"], rel=0.05)
 
 
 # ---------------------------------------------------------------------------- one frame

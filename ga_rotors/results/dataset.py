@@ -30,7 +30,6 @@ from .variables import STANDARD, component_dim, describe, one_unit
 __all__ = [
     "EXACT_BOUND_TIMES",
     "bound_rows",
-    "exact_bound_at",
     "run_attributes",
     "time_rows",
     "to_dataset",
@@ -70,22 +69,6 @@ def bound_rows(count: int) -> np.ndarray:
     return np.unique(np.linspace(0, count - 1, min(count, EXACT_BOUND_TIMES)).astype(int))
 
 
-def exact_bound_at(scene, times: np.ndarray) -> float | None:
-    """Largest rounding-error bound (rad) of the scene's exact reference at ``times``
-    (None when the scene has no reference with a bound).
-
-    Examples
-    --------
-    >>> from ga_rotors.scene import load_scene
-    >>> exact_bound_at(load_scene("heavy_top"), np.array([0.0, 1.0])) < 1e-12
-    True
-    >>> exact_bound_at(load_scene("damped_top"), np.array([0.0])) is None
-    True
-    """
-    exact = scene.exact_solution if scene.exact else None
-    return None if exact is None else exact.bound(times)
-
-
 def time_rows(trajectory) -> dict[str, np.ndarray]:
     """Each array of ``trajectory`` as :func:`to_dataset` holds it along ``time`` (``t``
     included): a path that stopped early padded with NaN to the trajectory's length.
@@ -101,15 +84,11 @@ def time_rows(trajectory) -> dict[str, np.ndarray]:
     {'t': (3,), 'euler': (3, 3)}
     """
     trajectory = one_unit(trajectory)  # an array of mixed units: its parts
-    n = trajectory.t.shape[0]
-    out = {}
+    n, out = len(trajectory), {}
     for name in trajectory.names:
         a = trajectory[name]
-        if a.shape[0] < n:
-            pad = np.full((n, *a.shape[1:]), np.nan)
-            pad[: a.shape[0]] = a
-            a = pad
-        out[name] = a
+        pad = [(0, n - a.shape[0])] + [(0, 0)] * (a.ndim - 1)
+        out[name] = a if a.shape[0] == n else np.pad(a, pad, constant_values=np.nan)
     return out
 
 
@@ -169,11 +148,13 @@ def run_attributes(meta: dict, scene=None, times=()) -> dict:
     >>> attrs = run_attributes(tr.meta, scene, tr.t)
     >>> attrs["integrator"], attrs["exact_error_bound"] < 1e-12, attrs["exact_error_bound_units"]
     ('rk4', True, 'rad')
+    >>> "exact_error_bound" in run_attributes({}, load_scene("damped_top"), [0.0])  # none
+    False
     """
     attrs = provenance(meta, scene)
     times = np.asarray(times)
-    picked = times[bound_rows(times.size)]
-    bound = exact_bound_at(scene, picked) if scene is not None and times.size else None
+    exact = scene.exact_solution if scene is not None and scene.exact and times.size else None
+    bound = None if exact is None else exact.bound(times[bound_rows(times.size)])
     if bound is not None:
         attrs["exact_error_bound"], attrs["exact_error_bound_units"] = bound, "rad"
     return attrs

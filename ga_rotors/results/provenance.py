@@ -12,6 +12,8 @@ import functools
 import importlib.metadata
 import json
 
+import numpy as np
+
 __all__ = ["BODY_FRAME_PRINCIPAL", "BODY_FRAME_USER", "CONVENTIONS", "body_frame", "provenance"]
 
 #: The CF conventions the Datasets follow.
@@ -33,6 +35,14 @@ BODY_FRAME_PRINCIPAL = (
 _IDENTITY = (1.0, 0.0, 0.0, 0.0)
 
 _PACKAGES = ("ga-rotors", "numpy", "numba", "scipy", "xarray")
+
+#: meta key -> (attribute, its units) of the numbers a run records of its body.
+_QUANTITIES = {
+    "moments": ("principal_moments", "kg m^2"),
+    "principal_rotation": ("principal_rotation", None),
+    "mass": ("body_mass", "kg"),
+    "centre_of_mass": ("body_centre_of_mass", "m"),
+}
 
 #: Entries of ``meta["paths"][path]`` kept in the ``paths_json`` attribute (the others,
 #: such as the generated loop's file in the cache, name this machine).
@@ -72,10 +82,13 @@ def provenance(meta: dict, scene=None) -> dict:
 
     CF's global attributes (``Conventions``, ``title``, ``source``, ``comment``), the
     frame of the body-frame data (``body_frame``), how the run was integrated (integrator,
-    order, step, steps, sample_every, declared torques, each path's status as JSON), the
-    scene (its name, its resolved TOML, its exact solution) and package versions. netCDF
-    attributes hold strings and numbers only, so the scene is its TOML text and lists of
-    names are joined with ", ".
+    order, step, steps, sample_every, declared torques, each path's status as JSON), a
+    moving body's mass and centre of mass (from the body-frame origin, in the body frame)
+    and declared forces (each one's type and parameters as JSON, as the force's kernel
+    takes them: SI units, space frame, :mod:`ga_rotors.forces`), the scene (its name, its
+    resolved TOML, its exact solution) and package versions. netCDF attributes hold
+    strings and numbers only, so the scene is its TOML text and lists of names are joined
+    with ", ".
 
     Examples
     --------
@@ -85,7 +98,15 @@ def provenance(meta: dict, scene=None) -> dict:
     ('CF-1.10', 'rk4', 0.001, 'gravity')
     >>> a["body_frame"], a["version_numpy"] == np.__version__
     ('the body axes the inertia was given in', True)
+    >>> a = provenance({"mass": 0.32, "centre_of_mass": (0.0, 0.33, 0.0),
+    ...                 "forces": ["uniform_gravity"], "force_params": [[0.0, 0.0, -3.1]]})
+    >>> a["body_mass"], a["body_mass_units"], a["body_centre_of_mass_units"], a["forces"]
+    (0.32, 'kg', 'm', 'uniform_gravity')
+    >>> a["forces_json"]
+    '[{"parameters": [0.0, 0.0, -3.1], "type": "uniform_gravity"}]'
     """
+    if scene is not None:  # what a scene run's meta records of its scene
+        meta = {**meta, "scene": scene.name, "scene_toml": scene.to_toml(), "exact": scene.exact}
     attrs: dict = {
         "Conventions": CONVENTIONS,
         "title": "ga_rotors results",
@@ -101,14 +122,22 @@ def provenance(meta: dict, scene=None) -> dict:
         order = f" (order {meta['order']})" if meta.get("order") is not None else ""
         step = f", step {meta['step']:g} s" if isinstance(meta.get("step"), int | float) else ""
         attrs["source"] = f"ga_rotors: {meta['integrator']} integrator{order}{step}"
-    if meta.get("moments") is not None:
-        attrs["principal_moments"] = [float(m) for m in meta["moments"]]
-        attrs["principal_moments_units"] = "kg m^2"
-    if meta.get("principal_rotation") is not None:
-        attrs["principal_rotation"] = [float(x) for x in meta["principal_rotation"]]
-    if "torques" in meta:
-        attrs["torques"] = ", ".join(meta["torques"])
-    attrs.update(_motion(meta))
+    for key, (name, units) in _QUANTITIES.items():
+        if meta.get(key) is not None:
+            value = meta[key]
+            attrs[name] = float(value) if np.ndim(value) == 0 else [float(x) for x in value]
+            if units is not None:
+                attrs[f"{name}_units"] = units
+    for key in ("torques", "forces"):
+        if key in meta:
+            attrs[key] = ", ".join(meta[key])
+    if "forces" in meta:
+        params = meta.get("force_params") or [None] * len(meta["forces"])
+        declared = [
+            {"type": name, **({} if p is None else {"parameters": [float(x) for x in p]})}
+            for name, p in zip(meta["forces"], params, strict=True)
+        ]
+        attrs["forces_json"] = json.dumps(declared, sort_keys=True)
     if "paths" in meta:
         paths = {
             name: {k: v for k, v in status.items() if k in _PATH_KEYS}
@@ -117,49 +146,11 @@ def provenance(meta: dict, scene=None) -> dict:
         attrs["paths_json"] = json.dumps(paths, sort_keys=True, default=str)
     if meta.get("scene") is not None:
         attrs["scene"] = str(meta["scene"])
+        attrs["title"] = f"ga_rotors run of the scene {attrs['scene']}"
     if meta.get("scene_toml") is not None:  # a scene run records its resolved scene
         attrs["scene_toml"] = str(meta["scene_toml"])
         attrs["exact_solution"] = meta.get("exact") or "none"
-    if scene is not None:
-        attrs["scene"] = scene.name
-        attrs["scene_toml"] = scene.to_toml()
-        attrs["exact_solution"] = scene.exact or "none"
-    if "scene" in attrs:
-        attrs["title"] = f"ga_rotors run of the scene {attrs['scene']}"
     attrs.update(_versions())
-    return attrs
-
-
-def _motion(meta: dict) -> dict:
-    """A moving body's attributes: its mass and centre of mass (from the body-frame
-    origin, in the body frame) with their units, and its declared forces: their names (as
-    the torques'), and each one's type and parameters as JSON (the parameters as the
-    force's kernel takes them, SI units, space frame: :mod:`ga_rotors.forces`).
-
-    Examples
-    --------
-    >>> a = _motion({"mass": 0.32, "centre_of_mass": (0.0, 0.33, 0.0),
-    ...              "forces": ["uniform_gravity"], "force_params": [[0.0, 0.0, -3.1]]})
-    >>> a["body_mass"], a["body_mass_units"], a["body_centre_of_mass_units"], a["forces"]
-    (0.32, 'kg', 'm', 'uniform_gravity')
-    >>> a["forces_json"]
-    '[{"parameters": [0.0, 0.0, -3.1], "type": "uniform_gravity"}]'
-    """
-    attrs: dict = {}
-    if meta.get("mass") is not None:
-        attrs["body_mass"], attrs["body_mass_units"] = float(meta["mass"]), "kg"
-    if meta.get("centre_of_mass") is not None:
-        attrs["body_centre_of_mass"] = [float(x) for x in meta["centre_of_mass"]]
-        attrs["body_centre_of_mass_units"] = "m"
-    if "forces" in meta:
-        names = list(meta["forces"])
-        attrs["forces"] = ", ".join(names)
-        params = meta.get("force_params") or [None] * len(names)
-        declared = [
-            {"type": name, **({} if p is None else {"parameters": [float(x) for x in p]})}
-            for name, p in zip(names, params, strict=True)
-        ]
-        attrs["forces_json"] = json.dumps(declared, sort_keys=True)
     return attrs
 
 
