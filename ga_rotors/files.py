@@ -120,6 +120,14 @@ def checked_path(path, argument: str) -> Path:
     return Path(path)
 
 
+def _new_file(path, argument: str) -> Path:
+    """``path`` as the name of a file to write: not empty, in a folder that exists."""
+    path = checked_path(path, argument)
+    if not path.parent.is_dir():
+        raise InputError(f"directory {shown_path(path.parent)} does not exist", key=argument)
+    return path
+
+
 def atomic_write(path, write) -> Path:
     """Call ``write(file_object)`` on a temporary file, then move it onto ``path``.
 
@@ -132,14 +140,11 @@ def atomic_write(path, write) -> Path:
     >>> atomic_write(d / "x.txt", lambda f: f.write(b"hello")).read_bytes()
     b'hello'
     """
-    path = checked_path(path, "path")
+    path = _new_file(path, "path")
     if path.is_dir():
         raise InputError(f"{shown_path(path)} is a directory; expected a file name", key="path")
-    parent = path.parent if str(path.parent) else Path(".")
-    if not parent.is_dir():
-        raise InputError(f"directory {shown_path(parent)} does not exist", key="path")
     try:
-        fd, tmp = tempfile.mkstemp(dir=parent, prefix=f".{path.name[:200]}.", suffix=".tmp")
+        fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name[:200]}.", suffix=".tmp")
     except OSError as exc:  # named by the file asked for, not the temporary one
         raise OSError(exc.errno, exc.strerror, str(path)) from None
     try:
@@ -389,10 +394,8 @@ def output_file(path, argument: str = "path") -> Iterator[Path]:
     ...
     ga_rotors.errors.InputError: --out: directory ...missing does not exist
     """
-    path = checked_path(path, argument)
+    path = _new_file(path, argument)
     _check_name(path.name, argument)
-    if not path.parent.is_dir():
-        raise InputError(f"directory {shown_path(path.parent)} does not exist", key=argument)
     with output_set(path.parent, argument) as stage:
         yield stage / path.name
 

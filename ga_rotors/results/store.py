@@ -21,6 +21,8 @@ __all__ = ["CHUNK_ROWS", "FORMATS", "ZARR_FORMAT", "chunk_encoding", "format_of"
 #: file suffix -> format name.
 FORMATS = {".nc": "netcdf", ".zarr": "zarr"}
 
+_ENGINES = {"netcdf": "h5netcdf", "zarr": "zarr"}  # format -> xarray's engine, its module
+
 #: Rows per chunk along ``time`` of a zarr store, and of a streamed netCDF file, at most:
 #: 16,384 rows of a 4-component array are 512 kB, what a streamed run holds per array.
 CHUNK_ROWS = 16_384
@@ -79,7 +81,7 @@ def write(data, path, scene=None) -> Path:
     fmt = format_of(path)
     ds = data if hasattr(data, "data_vars") else to_dataset(data, scene)
     ds = ds.drop_encoding()
-    require("h5netcdf" if fmt == "netcdf" else "zarr", "results")
+    require(_ENGINES[fmt], "results")
     encoding = chunk_encoding(ds, "zarr", ds.sizes.get("time", 0))
     with output_file(path) as staged:
         if fmt == "netcdf":
@@ -155,11 +157,8 @@ def read(path, lazy: bool = False, max_memory_gib: float = READ_MEMORY_GIB):
     if not found:
         raise InputError(f"path: {shown_path(path)}: no such file or store")
     try:
-        require("h5netcdf" if fmt == "netcdf" else "zarr", "results")
-        if fmt == "netcdf":
-            ds = xr.open_dataset(path, engine="h5netcdf")
-        else:
-            ds = xr.open_zarr(path, consolidated=None)
+        require(_ENGINES[fmt], "results")
+        ds = xr.open_dataset(path, engine=_ENGINES[fmt])
     except (OSError, ValueError, KeyError) as exc:
         raise _unreadable(path, fmt, exc) from None
     if lazy:
@@ -168,9 +167,8 @@ def read(path, lazy: bool = False, max_memory_gib: float = READ_MEMORY_GIB):
         if ds.nbytes > max_memory_gib * 2**30:
             raise InputError(
                 f"path: {shown_path(path)}: {ds.nbytes / 2**30:.3g} GiB of data, more than "
-                f"max_memory_gib = "
-                f"{max_memory_gib:g} GiB at once; read(path, lazy=True) reads values as they "
-                "are used"
+                f"max_memory_gib = {max_memory_gib:g} GiB at once; read(path, lazy=True) "
+                "reads values as they are used"
             )
         try:
             return ds.load()

@@ -69,19 +69,11 @@ _COLUMN_NAME = re.compile(r"[A-Za-z0-9][A-Za-z0-9_]*")
 ENGINES = ("polars", "numpy")
 
 
-#: True in a process made by ``os.fork`` (a ``multiprocessing`` pool's workers on Linux):
-#: polars' thread pool does not survive a fork, and a child writing with it waits forever
-#: once the parent has used it, so the default writer there is numpy.
-_FORKED = False
-
-
-def _forked() -> None:
-    global _FORKED
-    _FORKED = True
-
-
-if hasattr(os, "register_at_fork"):
-    os.register_at_fork(after_in_child=_forked)
+#: The process that imported this module: in another one, made by ``os.fork`` (a
+#: ``multiprocessing`` pool's workers on Linux), polars' thread pool may be the parent's,
+#: which does not survive a fork (a child writing with it waits forever once the parent has
+#: used it), so the default writer there is numpy.
+_PROCESS = os.getpid()
 
 
 def csv_engine(engine: str | None = None) -> str:
@@ -103,7 +95,8 @@ def csv_engine(engine: str | None = None) -> str:
         if engine not in ENGINES:
             raise InputError(f"expected one of {', '.join(ENGINES)}, got {engine!r}", key="engine")
         return engine
-    return "polars" if not _FORKED and importlib.util.find_spec("polars") else "numpy"
+    forked = os.getpid() != _PROCESS
+    return "polars" if not forked and importlib.util.find_spec("polars") else "numpy"
 
 
 def csv_header(trajectory) -> list[str]:
