@@ -3,10 +3,10 @@
 One file goes through a temporary file in the target's directory and ``os.replace``
 (:func:`atomic_write`), so a failed or interrupted run leaves the previous file (or none),
 never a half-written one. A command's set of outputs goes through :func:`output_set` (or
-:func:`write_together`): every file is written into a staging folder first and moved in
-only when all of them exist, so ``--out`` holds the complete new set or the previous one.
-Files are written with ordinary buffered writes; what this module adds is only where they
-are written and when they are moved.
+:func:`write_together`; :func:`output_file` for one file or folder such as a zarr store):
+every file is written into a staging folder first and moved in only when all of them
+exist, so ``--out`` holds the complete new set or the previous one. Files are written
+with ordinary buffered writes; this module adds only where they go and when they move.
 
 Faults, and what each leaves:
 
@@ -290,11 +290,10 @@ def _signals_held() -> Iterator[None]:
 def output_set(out_dir, argument: str = "out_dir") -> Iterator[Path]:
     """A staging folder whose files become ``out_dir``'s together, or not at all.
 
-    Write every file of the set into the yielded folder (any writer, forked processes
-    too, by plain file names); when the block ends without an exception they are moved
-    into ``out_dir`` (created if missing: a new folder is renamed into place whole), and
-    files of ``out_dir`` not in the set are left alone. An exception removes the staging
-    folder and leaves ``out_dir`` as it was. See the module's notes for faults.
+    Write every file of the set into the yielded folder (any writer, other processes too,
+    by plain file names); when the block ends without an exception they are moved into
+    ``out_dir`` (created if missing: a new folder is renamed into place whole), and files
+    of ``out_dir`` not in the set are left alone. See the module's notes for faults.
 
     Examples
     --------

@@ -1,14 +1,11 @@
 """NPZ archives: every array of a trajectory as a ``.npy`` member, and what made them.
 
 An archive holds one ``<name>.npy`` member per array (``t``, ``w``, ``q``, ...), the
-component labels of each multi-column array as ``<name>__components.npy``, and an
-``attributes.json`` member: the run's attributes (:func:`~.provenance.provenance`: the
-body frame, integrator, step, scene, versions) and each array's units and long name.
-``numpy.load`` reads the arrays by name; ``json.loads(numpy.load(path)["attributes.json"])``
-reads the attributes (numpy hands out a member that is not ``.npy`` as its bytes).
-
-:class:`NpzStream` writes it from a run's pieces, :func:`write_npz` from a whole
-trajectory (one piece).
+component labels of each multi-column array as ``<name>__components.npy``, and
+:func:`attributes_json`. ``numpy.load`` reads the arrays by name;
+``json.loads(numpy.load(path)["attributes.json"])`` the attributes (numpy hands out a
+member that is not ``.npy`` as its bytes). :class:`NpzStream` writes it from a run's
+pieces, :func:`write_npz` from a whole trajectory (one piece).
 """
 
 from __future__ import annotations
@@ -36,6 +33,7 @@ COPY_BUFFER = 4 << 20
 
 def attributes_json(trajectory, scene=None) -> str:
     """The ``attributes.json`` member of ``trajectory``'s archive: the run's attributes
+    (:func:`~.provenance.provenance`: the body frame, integrator, step, scene, versions)
     and each array's units and long name (for an array whose columns carry different
     units, a raw state of a moving body, those of each part and the columns it takes:
     :data:`~ga_rotors.results.variables.PARTS`).
