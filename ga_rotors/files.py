@@ -259,17 +259,6 @@ def _recover(out: Path) -> None:
             shutil.rmtree(staging, ignore_errors=True)
 
 
-def _remove(staging: Path) -> None:
-    """Remove a staging folder that a writer may still be adding to (a figure drawn in
-    another process when the run was interrupted): once it is gone, it cannot be made
-    again under the same name."""
-    for _ in range(50):
-        shutil.rmtree(staging, ignore_errors=True)
-        if not os.path.lexists(staging):
-            return
-        time.sleep(0.02)
-
-
 @contextlib.contextmanager
 def _signals_held() -> Iterator[None]:
     """SIGINT/SIGTERM arriving while the files move in are delivered after the last move."""
@@ -366,9 +355,10 @@ def output_set(out_dir, argument: str = "out_dir") -> Iterator[Path]:
                         _finish_moves(staging, out)
             except OSError as exc:
                 raise _os_error(argument, out, exc) from None
-        except BaseException:
+        except BaseException:  # nothing writes there any more: a pool's drawing processes,
+            # writing into a staging folder, are waited for before it ends (paper.reproduce)
             if not (staging / _COMPLETE).exists():
-                _remove(staging)
+                shutil.rmtree(staging, ignore_errors=True)
             raise
 
 

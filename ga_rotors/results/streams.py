@@ -259,15 +259,13 @@ class ZarrStream(_RunStream):
             self._write(end)
 
     def _write(self, end: int) -> None:
-        """Write the rows held up to row ``end`` of the run; keep the rest."""
+        """Write the rows held up to row ``end`` of the run (the first ones make the store);
+        keep the rest."""
         first = self.written == 0
         ds = self._dataset(end)
-        if first:
-            ds.to_zarr(self.path, mode="w", zarr_format=store.ZARR_FORMAT, consolidated=False,
-                       encoding=store.chunk_encoding(ds, "zarr", self.chunk_rows))  # fmt: skip
-        else:
-            ds.to_zarr(self.path, append_dim="time", zarr_format=store.ZARR_FORMAT,
-                       consolidated=False)  # fmt: skip
+        how = {"mode": "w", "encoding": store.chunk_encoding(ds, "zarr", self.chunk_rows)}
+        ds.to_zarr(self.path, zarr_format=store.ZARR_FORMAT, consolidated=False,
+                   **(how if first else {"append_dim": "time"}))  # fmt: skip
 
     def close(self, meta: dict) -> None:
         """Write the rows left, the run's attributes, the short paths' counts; consolidate
