@@ -197,6 +197,11 @@ def _staging_prefix(out: Path) -> str:
     return f"{_STAGING}{tag}-"
 
 
+# The folders this thread holds locked: a set written inside another's staging folder (a
+# format's writer calling results.write or write_csv there) takes the lock it already has.
+_HELD = threading.local()
+
+
 @contextlib.contextmanager
 def _locked(folder: Path, argument: str) -> Iterator[None]:
     """Hold an exclusive lock on ``folder`` itself (no lock file to leave behind)."""
@@ -209,6 +214,12 @@ def _locked(folder: Path, argument: str) -> Iterator[None]:
         fd = os.open(folder, os.O_RDONLY)
     except OSError as exc:
         raise _os_error(argument, folder, exc) from None
+    info = os.fstat(fd)
+    key, held = (info.st_dev, info.st_ino), _HELD.__dict__.setdefault("folders", set())
+    if key in held:
+        os.close(fd)
+        yield
+        return
     try:
         deadline = time.monotonic() + LOCK_TIMEOUT
         while True:
@@ -224,8 +235,10 @@ def _locked(folder: Path, argument: str) -> Iterator[None]:
                         key=argument,
                     ) from None
                 time.sleep(0.05)
+        held.add(key)
         yield
     finally:
+        held.discard(key)
         os.close(fd)  # releases the lock
 
 

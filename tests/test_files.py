@@ -245,3 +245,16 @@ def test_run_with_an_empty_out_is_one_line_before_anything_runs(tmp_path, capsys
     err = capsys.readouterr().err
     assert err == "ga-rotors: error: --out: expected a file or folder name, got an empty one\n"
     assert _listing(tmp_path) == []
+
+
+def test_a_set_written_inside_another_does_not_wait_for_itself(tmp_path, monkeypatch):
+    """A format's writer may call results.write or write_csv (each a set of its own) in a
+    run's staging folder: a new --out's staging folder is beside it, so both sets lock the
+    same folder, which this thread already holds. Another process still waits."""
+    monkeypatch.setattr(files, "LOCK_TIMEOUT", 0.2)
+    out = tmp_path / "run"
+    with files.output_set(out, "--out") as stage:
+        with files.output_file(stage / "a.txt") as staged:
+            staged.write_text("a")
+        (stage / "b.txt").write_text("b")
+    assert _listing(out) == ["a.txt", "b.txt"] and [p.name for p in tmp_path.iterdir()] == ["run"]
