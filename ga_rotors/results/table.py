@@ -260,8 +260,8 @@ body_axis 1'})
 def write_csv_files(trajectory, path, *, scene=None, engine: str | None = None) -> list[Path]:
     """Write the CSV file ``path`` and its metadata sidecar (:func:`metadata_path`) where
     they are, not atomically, for a folder whose files move into place together
-    (:func:`ga_rotors.files.output_set`): the files of a
-    :class:`~ga_rotors.results.streams.CsvStream` given the whole trajectory as one piece.
+    (:func:`ga_rotors.files.output_set`): the files a
+    :class:`~ga_rotors.results.streams.CsvStream` writes of the trajectory's pieces.
     Returns both paths.
 
     Examples
@@ -273,15 +273,14 @@ def write_csv_files(trajectory, path, *, scene=None, engine: str | None = None) 
     >>> [p.name for p in write_csv_files(tr, stage / "run.csv")]
     ['run.csv', 'run.csv-metadata.json']
     """
-    from .streams import CsvStream
+    from .dataset import run_attributes
 
-    out = CsvStream(path, scene, engine=engine)
-    try:
-        out.append(trajectory)
-        out.close(trajectory.meta)
-    finally:
-        out.abort()
-    return [Path(path), metadata_path(path)]
+    path, sidecar = Path(path), metadata_path(path)
+    with open(path, "wb") as fh:
+        csv_rows(fh, trajectory, csv_engine(engine), header=True)
+    attributes = run_attributes(trajectory.meta, scene, trajectory.t)
+    sidecar.write_text(metadata_text(trajectory, path.name, attributes), encoding="utf-8")
+    return [path, sidecar]
 
 
 def write_csv(trajectory, path=None, *, scene=None, engine: str | None = None) -> str | Path:

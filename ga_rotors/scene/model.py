@@ -83,7 +83,7 @@ from .schema import (
 )
 from .toml_io import check_nesting, dumps_toml, parse_toml
 
-__all__ = ["MAX_TURN_PER_STEP", "TIME_RESOLUTION", "Scene"]
+__all__ = ["MAX_TURN_PER_STEP", "TIME_RESOLUTION", "Scene", "whole_steps_at"]
 
 #: Largest spacing of float64 times, as a fraction of the step, a scene may have: beyond
 #: it time values round by more than a millionth of a step (torques of t, the exact
@@ -92,6 +92,27 @@ TIME_RESOLUTION = 1e-6
 #: Largest rotation per step (rad) a scene may ask for; the step limits of the methods
 #: (docs/stability.md) are a few radians, this only refuses the absurd.
 MAX_TURN_PER_STEP = 1e3
+
+
+def whole_steps_at(reader: Reader, span: float, step: float, key: str, message: str) -> int:
+    """``span / step`` as a whole number of steps (:func:`ga_rotors.simulation.whole_steps`,
+    simulate's rule), or ``message`` at ``key`` of ``reader``'s file.
+
+    Examples
+    --------
+    >>> whole_steps_at(Reader("s.toml"), 0.3, 0.1, "time.duration", "not whole")
+    3
+    >>> whole_steps_at(Reader("s.toml"), 1.0, 0.3, "time.duration", "not whole")
+    Traceback (most recent call last):
+    ...
+    ga_rotors.errors.SceneError: s.toml: time.duration: not whole
+    """
+    from ..simulation import whole_steps  # the simulation imports this package's reader
+
+    try:
+        return whole_steps(span, step)
+    except InputError:
+        raise reader.error(key, message) from None
 
 
 class Scene:
@@ -243,13 +264,13 @@ class Scene:
             self.euler_angles = np.array(o["euler"]) * ANGLE_UNITS[o["units"]]
 
         time, integ = d["time"], d["integrator"]
-        self.steps = reader.whole_steps(
-            time["duration"], integ["step"], "integrator.step",
+        self.steps = whole_steps_at(
+            reader, time["duration"], integ["step"], "integrator.step",
             f"expected a step that divides time.duration ({time['duration']!r} s) into whole "
             f"steps, got {integ['step']!r} s",
         )  # fmt: skip
-        self.sample_every = reader.whole_steps(
-            time["output_step"], integ["step"], "time.output_step",
+        self.sample_every = whole_steps_at(
+            reader, time["output_step"], integ["step"], "time.output_step",
             f"expected a whole multiple of integrator.step ({integ['step']!r} s), got "
             f"{time['output_step']!r} s",
         )  # fmt: skip

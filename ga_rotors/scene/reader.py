@@ -15,7 +15,7 @@ import difflib
 import math
 from collections.abc import Iterable, Mapping
 
-from ..errors import InputError, SceneError
+from ..errors import SceneError
 
 __all__ = ["Reader", "join", "suggest"]
 
@@ -157,16 +157,6 @@ class Reader:
                     f"expected one of {', '.join(choices)}",
                 )
         return value
-
-    def whole_steps(self, span: float, step: float, key: str, message: str) -> int:
-        """``span / step`` as a whole number of steps (:func:`ga_rotors.simulation.
-        whole_steps`, simulate's rule), or ``message`` at ``key``."""
-        from ..simulation import whole_steps
-
-        try:
-            return whole_steps(span, step)
-        except InputError:
-            raise self.error(key, message) from None
 
     def boolean(self, value, key: str) -> bool:
         if not isinstance(value, bool):

@@ -28,6 +28,7 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import ECHO_LIMIT, InputError
+from ..scene.model import whole_steps_at
 from ..scene.reader import Reader, join
 
 __all__ = [
@@ -522,7 +523,7 @@ def _times(r: Reader, scene, value) -> np.ndarray:
         if not start < t <= start + duration * (1 + 1e-12):
             raise r.error(key, f"{t!r} s is outside the run (from {start!r} s to "
                           f"{start + duration!r} s, the start excluded)")  # fmt: skip
-        r.whole_steps(t - start, h, key, f"{t!r} s is not a whole number of steps ({h!r} s) "
+        whole_steps_at(r, t - start, h, key, f"{t!r} s is not a whole number of steps ({h!r} s) "
                       f"after the start ({start!r} s)")  # fmt: skip
         if t <= before:
             raise r.error(key, f"expected increasing times, got {t!r} s after {before!r} s")
