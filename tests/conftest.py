@@ -38,17 +38,30 @@ def pytest_configure(config):
     )
 
 
-#: Test files that take long (mostly compiling batched loops on an empty cache), longest
-#: first: the suite runs them first, so that two workers finish together (pytest-xdist
+#: Test files that take long (mostly compiling loops on an empty cache), longest first, as
+#: measured from a fresh clone (``--durations=0``, summed by file): the suite runs them
+#: first, so that two workers finish together (pytest-xdist
 #: would otherwise order the files by their number of tests, and a long file with few
 #: tests would start last).
 LONG_FILES = [
     "tests/test_ensemble.py",
     "tests/test_docs.py",
+    "tests/test_stream.py",
     "tests/test_accuracy.py",
     "tests/test_motion.py",
-    "tests/test_stream.py",
     "tests/test_integrator_orders.py",
+    "tests/test_motion_bench.py",
+    "tests/test_warmup.py",
+    "tests/test_torque_support.py",
+    "tests/test_prove.py",
+    "tests/test_site.py",
+    "tests/test_run_path.py",
+    "tests/test_learn.py",
+    "tests/test_effects.py",
+    "tests/test_extending.py",
+    "tests/test_sweep_input.py",
+    "tests/test_stability_values.py",
+    "tests/test_forces.py",
 ]
 #: Files whose tests compile the same loops, run in one worker one after the other (in two
 #: workers at once, an empty cache compiles each loop twice): docs/ensembles.md's examples
