@@ -65,14 +65,8 @@ LONG_FILES = [
 ]
 #: Files whose tests compile the same loops, run in one worker one after the other (in two
 #: workers at once, an empty cache compiles each loop twice): docs/ensembles.md's examples
-#: and the ensemble tests share their batched RK4 loops; the motion tests and the motion
-#: benchmark's quick run share the thrown racket's batched loops, centred or not.
-SAME_WORKER = {
-    "tests/test_docs.py": "tests/test_ensemble.py",
-    "tests/test_motion_bench.py": "tests/test_motion.py",
-    "tests/test_motion_centred.py": "tests/test_motion.py",
-    "tests/test_motion_sweep.py": "tests/test_motion.py",
-}
+#: and the ensemble tests share their batched RK4 loops.
+SAME_WORKER = {"tests/test_docs.py": "tests/test_ensemble.py"}
 
 
 def pytest_collection_modifyitems(config, items):
