@@ -273,7 +273,16 @@ def _rows(tr, lo, hi):
     return Trajectory({n: tr[n][lo:hi] for n in tr.names}, tr.components, tr.meta)
 
 
-@pytest.mark.parametrize("name", sorted(bundled()))
+#: Scenes whose streamed run compiles a loop no other default test needs (the long mode
+#: streams them too).
+STREAMED_LONG = ("damped_top", "satellite_orbit")
+LONG = pytest.mark.long
+
+
+@pytest.mark.parametrize(
+    "name",
+    [pytest.param(n, marks=LONG) if n in STREAMED_LONG else n for n in sorted(bundled())],
+)
 def test_streamed_run_writes_the_files_and_summary_of_the_whole_run(name, tmp_path):
     """Every bundled scene in full, streamed in about seven pieces: the same data files
     (CSV bytes, NPZ arrays, netCDF and zarr Datasets), the same summary, and (a short
