@@ -463,3 +463,65 @@ def test_docstring_math_becomes_the_sites_math(roles):
         "\n"
         "after the block.\n"
     )
+
+
+def _closure(requirements) -> set[str]:
+    """The installed distributions ``requirements`` (strings as in a package's metadata)
+    bring, recursively; environment markers are ignored (every branch counts)."""
+    import importlib.metadata as md
+
+    from packaging.requirements import Requirement
+
+    seen: set[str] = set()
+    todo = [Requirement(r) for r in requirements]
+    while todo:
+        req = todo.pop()
+        name = req.name.lower().replace("_", "-")
+        key = f"{name}{sorted(req.extras)}"
+        if key in seen:
+            continue
+        seen.add(key)
+        seen.add(name)
+        try:
+            dist = md.distribution(name)
+        except md.PackageNotFoundError:
+            continue
+        for text in dist.requires or []:
+            sub = Requirement(text)
+            wanted = (
+                sub.marker is None
+                or any(f'extra == "{e}"' in str(sub.marker) for e in req.extras)
+                or "extra ==" not in str(sub.marker)
+            )
+            if wanted:
+                todo.append(sub)
+    return seen
+
+
+def test_the_docs_extra_brings_every_package_the_pages_examples_import():
+    """The README's docs command installs ``.[docs]`` on top of the package: the examples
+    the build runs may import only what that brings (cf_xarray and pint-xarray were once
+    only in the test extra, and the command failed on a fresh machine)."""
+    import ast
+    import importlib.metadata as md
+
+    closure = _closure(["ga-rotors[docs]"])
+    providers = md.packages_distributions()
+    pages = sorted((ROOT / "docs").rglob("*.md"))
+    hook = _hook("examples")
+    missing = set()
+    for page in pages:
+        for block in hook.FENCE.findall(page.read_text(encoding="utf-8")):
+            for node in ast.walk(ast.parse(block)):
+                names = []
+                if isinstance(node, ast.Import):
+                    names = [a.name for a in node.names]
+                elif isinstance(node, ast.ImportFrom) and not node.level:
+                    names = [node.module]
+                for module in (n.split(".")[0] for n in names):
+                    if module in sys.stdlib_module_names or module == "ga_rotors":
+                        continue
+                    dists = {d.lower().replace("_", "-") for d in providers.get(module, [])}
+                    if not dists & closure:
+                        missing.add(f"{page.name}: {module}")
+    assert not missing, sorted(missing)
