@@ -158,21 +158,28 @@ STORE_WAIT = 300
 _REBUILT: dict = {}
 
 
-def _writer_when_made(remote: _Remote) -> Callable[[], zstore.ChunkWriter]:
-    """The worker's ``writer()``: once the store's event is set, a writer of it."""
+def _writer_after(ready: Callable[[], object], store) -> Callable[[], zstore.ChunkWriter]:
+    """A job's ``writer()``: once ``ready()`` returns (the store is made), a writer of
+    ``store``, made once for all the job's chunks."""
 
     @functools.cache
     def writer() -> zstore.ChunkWriter:
-        if remote.made is not None:
-            distributed = require("distributed", "dask")
-            if not distributed.Event(remote.made).wait(STORE_WAIT):
-                raise InputError(
-                    f"{remote.file}: the store {remote.store} was not made within "
-                    f"{STORE_WAIT} s", key="--out"
-                )  # fmt: skip
-        return zstore.ChunkWriter(remote.store)
+        ready()
+        return zstore.ChunkWriter(store)
 
     return writer
+
+
+def _made(remote: _Remote) -> None:
+    """On a worker: wait until the client has set the store's event (a new store)."""
+    if remote.made is None:
+        return
+    distributed = require("distributed", "dask")
+    if not distributed.Event(remote.made).wait(STORE_WAIT):
+        raise InputError(
+            f"{remote.file}: the store {remote.store} was not made within {STORE_WAIT} s",
+            key="--out",
+        )
 
 
 def run_chunk(remote: _Remote, c: int) -> int:
@@ -189,7 +196,8 @@ def run_chunk(remote: _Remote, c: int) -> int:
                 f"was sent ({sweep.digests} against {dict(remote.digests)})"
             )
         _REBUILT.clear()  # one sweep at a time per process
-        _REBUILT[key] = _Job(sweep, _writer_when_made(remote), None)
+        ready = functools.partial(_made, remote)
+        _REBUILT[key] = _Job(sweep, _writer_after(ready, remote.store), None)
     return _run_chunk(_REBUILT[key], c)
 
 
@@ -466,28 +474,22 @@ def run_sweep(
     else:
         dask_client, owned = None, False
     make = None if store.exists() else functools.partial(zstore.create, sweep, store, both)
-    if progress is not None:
-        progress(count[0], sweep.chunks)
-    if not todo:
-        return store
     maker = ThreadPoolExecutor(1, thread_name_prefix="ga_rotors-store")
     try:
+        if progress is not None:
+            progress(count[0], sweep.chunks)
+        if not todo:
+            return store
         if dask_client is not None:
             _on_cluster(dask_client, sweep, todo, store, make, done)
             return store
         if make is not None and client == "sync":
             make()
             make = None
-        # a new store is made while the threads integrate their first chunks
-        pending = maker.submit(make) if make is not None else None
-
-        @functools.cache
-        def writer() -> zstore.ChunkWriter:
-            if pending is not None:
-                pending.result()  # raises what making the store raised
-            return zstore.ChunkWriter(store)
-
-        job = _Job(sweep, writer, nominal)
+        # a new store is made while the threads integrate their first chunks; result()
+        # raises in their tasks what making it raised
+        ready = maker.submit(make).result if make is not None else lambda: None
+        job = _Job(sweep, _writer_after(ready, store), nominal)
         if client == "sync":
             for c in todo:
                 _run_chunk(job, c)
