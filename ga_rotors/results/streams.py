@@ -155,15 +155,13 @@ class CsvStream(_RunStream):
         """Finish the file; write its metadata, with the run's attributes (the final
         ``meta``)."""
         from ..trajectory import Trajectory
-        from .table import metadata_path, metadata_text
+        from .table import write_metadata
 
         self.abort()
         columns = Trajectory({"t": np.zeros(0)}) if self.columns is None else self.columns
         attrs: dict = {}
         self._finish(attrs, lambda name: {}, meta)
-        metadata_path(self.path).write_text(
-            metadata_text(columns, self.path.name, attrs), encoding="utf-8"
-        )
+        write_metadata(self.path, columns, attrs)
 
 
 class NetcdfStream(_RunStream):

@@ -54,6 +54,7 @@ __all__ = [
     "metadata_text",
     "write_csv",
     "write_csv_files",
+    "write_metadata",
 ]
 
 #: The JSON-LD context of a CSVW metadata document (names a vocabulary; nothing loads it).
@@ -275,12 +276,30 @@ def write_csv_files(trajectory, path, *, scene=None, engine: str | None = None) 
     """
     from .dataset import run_attributes
 
-    path, sidecar = Path(path), metadata_path(path)
+    path = Path(path)
     with open(path, "wb") as fh:
         csv_rows(fh, trajectory, csv_engine(engine), header=True)
     attributes = run_attributes(trajectory.meta, scene, trajectory.t)
+    return [path, write_metadata(path, trajectory, attributes)]
+
+
+def write_metadata(path, trajectory, attributes: dict) -> Path:
+    """Write the CSVW sidecar of the CSV file ``path`` (:func:`metadata_text` of
+    ``trajectory``'s columns and the run's ``attributes``) beside it; return its path.
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> from ga_rotors.trajectory import Trajectory
+    >>> csv = pathlib.Path(tempfile.mkdtemp()) / "run.csv"
+    >>> sidecar = write_metadata(csv, Trajectory({"t": np.zeros(2)}), {"body_frame": "body axes"})
+    >>> sidecar.name, json.loads(sidecar.read_text())["url"]
+    ('run.csv-metadata.json', 'run.csv')
+    """
+    path = Path(path)
+    sidecar = metadata_path(path)
     sidecar.write_text(metadata_text(trajectory, path.name, attributes), encoding="utf-8")
-    return [path, sidecar]
+    return sidecar
 
 
 def write_csv(trajectory, path=None, *, scene=None, engine: str | None = None) -> str | Path:
