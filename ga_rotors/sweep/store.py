@@ -28,7 +28,7 @@ __all__ = ["FORMAT", "ChunkWriter", "create", "done", "open_store"]
 
 #: The layout of the stores this version writes (attribute ``sweep_format``); a store of
 #: another layout is opened but never resumed. 3: the samples cut into chunks of equal
-#: size as far as they go (2 cut full chunks and a short last one: its chunk regions
+#: size as far as they go (2: full chunks and a short last one; the chunk regions
 #: differ, so resuming one with the other would write samples where others belong).
 FORMAT = 3
 
